@@ -1,0 +1,58 @@
+/* Minimal test helpers: checks that count failures and print where they were,
+ * norm-wise comparison with an explicit finiteness check, and paths to data. */
+#ifndef TR_TESTLIB_H
+#define TR_TESTLIB_H
+
+#include <stddef.h>
+
+extern int tr_test_failures;
+
+#define TR_SKIP 77
+
+#define CHECK(cond)                                                                    \
+    do {                                                                               \
+        if (!(cond)) {                                                                 \
+            tr_test_failures++;                                                        \
+            tr_test_report(__FILE__, __LINE__, "check failed: %s", #cond);             \
+        }                                                                              \
+    } while (0)
+
+/* |got - want| <= tol, and both finite (NaN passes naive comparisons). */
+#define CHECK_NEAR(got, want, tol)                                                     \
+    do {                                                                               \
+        double g_ = (got), w_ = (want), t_ = (tol);                                    \
+        if (!tr_test_near(g_, w_, t_)) {                                               \
+            tr_test_failures++;                                                        \
+            tr_test_report(__FILE__, __LINE__, "%s = %.17g, want %.17g +- %.3g", #got, \
+                           g_, w_, t_);                                                \
+        }                                                                              \
+    } while (0)
+
+#define CHECK_OK(expr)                                                                 \
+    do {                                                                               \
+        int rc_ = (expr);                                                              \
+        if (rc_ != 0) {                                                                \
+            tr_test_failures++;                                                        \
+            tr_test_report(__FILE__, __LINE__, "%s returned %d", #expr, rc_);          \
+        }                                                                              \
+    } while (0)
+
+void tr_test_report(const char *file, int line, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 3, 4)))
+#endif
+    ;
+int tr_test_near(double got, double want, double tol);
+
+/* Norm-wise: max|got-want| <= rtol*max|want| + atol, every element finite. */
+int tr_test_allclose(const double *got, const double *want, size_t n, double rtol, double atol,
+                     double *maxdiff);
+
+/* Prints "N passed, N failed"-style summary for this executable and returns its exit code. */
+int tr_test_finish(const char *name);
+
+/* Writes "dir/name" into buf; dir is TR_SHARED_DIR or TR_SOURCE_DIR. */
+const char *tr_shared_path(char *buf, size_t n, const char *rel);
+const char *tr_source_path(char *buf, size_t n, const char *rel);
+
+#endif
