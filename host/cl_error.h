@@ -1,0 +1,41 @@
+/* Naming OpenCL errors and the one checking macro every OpenCL call goes
+ * through. A failed call records
+ *   "clEnqueueNDRangeKernel: CL_INVALID_WORK_GROUP_SIZE (-54) [backend_opencl.c:212]"
+ * into the caller's tr_error and jumps to the function's cleanup ladder;
+ * nothing here prints or aborts. */
+#ifndef TR_CL_ERROR_H
+#define TR_CL_ERROR_H
+
+#include <CL/cl.h>
+
+#include "error.h"
+
+/* "CL_INVALID_WORK_GROUP_SIZE" for -54; "CL_UNKNOWN_ERROR" for codes no
+ * specification or common extension defines. */
+const char *tr_cl_strerror(cl_int code);
+
+/* Fills err with "NAME: CL_X (code) [file:line]" where NAME is the first
+ * OpenCL entry point (cl[A-Z]...) named in call_text, and returns TR_EOPENCL. */
+int tr_cl_fail(tr_error *err, cl_int code, const char *call_text, const char *file, int line);
+
+/* TR_CL_CHECK(clFinish(queue)) or, for calls that report through an
+ * errcode_ret argument, TR_CL_CHECK((buf = clCreateBuffer(..., &e), e)).
+ * Needs `int rc`, `tr_error *err` and a `cleanup:` label in the caller. */
+#define TR_CL_CHECK(call)                                                             \
+    do {                                                                              \
+        cl_int tr_cl_code_ = (call);                                                  \
+        if (tr_cl_code_ != CL_SUCCESS) {                                              \
+            rc = tr_cl_fail(err, tr_cl_code_, #call, __FILE__, __LINE__);             \
+            goto cleanup;                                                             \
+        }                                                                             \
+    } while (0)
+
+/* Same for library calls returning a tr status: keep their message. */
+#define TR_TRY(expr)                                                                  \
+    do {                                                                              \
+        rc = (expr);                                                                  \
+        if (rc != TR_OK)                                                              \
+            goto cleanup;                                                             \
+    } while (0)
+
+#endif

@@ -1,0 +1,97 @@
+#include "cl_reduce.h"
+
+#include <string.h>
+
+#include "cl_error.h"
+
+int tr_cl_reduce_init(tr_cl_reduce *r, const tr_cl_ctx *ctx, size_t n, tr_error *err)
+{
+    int rc = TR_OK;
+    cl_int e = CL_SUCCESS;
+    memset(r, 0, sizeof *r);
+    const char *files[] = {"reduce.cl"};
+    TR_TRY(tr_cl_build(ctx, files, 1, "", &r->prog, err));
+    TR_CL_CHECK((r->length_partial = clCreateKernel(r->prog, "length_partial", &e), e));
+    TR_CL_CHECK((r->minmax_partial = clCreateKernel(r->prog, "minmax_partial", &e), e));
+    TR_CL_CHECK((r->sum_final = clCreateKernel(r->prog, "sum_final", &e), e));
+    TR_CL_CHECK((r->minmax_final = clCreateKernel(r->prog, "minmax_final", &e), e));
+    r->groups = tr_cl_global(n) / TR_CL_LOCAL;
+    TR_CL_CHECK((r->pa = clCreateBuffer(ctx->context, CL_MEM_READ_WRITE, r->groups * sizeof(double),
+                                        NULL, &e),
+                 e));
+    TR_CL_CHECK((r->pb = clCreateBuffer(ctx->context, CL_MEM_READ_WRITE, r->groups * sizeof(double),
+                                        NULL, &e),
+                 e));
+    return TR_OK;
+cleanup:
+    tr_cl_reduce_free(r);
+    return rc;
+}
+
+void tr_cl_reduce_free(tr_cl_reduce *r)
+{
+    cl_kernel *k[] = {&r->length_partial, &r->minmax_partial, &r->sum_final, &r->minmax_final};
+    for (size_t i = 0; i < sizeof k / sizeof k[0]; i++)
+        if (*k[i])
+            clReleaseKernel(*k[i]);
+    if (r->pa)
+        clReleaseMemObject(r->pa);
+    if (r->pb)
+        clReleaseMemObject(r->pb);
+    if (r->prog)
+        clReleaseProgram(r->prog);
+    memset(r, 0, sizeof *r);
+}
+
+static int check_size(const tr_cl_reduce *r, int n, tr_error *err)
+{
+    if (n < 1 || tr_cl_global((size_t)n) / TR_CL_LOCAL > r->groups)
+        return tr_fail(err, TR_EINVAL, "reduction over %d items exceeds the %zu prepared", n,
+                       r->groups * TR_CL_LOCAL);
+    return TR_OK;
+}
+
+int tr_cl_reduce_length(tr_cl_reduce *r, const tr_cl_ctx *ctx, cl_mem x, cl_mem next, int n,
+                        cl_mem out, int slot, tr_error *err)
+{
+    int rc = check_size(r, n, err);
+    if (rc != TR_OK)
+        return rc;
+    size_t g = tr_cl_global((size_t)n), l = TR_CL_LOCAL;
+    int m = (int)(g / l);
+    TR_CL_CHECK(clSetKernelArg(r->length_partial, 0, sizeof x, &x));
+    TR_CL_CHECK(clSetKernelArg(r->length_partial, 1, sizeof next, &next));
+    TR_CL_CHECK(clSetKernelArg(r->length_partial, 2, sizeof n, &n));
+    TR_CL_CHECK(clSetKernelArg(r->length_partial, 3, sizeof r->pa, &r->pa));
+    TR_CL_CHECK(clEnqueueNDRangeKernel(ctx->queue, r->length_partial, 1, NULL, &g, &l, 0, NULL, NULL));
+    TR_CL_CHECK(clSetKernelArg(r->sum_final, 0, sizeof r->pa, &r->pa));
+    TR_CL_CHECK(clSetKernelArg(r->sum_final, 1, sizeof m, &m));
+    TR_CL_CHECK(clSetKernelArg(r->sum_final, 2, sizeof out, &out));
+    TR_CL_CHECK(clSetKernelArg(r->sum_final, 3, sizeof slot, &slot));
+    TR_CL_CHECK(clEnqueueNDRangeKernel(ctx->queue, r->sum_final, 1, NULL, &l, &l, 0, NULL, NULL));
+cleanup:
+    return rc;
+}
+
+int tr_cl_reduce_minmax(tr_cl_reduce *r, const tr_cl_ctx *ctx, cl_mem v, int n, cl_mem out,
+                        int slot, tr_error *err)
+{
+    int rc = check_size(r, n, err);
+    if (rc != TR_OK)
+        return rc;
+    size_t g = tr_cl_global((size_t)n), l = TR_CL_LOCAL;
+    int m = (int)(g / l);
+    TR_CL_CHECK(clSetKernelArg(r->minmax_partial, 0, sizeof v, &v));
+    TR_CL_CHECK(clSetKernelArg(r->minmax_partial, 1, sizeof n, &n));
+    TR_CL_CHECK(clSetKernelArg(r->minmax_partial, 2, sizeof r->pa, &r->pa));
+    TR_CL_CHECK(clSetKernelArg(r->minmax_partial, 3, sizeof r->pb, &r->pb));
+    TR_CL_CHECK(clEnqueueNDRangeKernel(ctx->queue, r->minmax_partial, 1, NULL, &g, &l, 0, NULL, NULL));
+    TR_CL_CHECK(clSetKernelArg(r->minmax_final, 0, sizeof r->pa, &r->pa));
+    TR_CL_CHECK(clSetKernelArg(r->minmax_final, 1, sizeof r->pb, &r->pb));
+    TR_CL_CHECK(clSetKernelArg(r->minmax_final, 2, sizeof m, &m));
+    TR_CL_CHECK(clSetKernelArg(r->minmax_final, 3, sizeof out, &out));
+    TR_CL_CHECK(clSetKernelArg(r->minmax_final, 4, sizeof slot, &slot));
+    TR_CL_CHECK(clEnqueueNDRangeKernel(ctx->queue, r->minmax_final, 1, NULL, &l, &l, 0, NULL, NULL));
+cleanup:
+    return rc;
+}

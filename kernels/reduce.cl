@@ -1,0 +1,98 @@
+/* Reductions the driver reads back each step: polygon length (pairwise
+ * sums), largest and smallest values. Two stages, both deterministic for a
+ * given N: stage 1 reduces each work-group of TR_LOCAL_SIZE items by a fixed
+ * tree in local memory; stage 2 (one work-group) folds the partials with
+ * strided Neumaier sums and the same tree. No atomics, so the same input
+ * always gives the same bits. */
+
+#define TREE(op, s, l)                                                          \
+    for (int w_ = TR_LOCAL_SIZE / 2; w_ > 0; w_ >>= 1) {                       \
+        if ((l) < w_)                                                           \
+            (s)[l] = op((s)[l], (s)[(l) + w_]);                                 \
+        barrier(CLK_LOCAL_MEM_FENCE);                                           \
+    }
+
+inline real tr_add(real a, real b) { return a + b; }
+
+/* Length of the edge from vertex i to next[i] (0 where next[i] < 0: the end of an open rope). */
+inline real edge_len(__global const real *x, __global const int *next, int i)
+{
+    int j = next[i];
+    if (j < 0)
+        return 0.0;
+    real3 d = vload3(j, x) - vload3(i, x);
+    return sqrt(d.x * d.x + d.y * d.y + d.z * d.z);
+}
+
+__kernel __attribute__((reqd_work_group_size(TR_LOCAL_SIZE, 1, 1)))
+void length_partial(__global const real *x, __global const int *next, const int n,
+                    __global real *partial)
+{
+    __local real s[TR_LOCAL_SIZE];
+    int i = get_global_id(0), l = get_local_id(0);
+    s[l] = i < n ? edge_len(x, next, i) : 0.0;
+    barrier(CLK_LOCAL_MEM_FENCE);
+    TREE(tr_add, s, l)
+    if (l == 0)
+        partial[get_group_id(0)] = s[0];
+}
+
+/* Largest and smallest of v[0..n) per work-group (padding items repeat v[0]). */
+__kernel __attribute__((reqd_work_group_size(TR_LOCAL_SIZE, 1, 1)))
+void minmax_partial(__global const real *v, const int n, __global real *pmin, __global real *pmax)
+{
+    __local real lo[TR_LOCAL_SIZE], hi[TR_LOCAL_SIZE];
+    int i = get_global_id(0), l = get_local_id(0);
+    real a = v[i < n ? i : 0];
+    lo[l] = a;
+    hi[l] = a;
+    barrier(CLK_LOCAL_MEM_FENCE);
+    TREE(fmin, lo, l)
+    TREE(fmax, hi, l)
+    if (l == 0) {
+        pmin[get_group_id(0)] = lo[0];
+        pmax[get_group_id(0)] = hi[0];
+    }
+}
+
+/* Stage 2: out[slot] = sum of partial[0..m), compensated then tree-folded. */
+__kernel __attribute__((reqd_work_group_size(TR_LOCAL_SIZE, 1, 1)))
+void sum_final(__global const real *partial, const int m, __global real *out, const int slot)
+{
+    __local real s[TR_LOCAL_SIZE];
+    int l = get_local_id(0);
+    real sum = 0.0, c = 0.0;
+    for (int k = l; k < m; k += TR_LOCAL_SIZE) {
+        real v = partial[k], t = sum + v;
+        c += fabs(sum) >= fabs(v) ? (sum - t) + v : (v - t) + sum; /* Neumaier */
+        sum = t;
+    }
+    s[l] = sum + c;
+    barrier(CLK_LOCAL_MEM_FENCE);
+    TREE(tr_add, s, l)
+    if (l == 0)
+        out[slot] = s[0];
+}
+
+/* Stage 2 of minmax_partial: out[slot] = min, out[slot + 1] = max. */
+__kernel __attribute__((reqd_work_group_size(TR_LOCAL_SIZE, 1, 1)))
+void minmax_final(__global const real *pmin, __global const real *pmax, const int m,
+                  __global real *out, const int slot)
+{
+    __local real lo[TR_LOCAL_SIZE], hi[TR_LOCAL_SIZE];
+    int l = get_local_id(0);
+    real a = pmin[0], b = pmax[0];
+    for (int k = l; k < m; k += TR_LOCAL_SIZE) {
+        a = fmin(a, pmin[k]);
+        b = fmax(b, pmax[k]);
+    }
+    lo[l] = a;
+    hi[l] = b;
+    barrier(CLK_LOCAL_MEM_FENCE);
+    TREE(fmin, lo, l)
+    TREE(fmax, hi, l)
+    if (l == 0) {
+        out[slot] = lo[0];
+        out[slot + 1] = hi[0];
+    }
+}

@@ -1,0 +1,288 @@
+/* Device layer: error names, the checking macro's message, device selection,
+ * build failures carrying the log, and the reduction kernels against serial
+ * sums on a trefoil, a two-component link and two open ropes. Skips (77)
+ * when no usable OpenCL device exists. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cl_device.h"
+#include "cl_error.h"
+#include "cl_reduce.h"
+#include "curve.h"
+#include "testlib.h"
+#include "kernel_source.h"
+
+#define TR_PI 3.14159265358979323846
+
+/* Trefoil (sin t + 2 sin 2t, cos t - 2 cos 2t, -sin 3t) scaled by s, n vertices. */
+static void fill_trefoil(double *x, size_t n, double s)
+{
+    for (size_t i = 0; i < n; i++) {
+        double t = 2.0 * TR_PI * (double)i / (double)n;
+        x[3 * i] = s * (sin(t) + 2 * sin(2 * t));
+        x[3 * i + 1] = s * (cos(t) - 2 * cos(2 * t));
+        x[3 * i + 2] = -s * sin(3 * t);
+    }
+}
+
+static int make_test_curve(tr_curve *c, int kind, size_t n, tr_error *err)
+{
+    if (kind == 0) { /* trefoil, one closed component */
+        unsigned char closed = 1;
+        int rc = tr_curve_alloc(c, 1, &n, &closed, err);
+        if (rc == TR_OK)
+            fill_trefoil(c->x, n, 3.0);
+        return rc;
+    }
+    if (kind == 1) { /* Hopf-like link: two circles of radius 4 through each other's centre */
+        size_t nv[2] = {n / 2 > 3 ? n / 2 : 3, n - n / 2 > 3 ? n - n / 2 : 3};
+        unsigned char closed[2] = {1, 1};
+        int rc = tr_curve_alloc(c, 2, nv, closed, err);
+        if (rc != TR_OK)
+            return rc;
+        for (size_t i = 0; i < nv[0]; i++) {
+            double t = 2 * TR_PI * (double)i / (double)nv[0];
+            c->x[3 * i] = 4 * cos(t), c->x[3 * i + 1] = 4 * sin(t), c->x[3 * i + 2] = 0;
+        }
+        for (size_t i = 0; i < nv[1]; i++) {
+            double t = 2 * TR_PI * (double)i / (double)nv[1];
+            double *p = c->x + 3 * (nv[0] + i);
+            p[0] = 4 + 4 * cos(t), p[1] = 0, p[2] = 4 * sin(t);
+        }
+        return TR_OK;
+    }
+    /* two open ropes (clasp-like U shapes in perpendicular planes) */
+    size_t nv[2] = {n / 2 > 2 ? n / 2 : 2, n - n / 2 > 2 ? n - n / 2 : 2};
+    unsigned char closed[2] = {0, 0};
+    int rc = tr_curve_alloc(c, 2, nv, closed, err);
+    if (rc != TR_OK)
+        return rc;
+    for (size_t i = 0; i < nv[0]; i++) {
+        double p = TR_PI + TR_PI * (double)i / (double)(nv[0] - 1);
+        c->x[3 * i] = 3 * cos(p), c->x[3 * i + 1] = 0, c->x[3 * i + 2] = 3 * sin(p);
+    }
+    for (size_t i = 0; i < nv[1]; i++) {
+        double q = TR_PI * (double)i / (double)(nv[1] - 1);
+        double *v = c->x + 3 * (nv[0] + i);
+        v[0] = 0, v[1] = 3 * cos(q), v[2] = -3 + 3 * sin(q);
+    }
+    return TR_OK;
+}
+
+static int *next_array(const tr_curve *c)
+{
+    int *next = malloc(c->nv * sizeof *next);
+    for (int k = 0; k < c->ncomp; k++)
+        for (size_t i = c->start[k]; i < c->start[k + 1]; i++)
+            next[i] = i + 1 < c->start[k + 1] ? (int)(i + 1) : (c->closed[k] ? (int)c->start[k] : -1);
+    return next;
+}
+
+static void test_names(void)
+{
+    CHECK(!strcmp(tr_cl_strerror(-54), "CL_INVALID_WORK_GROUP_SIZE"));
+    CHECK(!strcmp(tr_cl_strerror(-11), "CL_BUILD_PROGRAM_FAILURE"));
+    CHECK(!strcmp(tr_cl_strerror(-1001), "CL_PLATFORM_NOT_FOUND_KHR"));
+    CHECK(!strcmp(tr_cl_strerror(-72), "CL_MAX_SIZE_RESTRICTION_EXCEEDED"));
+    CHECK(!strcmp(tr_cl_strerror(12345), "CL_UNKNOWN_ERROR"));
+    /* every code from 0 to -72 that the 3.0 specification defines has a name */
+    for (int c = 0; c >= -72; c--)
+        if (c > -20 || c <= -30)
+            CHECK(strcmp(tr_cl_strerror(c), "CL_UNKNOWN_ERROR") != 0);
+
+    tr_error err;
+    int rc = tr_cl_fail(&err, -54, "clEnqueueNDRangeKernel(q, k, 1, NULL, &g, &l, 0, NULL, NULL)",
+                        "/x/host/backend_opencl.c", 212);
+    CHECK(rc == TR_EOPENCL);
+    CHECK(!strcmp(err.msg,
+                  "clEnqueueNDRangeKernel: CL_INVALID_WORK_GROUP_SIZE (-54) [backend_opencl.c:212]"));
+    /* the errcode_ret form names the create call, not the assignment target */
+    tr_cl_fail(&err, -61, "(buf = clCreateBuffer(ctx, 0, n, NULL, &e), e)", "a.c", 1);
+    CHECK(!strncmp(err.msg, "clCreateBuffer: CL_INVALID_BUFFER_SIZE (-61)", 44));
+}
+
+/* The macro jumps to the cleanup ladder with the message filled in. */
+static int failing_call(tr_error *err, int *cleaned)
+{
+    int rc = TR_OK;
+    TR_CL_CHECK(clFinish(NULL));
+    rc = 99; /* not reached */
+cleanup:
+    *cleaned = 1;
+    return rc;
+}
+
+static void test_selection(int have_device)
+{
+    tr_error err;
+    tr_device_choice ch;
+    CHECK_OK(tr_device_select("reference", &ch, &err));
+    CHECK(ch.kind == TR_DEVICE_REFERENCE && ch.warning[0] == '\0');
+    CHECK(tr_device_select("97:3", &ch, &err) == TR_EINVAL);
+    CHECK(strstr(err.msg, "97:3") != NULL);
+    CHECK(tr_device_select("no-such-device-name", &ch, &err) == TR_EINVAL);
+    CHECK_OK(tr_device_select("auto", &ch, &err));
+    if (have_device) {
+        CHECK(ch.kind == TR_DEVICE_OPENCL && ch.cl.usable && ch.cl.fp64);
+        char pd[32];
+        snprintf(pd, sizeof pd, "%d:%d", ch.cl.platform, ch.cl.device);
+        tr_device_choice again;
+        CHECK_OK(tr_device_select(pd, &again, &err));
+        CHECK(again.kind == TR_DEVICE_OPENCL && again.cl.did == ch.cl.did);
+    } else {
+        CHECK(ch.kind == TR_DEVICE_REFERENCE && ch.warning[0] != '\0');
+    }
+}
+
+static void test_build_failure(const tr_cl_ctx *ctx)
+{
+    /* A kernel directory whose reduce.cl has a syntax error: the message names
+     * the call, the error, the options and the compiler's complaint. */
+    char dir[1024], path[1100], common[1100];
+    snprintf(dir, sizeof dir, "%s/tests", TR_BINARY_DIR);
+    snprintf(path, sizeof path, "%s/broken.cl", dir);
+    FILE *f = fopen(path, "w");
+    CHECK(f != NULL);
+    if (!f)
+        return;
+    fputs("__kernel void broken(__global real *x) { x[0] = undefined_name; }\n", f);
+    fclose(f);
+    char *text = NULL;
+    tr_error err;
+    CHECK_OK(tr_kernel_source_load("common.clh", &text, &err));
+    snprintf(common, sizeof common, "%s/common.clh", dir);
+    f = fopen(common, "w");
+    if (f && text)
+        fputs(text, f);
+    if (f)
+        fclose(f);
+    free(text);
+    setenv("TIGHTROPE_KERNEL_DIR", dir, 1);
+    cl_program prog = NULL;
+    const char *files[] = {"broken.cl"};
+    int rc = tr_cl_build(ctx, files, 1, "-cl-std=CL1.2", &prog, &err);
+    unsetenv("TIGHTROPE_KERNEL_DIR");
+    CHECK(rc == TR_EOPENCL && prog == NULL);
+    CHECK(strstr(err.msg, "clBuildProgram: CL_BUILD_PROGRAM_FAILURE (-11)") != NULL);
+    CHECK(strstr(err.msg, "-cl-std=CL1.2") != NULL);
+    CHECK(strstr(err.msg, "undefined_name") != NULL);
+    CHECK(strchr(err.msg, '\n') == NULL);
+    if (rc == TR_OK && prog)
+        clReleaseProgram(prog);
+}
+
+static void test_reductions(const tr_cl_ctx *ctx)
+{
+    tr_error err;
+    tr_cl_reduce red;
+    const size_t sizes[] = {3, 4, 7, 63, 64, 65, 1021, 1024, 4099};
+    const size_t maxn = 4099 + 6;
+    if (tr_cl_reduce_init(&red, ctx, maxn, &err) != TR_OK) {
+        tr_test_failures++;
+        fprintf(stderr, "reduce init: %s\n", err.msg);
+        return;
+    }
+    for (int kind = 0; kind < 3; kind++)
+        for (size_t s = 0; s < sizeof sizes / sizeof sizes[0]; s++) {
+            tr_curve c;
+            size_t n = sizes[s] + (kind ? 3 : 0); /* links and ropes need >= 2 per component */
+            CHECK_OK(make_test_curve(&c, kind, n, &err));
+            int *next = next_array(&c);
+            double *coord = malloc(c.nv * sizeof *coord);
+            cl_int e;
+            cl_mem bx = clCreateBuffer(ctx->context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
+                                       3 * c.nv * sizeof(double), c.x, &e);
+            cl_mem bn = clCreateBuffer(ctx->context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
+                                       c.nv * sizeof(int), next, &e);
+            for (size_t i = 0; i < c.nv; i++)
+                coord[i] = c.x[3 * i + 2] + 1e-3 * (double)(i % 7); /* z with ripples */
+            cl_mem bv = clCreateBuffer(ctx->context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
+                                       c.nv * sizeof(double), coord, &e);
+            cl_mem out = clCreateBuffer(ctx->context, CL_MEM_READ_WRITE, 4 * sizeof(double), NULL, &e);
+            CHECK(e == CL_SUCCESS);
+            double got[4] = {0, 0, 0, 0};
+            CHECK_OK(tr_cl_reduce_length(&red, ctx, bx, bn, (int)c.nv, out, 0, &err));
+            CHECK_OK(tr_cl_reduce_minmax(&red, ctx, bv, (int)c.nv, out, 1, &err));
+            CHECK(clEnqueueReadBuffer(ctx->queue, out, CL_TRUE, 0, 3 * sizeof(double), got, 0, NULL,
+                                      NULL) == CL_SUCCESS);
+            /* Pairwise (device) and Neumaier (host) sums of N positive edge
+             * lengths both err by at most ~log2(N) eps L < 13 * 1.1e-16 L, so
+             * 1e-14 relative bounds the difference with margin; each edge
+             * length itself is computed with the same operations (no FMA). */
+            double want = tr_curve_length(&c);
+            CHECK_NEAR(got[0], want, 1e-14 * want);
+            double lo = coord[0], hi = coord[0];
+            for (size_t i = 0; i < c.nv; i++)
+                lo = fmin(lo, coord[i]), hi = fmax(hi, coord[i]);
+            CHECK(got[1] == lo && got[2] == hi); /* min/max are exact */
+            if (!(fabs(got[0] - want) <= 1e-14 * want) || got[1] != lo || got[2] != hi)
+                fprintf(stderr, "kind %d n %zu: length %.17g vs %.17g, min %g/%g max %g/%g\n", kind,
+                        c.nv, got[0], want, got[1], lo, got[2], hi);
+            clReleaseMemObject(bx);
+            clReleaseMemObject(bn);
+            clReleaseMemObject(bv);
+            clReleaseMemObject(out);
+            free(next);
+            free(coord);
+            tr_curve_free(&c);
+        }
+    /* a closed form: the regular 1024-gon inscribed in the unit circle has length 2048 sin(pi/1024) */
+    {
+        size_t n = 1024;
+        unsigned char closed = 1;
+        tr_curve c;
+        CHECK_OK(tr_curve_alloc(&c, 1, &n, &closed, &err));
+        for (size_t i = 0; i < n; i++)
+            c.x[3 * i] = cos(2 * TR_PI * i / n), c.x[3 * i + 1] = sin(2 * TR_PI * i / n);
+        int *next = next_array(&c);
+        cl_int e;
+        cl_mem bx = clCreateBuffer(ctx->context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
+                                   3 * n * sizeof(double), c.x, &e);
+        cl_mem bn = clCreateBuffer(ctx->context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
+                                   n * sizeof(int), next, &e);
+        cl_mem out = clCreateBuffer(ctx->context, CL_MEM_READ_WRITE, sizeof(double), NULL, &e);
+        double got = 0;
+        CHECK_OK(tr_cl_reduce_length(&red, ctx, bx, bn, (int)n, out, 0, &err));
+        CHECK(clEnqueueReadBuffer(ctx->queue, out, CL_TRUE, 0, sizeof got, &got, 0, NULL, NULL) ==
+              CL_SUCCESS);
+        /* cos/sin of the vertices are accurate to ~1 ulp, so each edge to a few ulp */
+        CHECK_NEAR(got, 2048 * sin(TR_PI / 1024), 1e-13);
+        /* too many items for the prepared partial buffers is an error, not an overrun */
+        CHECK(tr_cl_reduce_length(&red, ctx, bx, bn, 1 << 20, out, 0, &err) == TR_EINVAL);
+        clReleaseMemObject(bx);
+        clReleaseMemObject(bn);
+        clReleaseMemObject(out);
+        free(next);
+        tr_curve_free(&c);
+    }
+    tr_cl_reduce_free(&red);
+}
+
+int main(void)
+{
+    test_names();
+    tr_error err;
+    int cleaned = 0;
+    CHECK(failing_call(&err, &cleaned) == TR_EOPENCL && cleaned);
+    CHECK(!strncmp(err.msg, "clFinish: CL_INVALID_COMMAND_QUEUE (-36)", 40));
+
+    tr_device_choice ch;
+    int have = tr_device_select("auto", &ch, &err) == TR_OK && ch.kind == TR_DEVICE_OPENCL;
+    test_selection(have);
+    if (!have) {
+        printf("no usable opencl device: device tests skipped (%s)\n", ch.warning);
+        return tr_test_failures ? tr_test_finish("test_opencl_device") : TR_SKIP;
+    }
+    printf("device %d:%d %s\n", ch.cl.platform, ch.cl.device, ch.cl.name);
+    tr_cl_ctx ctx;
+    if (tr_cl_ctx_open(&ctx, &ch.cl, 0, &err) != TR_OK) {
+        fprintf(stderr, "%s\n", err.msg);
+        return 1;
+    }
+    test_build_failure(&ctx);
+    test_reductions(&ctx);
+    tr_cl_ctx_close(&ctx);
+    return tr_test_finish("test_opencl_device");
+}
