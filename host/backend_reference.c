@@ -1,0 +1,853 @@
+/* The serial reference backend: plain C, written to follow the specification
+ * in backend.h line by line (same sums in the same order), so the OpenCL
+ * backend can be held against it. */
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "backend.h"
+#include "segdist.h"
+#include "vec3.h"
+
+enum { PJ_NONE = 0, PJ_PLANE, PJ_LINE, PJ_FIXED };
+
+typedef struct ref_state {
+    size_t nv;
+    int ncomp;
+    size_t *start;
+    unsigned char *closed;
+    int *comp;
+    ptrdiff_t *next, *prev; /* -1: none */
+    size_t *ne;             /* edges per component */
+    double *x, *xs;
+    double *ebar, *ebar_s;
+    int saved;
+    /* per-vertex constraints */
+    unsigned char *pj;
+    double *pu; /* 3 per vertex: plane normal or line direction */
+    int *vcst;
+    tr_constraint *cst;
+    /* candidate contacts, sorted (a, b) */
+    size_t np, pcap;
+    size_t *pa, *pb;
+    size_t *adj_start, *adj; /* CSR: adj holds 4*pair + slot */
+    size_t adj_cap;
+    /* work */
+    double *F, *G, *H;  /* 3 nv each */
+    double *dx;         /* 3 nv */
+    double *debar;      /* ncomp */
+    /* rows: [0,nv) edges, [nv,2nv) curvature, [2nv, 2nv+np) struts */
+    size_t rcap;
+    double *rC, *rgrad; /* value; 3-vector (u, w^, n) */
+    double *rs, *rt;    /* strut closest-point parameters (np) */
+    unsigned char *ract;
+    double *y, *r, *p, *q, *b;
+} ref_state;
+
+static void ref_destroy(void *sp)
+{
+    ref_state *s = sp;
+    if (!s)
+        return;
+    void *ptrs[] = {s->start, s->closed, s->comp, s->next, s->prev, s->ne, s->x, s->xs, s->ebar,
+                    s->ebar_s, s->pj, s->pu, s->vcst, s->cst, s->pa, s->pb, s->adj_start, s->adj,
+                    s->F, s->G, s->H, s->dx, s->debar, s->rC, s->rgrad, s->rs, s->rt, s->ract,
+                    s->y, s->r, s->p, s->q, s->b};
+    for (size_t i = 0; i < sizeof ptrs / sizeof ptrs[0]; i++)
+        free(ptrs[i]);
+    free(s);
+}
+
+static void snap(const ref_state *s, size_t i)
+{
+    if (s->pj[i] != PJ_NONE)
+        tr_constraint_project(&s->cst[s->vcst[i]], s->x + 3 * i);
+}
+
+static void project_motion(const ref_state *s, size_t i, double *v)
+{
+    const double *u = s->pu + 3 * i;
+    switch (s->pj[i]) {
+    case PJ_PLANE: {
+        double d = v3_dot(v, u);
+        v3_axpy(v, -d, u);
+        break;
+    }
+    case PJ_LINE: {
+        double d = v3_dot(v, u);
+        v3_scale(v, d, u);
+        break;
+    }
+    case PJ_FIXED:
+        v[0] = v[1] = v[2] = 0.0;
+        break;
+    default:
+        break;
+    }
+}
+
+static void reset_ebar(ref_state *s)
+{
+    for (int k = 0; k < s->ncomp; k++) {
+        double sum = 0.0;
+        size_t ne = 0;
+        for (size_t a = s->start[k]; a < s->start[k + 1]; a++) {
+            if (s->next[a] < 0)
+                continue;
+            sum += sqrt(v3_dist2(s->x + 3 * a, s->x + 3 * (size_t)s->next[a]));
+            ne++;
+        }
+        s->ebar[k] = ne ? sum / (double)ne : 0.0;
+    }
+}
+
+static int ref_upload(void *sp, const double *x, const double *ebar, tr_error *err)
+{
+    (void)err;
+    ref_state *s = sp;
+    memcpy(s->x, x, 3 * s->nv * sizeof *x);
+    if (ebar)
+        memcpy(s->ebar, ebar, (size_t)s->ncomp * sizeof *ebar);
+    else
+        reset_ebar(s);
+    s->np = 0;
+    s->saved = 0;
+    return TR_OK;
+}
+
+static int ref_download(void *sp, double *x, double *ebar, tr_error *err)
+{
+    (void)err;
+    ref_state *s = sp;
+    memcpy(x, s->x, 3 * s->nv * sizeof *x);
+    if (ebar)
+        memcpy(ebar, s->ebar, (size_t)s->ncomp * sizeof *ebar);
+    return TR_OK;
+}
+
+static int ref_save(void *sp, tr_error *err)
+{
+    (void)err;
+    ref_state *s = sp;
+    memcpy(s->xs, s->x, 3 * s->nv * sizeof *s->x);
+    memcpy(s->ebar_s, s->ebar, (size_t)s->ncomp * sizeof *s->ebar);
+    s->saved = 1;
+    return TR_OK;
+}
+
+static int ref_restore(void *sp, tr_error *err)
+{
+    ref_state *s = sp;
+    if (!s->saved)
+        return tr_fail(err, TR_EINVAL, "restore without a saved state");
+    memcpy(s->x, s->xs, 3 * s->nv * sizeof *s->x);
+    memcpy(s->ebar, s->ebar_s, (size_t)s->ncomp * sizeof *s->ebar);
+    return TR_OK;
+}
+
+/* ---- neighbour search: uniform grid over edge midpoints ---- */
+
+static int excluded(const ref_state *s, size_t a, size_t b, const int *gap)
+{
+    int k = s->comp[a];
+    if (s->comp[b] != k)
+        return 0;
+    size_t d = a > b ? a - b : b - a;
+    if (s->closed[k]) {
+        size_t n = s->start[k + 1] - s->start[k];
+        if (n - d < d)
+            d = n - d;
+    }
+    int g = gap[k] < 2 ? 2 : gap[k];
+    return d < (size_t)g;
+}
+
+static int push_pair(ref_state *s, size_t a, size_t b)
+{
+    if (s->np == s->pcap) {
+        size_t nc = s->pcap ? 2 * s->pcap : 1024;
+        size_t *na = realloc(s->pa, nc * sizeof *na);
+        if (!na)
+            return TR_ENOMEM;
+        s->pa = na;
+        size_t *nb = realloc(s->pb, nc * sizeof *nb);
+        if (!nb)
+            return TR_ENOMEM;
+        s->pb = nb;
+        s->pcap = nc;
+    }
+    s->pa[s->np] = a;
+    s->pb[s->np] = b;
+    s->np++;
+    return TR_OK;
+}
+
+typedef struct pair_key {
+    size_t a, b;
+} pair_key;
+
+static int cmp_pair(const void *x, const void *y)
+{
+    const pair_key *p = x, *q = y;
+    if (p->a != q->a)
+        return p->a < q->a ? -1 : 1;
+    return (p->b > q->b) - (p->b < q->b);
+}
+
+static int build_csr(ref_state *s, tr_error *err)
+{
+    memset(s->adj_start, 0, (s->nv + 1) * sizeof *s->adj_start);
+    for (size_t p = 0; p < s->np; p++) {
+        size_t v[4] = {s->pa[p], (size_t)s->next[s->pa[p]], s->pb[p], (size_t)s->next[s->pb[p]]};
+        for (int k = 0; k < 4; k++)
+            s->adj_start[v[k] + 1]++;
+    }
+    for (size_t i = 0; i < s->nv; i++)
+        s->adj_start[i + 1] += s->adj_start[i];
+    if (4 * s->np > s->adj_cap) {
+        size_t nc = 4 * s->np + 1024;
+        size_t *na = realloc(s->adj, nc * sizeof *na);
+        if (!na)
+            return tr_fail(err, TR_ENOMEM, "out of memory for the contact adjacency");
+        s->adj = na;
+        s->adj_cap = nc;
+    }
+    /* fill in pair order, so each vertex lists its pairs ascending */
+    size_t *cur = malloc((s->nv + 1) * sizeof *cur);
+    if (!cur)
+        return tr_fail(err, TR_ENOMEM, "out of memory for the contact adjacency");
+    memcpy(cur, s->adj_start, (s->nv + 1) * sizeof *cur);
+    for (size_t p = 0; p < s->np; p++) {
+        size_t v[4] = {s->pa[p], (size_t)s->next[s->pa[p]], s->pb[p], (size_t)s->next[s->pb[p]]};
+        for (size_t k = 0; k < 4; k++)
+            s->adj[cur[v[k]]++] = 4 * p + k;
+    }
+    free(cur);
+    return TR_OK;
+}
+
+static int ensure_rows(ref_state *s, tr_error *err)
+{
+    size_t need = 2 * s->nv + s->np;
+    if (need <= s->rcap)
+        return TR_OK;
+    size_t nc = need + need / 2 + 64;
+    double **arrs[] = {&s->rC, &s->y, &s->r, &s->p, &s->q, &s->b};
+    for (size_t i = 0; i < sizeof arrs / sizeof arrs[0]; i++) {
+        double *n = realloc(*arrs[i], nc * sizeof *n);
+        if (!n)
+            return tr_fail(err, TR_ENOMEM, "out of memory for %zu constraint rows", nc);
+        *arrs[i] = n;
+    }
+    double *g = realloc(s->rgrad, 3 * nc * sizeof *g);
+    if (!g)
+        return tr_fail(err, TR_ENOMEM, "out of memory for %zu constraint rows", nc);
+    s->rgrad = g;
+    unsigned char *act = realloc(s->ract, nc);
+    if (!act)
+        return tr_fail(err, TR_ENOMEM, "out of memory for %zu constraint rows", nc);
+    s->ract = act;
+    size_t npc = nc - 2 * s->nv;
+    double *rs = realloc(s->rs, npc * sizeof *rs), *rt;
+    if (!rs)
+        return tr_fail(err, TR_ENOMEM, "out of memory for %zu constraint rows", nc);
+    s->rs = rs;
+    rt = realloc(s->rt, npc * sizeof *rt);
+    if (!rt)
+        return tr_fail(err, TR_ENOMEM, "out of memory for %zu constraint rows", nc);
+    s->rt = rt;
+    s->rcap = nc;
+    return TR_OK;
+}
+
+static int ref_find_contacts(void *sp, const tr_contact_params *prm, tr_contact_stats *out,
+                             tr_error *err)
+{
+    ref_state *s = sp;
+    size_t nv = s->nv;
+    s->np = 0;
+    double lmax = 0.0, lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    double *mid = s->H; /* 3 nv scratch */
+    for (size_t a = 0; a < nv; a++) {
+        if (s->next[a] < 0)
+            continue;
+        const double *p = s->x + 3 * a, *q = s->x + 3 * (size_t)s->next[a];
+        double l = sqrt(v3_dist2(p, q));
+        if (l > lmax)
+            lmax = l;
+        for (int k = 0; k < 3; k++) {
+            mid[3 * a + k] = 0.5 * (p[k] + q[k]);
+            if (mid[3 * a + k] < lo[k])
+                lo[k] = mid[3 * a + k];
+            if (mid[3 * a + k] > hi[k])
+                hi[k] = mid[3 * a + k];
+        }
+    }
+    /* segment distance >= midpoint distance - (la + lb)/2 */
+    double reach = prm->cutoff + lmax;
+    double cell = reach;
+    if (!(cell > 0.0) || !isfinite(lo[0]))
+        cell = 1.0;
+    size_t dim[3];
+    size_t ncell = 1;
+    for (int k = 0; k < 3; k++) {
+        double span = isfinite(lo[k]) ? hi[k] - lo[k] : 0.0;
+        double d = floor(span / cell) + 1.0;
+        if (d > 256.0)
+            d = 256.0;
+        dim[k] = (size_t)d;
+        ncell *= dim[k];
+    }
+    double csz[3];
+    for (int k = 0; k < 3; k++)
+        csz[k] = isfinite(lo[k]) && dim[k] > 1 ? fmax(cell, (hi[k] - lo[k]) / (double)dim[k]) : cell;
+    size_t *cstart = calloc(ncell + 1, sizeof *cstart);
+    size_t *cellof = malloc((nv ? nv : 1) * sizeof *cellof);
+    size_t *order = malloc((nv ? nv : 1) * sizeof *order);
+    pair_key *keys = NULL;
+    int rc = TR_OK;
+    if (!cstart || !cellof || !order) {
+        rc = tr_fail(err, TR_ENOMEM, "out of memory in the neighbour search");
+        goto done;
+    }
+    for (size_t a = 0; a < nv; a++) {
+        if (s->next[a] < 0)
+            continue;
+        size_t ci[3];
+        for (int k = 0; k < 3; k++) {
+            double f = floor((mid[3 * a + k] - lo[k]) / csz[k]);
+            ci[k] = f < 0 ? 0 : (f >= (double)dim[k] ? dim[k] - 1 : (size_t)f);
+        }
+        cellof[a] = (ci[2] * dim[1] + ci[1]) * dim[0] + ci[0];
+        cstart[cellof[a] + 1]++;
+    }
+    for (size_t c = 0; c < ncell; c++)
+        cstart[c + 1] += cstart[c];
+    {
+        size_t *cur = malloc((ncell + 1) * sizeof *cur);
+        if (!cur) {
+            rc = tr_fail(err, TR_ENOMEM, "out of memory in the neighbour search");
+            goto done;
+        }
+        memcpy(cur, cstart, (ncell + 1) * sizeof *cur);
+        for (size_t a = 0; a < nv; a++)
+            if (s->next[a] >= 0)
+                order[cur[cellof[a]]++] = a;
+        free(cur);
+    }
+    double mind = INFINITY;
+    for (size_t a = 0; a < nv; a++) {
+        if (s->next[a] < 0)
+            continue;
+        size_t c = cellof[a];
+        size_t cx = c % dim[0], cy = (c / dim[0]) % dim[1], cz = c / (dim[0] * dim[1]);
+        for (int dz = -1; dz <= 1; dz++)
+            for (int dy = -1; dy <= 1; dy++)
+                for (int dxx = -1; dxx <= 1; dxx++) {
+                    ptrdiff_t X = (ptrdiff_t)cx + dxx, Y = (ptrdiff_t)cy + dy, Z = (ptrdiff_t)cz + dz;
+                    if (X < 0 || Y < 0 || Z < 0 || X >= (ptrdiff_t)dim[0] || Y >= (ptrdiff_t)dim[1] ||
+                        Z >= (ptrdiff_t)dim[2])
+                        continue;
+                    size_t cc = ((size_t)Z * dim[1] + (size_t)Y) * dim[0] + (size_t)X;
+                    for (size_t m = cstart[cc]; m < cstart[cc + 1]; m++) {
+                        size_t b = order[m];
+                        if (b <= a || excluded(s, a, b, prm->exclude_gap))
+                            continue;
+                        if (v3_dist2(mid + 3 * a, mid + 3 * b) >= reach * reach)
+                            continue;
+                        double ss, tt;
+                        double d = tr_segment_distance(s->x + 3 * a, s->x + 3 * (size_t)s->next[a],
+                                                       s->x + 3 * b, s->x + 3 * (size_t)s->next[b], &ss,
+                                                       &tt);
+                        if (d < prm->cutoff) {
+                            if (push_pair(s, a, b) != TR_OK) {
+                                rc = tr_fail(err, TR_ENOMEM, "out of memory for contact pairs");
+                                goto done;
+                            }
+                            if (d < mind)
+                                mind = d;
+                        }
+                    }
+                }
+    }
+    keys = malloc((s->np ? s->np : 1) * sizeof *keys);
+    if (!keys) {
+        rc = tr_fail(err, TR_ENOMEM, "out of memory for contact pairs");
+        goto done;
+    }
+    for (size_t p = 0; p < s->np; p++) {
+        keys[p].a = s->pa[p];
+        keys[p].b = s->pb[p];
+    }
+    qsort(keys, s->np, sizeof *keys, cmp_pair);
+    for (size_t p = 0; p < s->np; p++) {
+        s->pa[p] = keys[p].a;
+        s->pb[p] = keys[p].b;
+    }
+    rc = build_csr(s, err);
+    if (rc == TR_OK)
+        rc = ensure_rows(s, err);
+    if (rc == TR_OK && out) {
+        out->pairs = s->np;
+        out->min_dist = mind;
+    }
+done:
+    free(keys);
+    free(cstart);
+    free(cellof);
+    free(order);
+    if (rc != TR_OK)
+        s->np = 0;
+    return rc;
+}
+
+/* ---- force evaluation ---- */
+
+static void edge_unit(const ref_state *s, size_t a, double *u)
+{
+    v3_sub(u, s->x + 3 * (size_t)s->next[a], s->x + 3 * a);
+    double l = v3_norm(u);
+    v3_scale(u, 1.0 / l, u);
+}
+
+static int ref_tension_step(void *sp, const tr_tension_params *prm, tr_tension_stats *out,
+                            tr_error *err)
+{
+    (void)err;
+    ref_state *s = sp;
+    size_t nv = s->nv;
+    double *F = s->F, *G = s->G, *H = s->H;
+    for (size_t i = 0; i < nv; i++) {
+        double f[3] = {0, 0, 0}, u[3];
+        if (s->next[i] >= 0) {
+            edge_unit(s, i, u);
+            v3_add(f, f, u);
+        }
+        if (s->prev[i] >= 0) {
+            edge_unit(s, (size_t)s->prev[i], u);
+            v3_sub(f, f, u);
+        }
+        memcpy(F + 3 * i, f, sizeof f);
+    }
+    memcpy(G, F, 3 * nv * sizeof *F);
+    for (int pass = 0; pass < prm->smooth_passes; pass++) {
+        for (size_t i = 0; i < nv; i++) {
+            const double *g = G + 3 * i;
+            double *h = H + 3 * i;
+            ptrdiff_t pv = s->prev[i], nx = s->next[i];
+            if (pv >= 0 && nx >= 0) {
+                const double *gp = G + 3 * (size_t)pv, *gn = G + 3 * (size_t)nx;
+                for (int k = 0; k < 3; k++)
+                    h[k] = (gp[k] + 2.0 * g[k] + gn[k]) / 4.0;
+            } else if (pv >= 0 || nx >= 0) {
+                const double *gb = G + 3 * (size_t)(pv >= 0 ? pv : nx);
+                for (int k = 0; k < 3; k++)
+                    h[k] = (3.0 * g[k] + gb[k]) / 4.0;
+            } else {
+                memcpy(h, g, 3 * sizeof *h);
+            }
+        }
+        double *t = G;
+        G = H;
+        H = t;
+    }
+    double force2 = 0.0, pred = 0.0, maxm = 0.0;
+    for (size_t i = 0; i < nv; i++) {
+        double f[3], d[3];
+        memcpy(f, F + 3 * i, sizeof f);
+        project_motion(s, i, f);
+        force2 += v3_dot(f, f);
+        v3_scale(d, prm->h, G + 3 * i);
+        project_motion(s, i, d);
+        double m = v3_norm(d);
+        if (m > prm->max_move) {
+            v3_scale(d, prm->max_move / m, d);
+            m = prm->max_move;
+        }
+        if (m > maxm)
+            maxm = m;
+        pred += v3_dot(F + 3 * i, d);
+        v3_add(s->x + 3 * i, s->x + 3 * i, d);
+        snap(s, i);
+    }
+    if (out) {
+        out->force2 = force2;
+        out->predicted = pred;
+        out->max_move = maxm;
+    }
+    return TR_OK;
+}
+
+/* ---- coupled constraint correction ---- */
+
+static double chord_min(double e, double r) { return 2.0 * e / sqrt(1.0 + e * e / (4.0 * r * r)); }
+static double chord_min_deriv(double e, double r)
+{
+    double q = 1.0 + e * e / (4.0 * r * r);
+    return 2.0 / (q * sqrt(q));
+}
+
+/* Evaluates every row at the current x; returns the worst violation. */
+static double eval_rows(ref_state *s, const tr_correct_params *prm)
+{
+    size_t nv = s->nv;
+    double viol = 0.0;
+    for (size_t a = 0; a < nv; a++) {
+        s->ract[a] = 0;
+        if (s->next[a] < 0)
+            continue;
+        double *u = s->rgrad + 3 * a;
+        v3_sub(u, s->x + 3 * (size_t)s->next[a], s->x + 3 * a);
+        double l = v3_norm(u);
+        v3_scale(u, 1.0 / l, u);
+        s->rC[a] = l - s->ebar[s->comp[a]];
+        s->ract[a] = 1;
+        if (fabs(s->rC[a]) > viol)
+            viol = fabs(s->rC[a]);
+    }
+    for (size_t i = 0; i < nv; i++) {
+        size_t r = nv + i;
+        s->ract[r] = 0;
+        if (s->prev[i] < 0 || s->next[i] < 0)
+            continue;
+        double *w = s->rgrad + 3 * r;
+        v3_sub(w, s->x + 3 * (size_t)s->next[i], s->x + 3 * (size_t)s->prev[i]);
+        double l = v3_norm(w);
+        v3_scale(w, 1.0 / l, w);
+        double C = l - chord_min(s->ebar[s->comp[i]], prm->minrad);
+        s->rC[r] = C;
+        s->ract[r] = C < prm->active_curv;
+        if (-C > viol)
+            viol = -C;
+    }
+    for (size_t p = 0; p < s->np; p++) {
+        size_t r = 2 * nv + p, a = s->pa[p], b = s->pb[p];
+        const double *x = s->x;
+        const double *p0 = x + 3 * a, *p1 = x + 3 * (size_t)s->next[a];
+        const double *q0 = x + 3 * b, *q1 = x + 3 * (size_t)s->next[b];
+        double ss, tt;
+        double d = tr_segment_distance(p0, p1, q0, q1, &ss, &tt);
+        double *n = s->rgrad + 3 * r;
+        for (int k = 0; k < 3; k++)
+            n[k] = ((p0[k] + ss * (p1[k] - p0[k])) - (q0[k] + tt * (q1[k] - q0[k]))) / d;
+        s->rs[p] = ss;
+        s->rt[p] = tt;
+        double C = d - prm->strut_dist;
+        s->rC[r] = C;
+        s->ract[r] = C < prm->active_strut;
+        if (-C > viol)
+            viol = -C;
+    }
+    return viol;
+}
+
+/* y (rows) -> dx (per vertex, projected), debar (per component). */
+static void apply_JT(ref_state *s, const tr_correct_params *prm, const double *y)
+{
+    size_t nv = s->nv;
+    for (size_t i = 0; i < nv; i++) {
+        double g[3] = {0, 0, 0};
+        ptrdiff_t pv = s->prev[i], nx = s->next[i];
+        if (pv >= 0)
+            v3_axpy(g, y[(size_t)pv], s->rgrad + 3 * (size_t)pv);
+        if (nx >= 0)
+            v3_axpy(g, -y[i], s->rgrad + 3 * i);
+        if (pv >= 0 && s->ract[nv + (size_t)pv])
+            v3_axpy(g, y[nv + (size_t)pv], s->rgrad + 3 * (nv + (size_t)pv));
+        if (nx >= 0 && s->ract[nv + (size_t)nx])
+            v3_axpy(g, -y[nv + (size_t)nx], s->rgrad + 3 * (nv + (size_t)nx));
+        for (size_t m = s->adj_start[i]; m < s->adj_start[i + 1]; m++) {
+            size_t p = s->adj[m] / 4, slot = s->adj[m] % 4, r = 2 * nv + p;
+            if (!s->ract[r])
+                continue;
+            double c = slot == 0 ? 1.0 - s->rs[p] : slot == 1 ? s->rs[p] : slot == 2 ? -(1.0 - s->rt[p]) : -s->rt[p];
+            v3_axpy(g, c * y[r], s->rgrad + 3 * r);
+        }
+        project_motion(s, i, g);
+        memcpy(s->dx + 3 * i, g, sizeof g);
+    }
+    for (int k = 0; k < s->ncomp; k++) {
+        double sum = 0.0;
+        double cp = chord_min_deriv(s->ebar[k], prm->minrad);
+        for (size_t a = s->start[k]; a < s->start[k + 1]; a++)
+            if (s->ract[a])
+                sum += -y[a];
+        for (size_t i = s->start[k]; i < s->start[k + 1]; i++)
+            if (s->ract[nv + i])
+                sum += -cp * y[nv + i];
+        s->debar[k] = s->ne[k] ? sum / (prm->ebar_weight * (double)s->ne[k]) : 0.0;
+    }
+}
+
+/* out_r = grad C_r . (dx, debar) + reg y_r on active rows, 0 elsewhere. */
+static void apply_J(ref_state *s, const tr_correct_params *prm, const double *y, double *out)
+{
+    size_t nv = s->nv;
+    const double *dx = s->dx;
+    for (size_t a = 0; a < nv; a++) {
+        if (!s->ract[a]) {
+            out[a] = 0.0;
+            continue;
+        }
+        double d[3];
+        v3_sub(d, dx + 3 * (size_t)s->next[a], dx + 3 * a);
+        out[a] = v3_dot(s->rgrad + 3 * a, d) - s->debar[s->comp[a]] + prm->reg * y[a];
+    }
+    for (size_t i = 0; i < nv; i++) {
+        size_t r = nv + i;
+        if (!s->ract[r]) {
+            out[r] = 0.0;
+            continue;
+        }
+        double d[3];
+        v3_sub(d, dx + 3 * (size_t)s->next[i], dx + 3 * (size_t)s->prev[i]);
+        int k = s->comp[i];
+        out[r] = v3_dot(s->rgrad + 3 * r, d) - chord_min_deriv(s->ebar[k], prm->minrad) * s->debar[k] +
+                 prm->reg * y[r];
+    }
+    for (size_t p = 0; p < s->np; p++) {
+        size_t r = 2 * nv + p;
+        if (!s->ract[r]) {
+            out[r] = 0.0;
+            continue;
+        }
+        size_t a = s->pa[p], b = s->pb[p];
+        double ss = s->rs[p], tt = s->rt[p], d[3];
+        const double *da = dx + 3 * a, *dna = dx + 3 * (size_t)s->next[a];
+        const double *db = dx + 3 * b, *dnb = dx + 3 * (size_t)s->next[b];
+        for (int k = 0; k < 3; k++)
+            d[k] = (1.0 - ss) * da[k] + ss * dna[k] - (1.0 - tt) * db[k] - tt * dnb[k];
+        out[r] = v3_dot(s->rgrad + 3 * r, d) + prm->reg * y[r];
+    }
+}
+
+static double dot_rows(const double *a, const double *b, size_t n)
+{
+    double s = 0.0;
+    for (size_t i = 0; i < n; i++)
+        s += a[i] * b[i];
+    return s;
+}
+
+static int ref_correct(void *sp, const tr_correct_params *prm, tr_correct_stats *out, tr_error *err)
+{
+    ref_state *s = sp;
+    int rc = ensure_rows(s, err);
+    if (rc)
+        return rc;
+    size_t nv = s->nv, nr = 2 * nv + s->np;
+    tr_correct_stats st = {0};
+    int it;
+    for (it = 0; it < prm->max_newton; it++) {
+        double viol = eval_rows(s, prm);
+        if (it == 0)
+            st.viol_before = viol;
+        if (viol <= prm->viol_tol)
+            break;
+        size_t nact = 0;
+        for (size_t r = 0; r < nr; r++) {
+            /* inequality rows inside the active band are held, not pulled */
+            s->b[r] = !s->ract[r] ? 0.0 : (r < nv ? -s->rC[r] : -fmin(s->rC[r], 0.0));
+            nact += s->ract[r];
+            s->y[r] = 0.0;
+            s->r[r] = s->b[r];
+            s->p[r] = s->b[r];
+        }
+        st.active_rows = nact;
+        double rr = dot_rows(s->r, s->r, nr), rr0 = rr;
+        for (int k = 0; k < prm->max_cg; k++) {
+            if (rr <= prm->cg_rtol * prm->cg_rtol * rr0)
+                break;
+            apply_JT(s, prm, s->p);
+            apply_J(s, prm, s->p, s->q);
+            double pq = dot_rows(s->p, s->q, nr);
+            double alpha = rr / pq;
+            for (size_t r = 0; r < nr; r++) {
+                s->y[r] += alpha * s->p[r];
+                s->r[r] -= alpha * s->q[r];
+            }
+            double rr1 = dot_rows(s->r, s->r, nr);
+            double beta = rr1 / rr;
+            for (size_t r = 0; r < nr; r++)
+                s->p[r] = s->r[r] + beta * s->p[r];
+            rr = rr1;
+            st.cg_iters++;
+        }
+        apply_JT(s, prm, s->y);
+        double maxdx = 0.0;
+        for (size_t i = 0; i < nv; i++) {
+            double d = v3_norm(s->dx + 3 * i);
+            if (d > maxdx)
+                maxdx = d;
+        }
+        double scale = maxdx > prm->max_step ? prm->max_step / maxdx : 1.0;
+        for (size_t i = 0; i < nv; i++) {
+            if (scale != 1.0)
+                v3_scale(s->dx + 3 * i, scale, s->dx + 3 * i);
+            v3_add(s->x + 3 * i, s->x + 3 * i, s->dx + 3 * i);
+            snap(s, i);
+        }
+        for (int k = 0; k < s->ncomp; k++)
+            s->ebar[k] += scale * s->debar[k];
+    }
+    st.newton_iters = it;
+    st.viol_after = eval_rows(s, prm);
+    if (out)
+        *out = st;
+    return TR_OK;
+}
+
+/* ---- reductions ---- */
+
+static int ref_measure(void *sp, tr_measure *out, double *comp_length, double *comp_ebar, tr_error *err)
+{
+    (void)err;
+    ref_state *s = sp;
+    tr_measure m = {0};
+    m.min_strut = INFINITY;
+    m.min_minrad = INFINITY;
+    for (int k = 0; k < s->ncomp; k++) {
+        double len = 0.0;
+        for (size_t a = s->start[k]; a < s->start[k + 1]; a++) {
+            if (s->next[a] < 0)
+                continue;
+            double l = sqrt(v3_dist2(s->x + 3 * a, s->x + 3 * (size_t)s->next[a]));
+            len += l;
+            double dev = fabs(l - s->ebar[k]) / s->ebar[k];
+            if (dev > m.edge_dev)
+                m.edge_dev = dev;
+        }
+        m.length += len;
+        if (comp_length)
+            comp_length[k] = len;
+        if (comp_ebar)
+            comp_ebar[k] = s->ebar[k];
+    }
+    for (size_t p = 0; p < s->np; p++) {
+        size_t a = s->pa[p], b = s->pb[p];
+        double ss, tt;
+        double d = tr_segment_distance(s->x + 3 * a, s->x + 3 * (size_t)s->next[a], s->x + 3 * b,
+                                       s->x + 3 * (size_t)s->next[b], &ss, &tt);
+        if (d < m.min_strut)
+            m.min_strut = d;
+    }
+    for (size_t i = 0; i < s->nv; i++) {
+        if (s->prev[i] < 0 || s->next[i] < 0)
+            continue;
+        double a[3], b[3], c[3];
+        v3_sub(a, s->x + 3 * i, s->x + 3 * (size_t)s->prev[i]);
+        v3_sub(b, s->x + 3 * (size_t)s->next[i], s->x + 3 * i);
+        v3_cross(c, a, b);
+        double cn = v3_norm(c);
+        if (cn == 0.0)
+            continue;
+        double la = v3_norm(a), lb = v3_norm(b);
+        double mr = fmin(la, lb) * (la * lb + v3_dot(a, b)) / (2.0 * cn);
+        if (mr < m.min_minrad)
+            m.min_minrad = mr;
+    }
+    if (s->saved)
+        for (size_t i = 0; i < s->nv; i++) {
+            double d = sqrt(v3_dist2(s->x + 3 * i, s->xs + 3 * i));
+            if (d > m.max_disp)
+                m.max_disp = d;
+        }
+    *out = m;
+    return TR_OK;
+}
+
+static const tr_backend_ops reference_ops = {
+    .name = "reference",
+    .destroy = ref_destroy,
+    .upload = ref_upload,
+    .download = ref_download,
+    .save = ref_save,
+    .restore = ref_restore,
+    .find_contacts = ref_find_contacts,
+    .tension_step = ref_tension_step,
+    .correct = ref_correct,
+    .measure = ref_measure,
+};
+
+int tr_backend_reference_open(const char *spec, const tr_curve *c, tr_backend *out, tr_error *err)
+{
+    if (spec && *spec && strcmp(spec, "reference") != 0)
+        return tr_fail(err, TR_EUNSUPPORTED, "the serial reference is selected by 'reference'");
+    memset(out, 0, sizeof *out);
+    if (c->nv == 0 || c->ncomp <= 0)
+        return tr_fail(err, TR_EINVAL, "empty curve");
+    ref_state *s = calloc(1, sizeof *s);
+    if (!s)
+        return tr_fail(err, TR_ENOMEM, "out of memory opening the reference backend");
+    size_t nv = c->nv;
+    s->nv = nv;
+    s->ncomp = c->ncomp;
+    s->start = malloc((size_t)(c->ncomp + 1) * sizeof *s->start);
+    s->closed = malloc((size_t)c->ncomp);
+    s->ne = malloc((size_t)c->ncomp * sizeof *s->ne);
+    s->comp = malloc(nv * sizeof *s->comp);
+    s->next = malloc(nv * sizeof *s->next);
+    s->prev = malloc(nv * sizeof *s->prev);
+    s->x = malloc(3 * nv * sizeof *s->x);
+    s->xs = malloc(3 * nv * sizeof *s->xs);
+    s->ebar = malloc((size_t)c->ncomp * sizeof *s->ebar);
+    s->ebar_s = malloc((size_t)c->ncomp * sizeof *s->ebar_s);
+    s->debar = malloc((size_t)c->ncomp * sizeof *s->debar);
+    s->pj = calloc(nv, 1);
+    s->pu = calloc(3 * nv, sizeof *s->pu);
+    s->vcst = malloc(nv * sizeof *s->vcst);
+    s->cst = malloc((size_t)(c->ncst > 0 ? c->ncst : 1) * sizeof *s->cst);
+    s->adj_start = calloc(nv + 1, sizeof *s->adj_start);
+    s->F = malloc(3 * nv * sizeof *s->F);
+    s->G = malloc(3 * nv * sizeof *s->G);
+    s->H = malloc(3 * nv * sizeof *s->H);
+    s->dx = malloc(3 * nv * sizeof *s->dx);
+    if (!s->start || !s->closed || !s->ne || !s->comp || !s->next || !s->prev || !s->x || !s->xs ||
+        !s->ebar || !s->ebar_s || !s->debar || !s->pj || !s->pu || !s->vcst || !s->cst ||
+        !s->adj_start || !s->F || !s->G || !s->H || !s->dx) {
+        ref_destroy(s);
+        return tr_fail(err, TR_ENOMEM, "out of memory opening the reference backend (%zu vertices)", nv);
+    }
+    memcpy(s->start, c->start, (size_t)(c->ncomp + 1) * sizeof *s->start);
+    memcpy(s->closed, c->closed, (size_t)c->ncomp);
+    for (int k = 0; k < c->ncomp; k++) {
+        size_t a = c->start[k], e = c->start[k + 1], n = e - a;
+        if (n < (c->closed[k] ? 3u : 2u)) {
+            ref_destroy(s);
+            return tr_fail(err, TR_EGEOMETRY, "component %d has only %zu vertices", k + 1, n);
+        }
+        s->ne[k] = tr_comp_ne(c, k);
+        for (size_t i = a; i < e; i++) {
+            s->comp[i] = k;
+            s->next[i] = i + 1 < e ? (ptrdiff_t)(i + 1) : (c->closed[k] ? (ptrdiff_t)a : -1);
+            s->prev[i] = i > a ? (ptrdiff_t)(i - 1) : (c->closed[k] ? (ptrdiff_t)(e - 1) : -1);
+        }
+    }
+    if (c->ncst > 0)
+        memcpy(s->cst, c->cst, (size_t)c->ncst * sizeof *s->cst);
+    for (size_t i = 0; i < nv; i++) {
+        s->vcst[i] = c->vcst && c->ncst > 0 ? c->vcst[i] : -1;
+        if (s->vcst[i] < 0 || s->vcst[i] >= c->ncst) {
+            s->vcst[i] = -1;
+            continue;
+        }
+        const tr_constraint *k = &c->cst[s->vcst[i]];
+        s->pj[i] = k->kind == TR_CST_PLANE ? PJ_PLANE : k->kind == TR_CST_LINE ? PJ_LINE : PJ_FIXED;
+        memcpy(s->pu + 3 * i, k->u, 3 * sizeof(double));
+    }
+    memcpy(s->x, c->x, 3 * nv * sizeof *s->x);
+    for (size_t i = 0; i < nv; i++)
+        snap(s, i);
+    reset_ebar(s);
+    tr_error e2;
+    if (ensure_rows(s, &e2) != TR_OK) {
+        ref_destroy(s);
+        return tr_fail(err, TR_ENOMEM, "%s", e2.msg);
+    }
+    out->ops = &reference_ops;
+    out->state = s;
+    snprintf(out->description, sizeof out->description, "serial reference (CPU, double precision)");
+    return TR_OK;
+}
