@@ -4,17 +4,23 @@
 
 #include "cl_error.h"
 
-int tr_cl_reduce_init(tr_cl_reduce *r, const tr_cl_ctx *ctx, size_t n, tr_error *err)
+int tr_cl_build_all(const tr_cl_ctx *ctx, cl_program *prog, tr_error *err)
+{
+    static const char *const files[] = {"reduce.cl", "grid.cl"};
+    return tr_cl_build(ctx, files, (int)(sizeof files / sizeof files[0]), "", prog, err);
+}
+
+int tr_cl_reduce_init(tr_cl_reduce *r, const tr_cl_ctx *ctx, cl_program prog, size_t n,
+                      tr_error *err)
 {
     int rc = TR_OK;
     cl_int e = CL_SUCCESS;
     memset(r, 0, sizeof *r);
-    const char *files[] = {"reduce.cl"};
-    TR_TRY(tr_cl_build(ctx, files, 1, "", &r->prog, err));
-    TR_CL_CHECK((r->length_partial = clCreateKernel(r->prog, "length_partial", &e), e));
-    TR_CL_CHECK((r->minmax_partial = clCreateKernel(r->prog, "minmax_partial", &e), e));
-    TR_CL_CHECK((r->sum_final = clCreateKernel(r->prog, "sum_final", &e), e));
-    TR_CL_CHECK((r->minmax_final = clCreateKernel(r->prog, "minmax_final", &e), e));
+    TR_CL_CHECK((r->length_partial = clCreateKernel(prog, "length_partial", &e), e));
+    TR_CL_CHECK((r->minmax_partial = clCreateKernel(prog, "minmax_partial", &e), e));
+    TR_CL_CHECK((r->sum_final = clCreateKernel(prog, "sum_final", &e), e));
+    TR_CL_CHECK((r->minmax_final = clCreateKernel(prog, "minmax_final", &e), e));
+    TR_CL_CHECK((r->edge_lengths = clCreateKernel(prog, "edge_lengths", &e), e));
     r->groups = tr_cl_global(n) / TR_CL_LOCAL;
     TR_CL_CHECK((r->pa = clCreateBuffer(ctx->context, CL_MEM_READ_WRITE, r->groups * sizeof(double),
                                         NULL, &e),
@@ -30,7 +36,8 @@ cleanup:
 
 void tr_cl_reduce_free(tr_cl_reduce *r)
 {
-    cl_kernel *k[] = {&r->length_partial, &r->minmax_partial, &r->sum_final, &r->minmax_final};
+    cl_kernel *k[] = {&r->length_partial, &r->minmax_partial, &r->sum_final, &r->minmax_final,
+                      &r->edge_lengths};
     for (size_t i = 0; i < sizeof k / sizeof k[0]; i++)
         if (*k[i])
             clReleaseKernel(*k[i]);
@@ -38,8 +45,6 @@ void tr_cl_reduce_free(tr_cl_reduce *r)
         clReleaseMemObject(r->pa);
     if (r->pb)
         clReleaseMemObject(r->pb);
-    if (r->prog)
-        clReleaseProgram(r->prog);
     memset(r, 0, sizeof *r);
 }
 
@@ -92,6 +97,20 @@ int tr_cl_reduce_minmax(tr_cl_reduce *r, const tr_cl_ctx *ctx, cl_mem v, int n, 
     TR_CL_CHECK(clSetKernelArg(r->minmax_final, 3, sizeof out, &out));
     TR_CL_CHECK(clSetKernelArg(r->minmax_final, 4, sizeof slot, &slot));
     TR_CL_CHECK(clEnqueueNDRangeKernel(ctx->queue, r->minmax_final, 1, NULL, &l, &l, 0, NULL, NULL));
+cleanup:
+    return rc;
+}
+
+int tr_cl_edge_lengths(tr_cl_reduce *r, const tr_cl_ctx *ctx, cl_mem x, cl_mem next, int n,
+                       cl_mem len, tr_error *err)
+{
+    int rc = TR_OK;
+    size_t g = tr_cl_global((size_t)n), l = TR_CL_LOCAL;
+    TR_CL_CHECK(clSetKernelArg(r->edge_lengths, 0, sizeof x, &x));
+    TR_CL_CHECK(clSetKernelArg(r->edge_lengths, 1, sizeof next, &next));
+    TR_CL_CHECK(clSetKernelArg(r->edge_lengths, 2, sizeof n, &n));
+    TR_CL_CHECK(clSetKernelArg(r->edge_lengths, 3, sizeof len, &len));
+    TR_CL_CHECK(clEnqueueNDRangeKernel(ctx->queue, r->edge_lengths, 1, NULL, &g, &l, 0, NULL, NULL));
 cleanup:
     return rc;
 }

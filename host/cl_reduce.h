@@ -6,14 +6,15 @@
 #include "cl_device.h"
 
 typedef struct tr_cl_reduce {
-    cl_program prog;
-    cl_kernel length_partial, minmax_partial, sum_final, minmax_final;
+    cl_kernel length_partial, minmax_partial, sum_final, minmax_final, edge_lengths;
     cl_mem pa, pb;   /* per-work-group partials */
     size_t groups;   /* capacity of pa, pb */
 } tr_cl_reduce;
 
-/* Builds reduce.cl and sizes the partial buffers for up to n items. */
-int tr_cl_reduce_init(tr_cl_reduce *r, const tr_cl_ctx *ctx, size_t n, tr_error *err);
+/* Takes the kernels from prog (built from reduce.cl among others, see
+ * tr_cl_build_all) and sizes the partial buffers for up to n items. */
+int tr_cl_reduce_init(tr_cl_reduce *r, const tr_cl_ctx *ctx, cl_program prog, size_t n,
+                      tr_error *err);
 void tr_cl_reduce_free(tr_cl_reduce *r);
 
 /* Queues out[slot] = sum over vertices i < n of |x[next[i]] - x[i]| (next[i] < 0: no edge). */
@@ -23,5 +24,13 @@ int tr_cl_reduce_length(tr_cl_reduce *r, const tr_cl_ctx *ctx, cl_mem x, cl_mem 
 /* Queues out[slot] = min, out[slot + 1] = max of v[0..n), n >= 1. */
 int tr_cl_reduce_minmax(tr_cl_reduce *r, const tr_cl_ctx *ctx, cl_mem v, int n, cl_mem out,
                         int slot, tr_error *err);
+
+/* Queues len[i] = |x[next[i]] - x[i]| (0 where no edge starts) for i < n. */
+int tr_cl_edge_lengths(tr_cl_reduce *r, const tr_cl_ctx *ctx, cl_mem x, cl_mem next, int n,
+                       cl_mem len, tr_error *err);
+
+/* The one program every Tightrope kernel lives in (common.clh, then
+ * reduce.cl, grid.cl, ...): built once per context, ~0.8 s cold on PoCL. */
+int tr_cl_build_all(const tr_cl_ctx *ctx, cl_program *prog, tr_error *err);
 
 #endif

@@ -96,3 +96,12 @@ void minmax_final(__global const real *pmin, __global const real *pmax, const in
         out[slot + 1] = hi[0];
     }
 }
+
+/* len[i] = |x[next[i]] - x[i]|, or 0 where vertex i starts no edge. */
+__kernel void edge_lengths(__global const real *x, __global const int *next, const int n,
+                           __global real *len)
+{
+    int i = get_global_id(0);
+    if (i < n)
+        len[i] = edge_len(x, next, i);
+}

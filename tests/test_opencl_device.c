@@ -179,7 +179,8 @@ static void test_reductions(const tr_cl_ctx *ctx)
     tr_cl_reduce red;
     const size_t sizes[] = {3, 4, 7, 63, 64, 65, 1021, 1024, 4099};
     const size_t maxn = 4099 + 6;
-    if (tr_cl_reduce_init(&red, ctx, maxn, &err) != TR_OK) {
+    cl_program prog = NULL;
+    if (tr_cl_build_all(ctx, &prog, &err) != TR_OK || tr_cl_reduce_init(&red, ctx, prog, maxn, &err) != TR_OK) {
         tr_test_failures++;
         fprintf(stderr, "reduce init: %s\n", err.msg);
         return;
@@ -258,6 +259,7 @@ static void test_reductions(const tr_cl_ctx *ctx)
         tr_curve_free(&c);
     }
     tr_cl_reduce_free(&red);
+    clReleaseProgram(prog);
 }
 
 int main(void)

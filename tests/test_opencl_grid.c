@@ -1,0 +1,204 @@
+/* Device neighbour search against an independent brute-force O(N^2) scan:
+ * the same partner lists (edges by segment-segment distance, vertices by
+ * point distance, arclength exclusion) on a trefoil, a two-component link
+ * and two hooked open ropes, at the smallest sizes, at sizes that are and
+ * are not multiples of the work-group size, and after a list overflow. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cl_grid.h"
+#include "curve.h"
+#include "testlib.h"
+
+#define TR_PI 3.14159265358979323846
+
+/* kind 0: trefoil scaled by s; 1: two linked circles radius 2.2; 2: two hooked U ropes */
+static int make_curve(tr_curve *c, int kind, size_t n, tr_error *err)
+{
+    if (kind == 0) {
+        unsigned char closed = 1;
+        int rc = tr_curve_alloc(c, 1, &n, &closed, err);
+        for (size_t i = 0; rc == TR_OK && i < n; i++) {
+            double t = 2.0 * TR_PI * (double)i / (double)n;
+            c->x[3 * i] = 1.2 * (sin(t) + 2 * sin(2 * t));
+            c->x[3 * i + 1] = 1.2 * (cos(t) - 2 * cos(2 * t));
+            c->x[3 * i + 2] = -1.2 * sin(3 * t);
+        }
+        return rc;
+    }
+    size_t nv[2] = {n / 2, n - n / 2};
+    unsigned char closed[2] = {kind == 1, kind == 1};
+    int rc = tr_curve_alloc(c, 2, nv, closed, err);
+    if (rc != TR_OK)
+        return rc;
+    for (size_t i = 0; i < nv[0]; i++) {
+        double *p = c->x + 3 * i;
+        if (kind == 1) {
+            double t = 2 * TR_PI * (double)i / (double)nv[0];
+            p[0] = 2.2 * cos(t), p[1] = 2.2 * sin(t), p[2] = 0;
+        } else {
+            double a = TR_PI + TR_PI * (double)i / (double)(nv[0] - 1);
+            p[0] = 2.5 * cos(a), p[1] = 0, p[2] = 2.5 * sin(a);
+        }
+    }
+    for (size_t i = 0; i < nv[1]; i++) {
+        double *p = c->x + 3 * (nv[0] + i);
+        if (kind == 1) {
+            double t = 2 * TR_PI * (double)i / (double)nv[1];
+            p[0] = 2.2 + 2.2 * cos(t), p[1] = 0, p[2] = 2.2 * sin(t);
+        } else {
+            double a = TR_PI * (double)i / (double)(nv[1] - 1);
+            p[0] = 0, p[1] = 2.5 * cos(a), p[2] = -2.5 + 2.5 * sin(a);
+        }
+    }
+    return TR_OK;
+}
+
+/* Segment distance by minimising over a fine parameter grid and then
+ * refining with golden sections: slow and independent of the device's closed
+ * form; accurate to ~1e-10, enough to classify pairs away from the cutoff. */
+static double point_seg(const double *p, const double *a, const double *b)
+{
+    double d[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+    double w[3] = {p[0] - a[0], p[1] - a[1], p[2] - a[2]};
+    double dd = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+    double t = dd > 0 ? (w[0] * d[0] + w[1] * d[1] + w[2] * d[2]) / dd : 0;
+    t = t < 0 ? 0 : (t > 1 ? 1 : t);
+    double q[3] = {a[0] + t * d[0] - p[0], a[1] + t * d[1] - p[1], a[2] + t * d[2] - p[2]};
+    return sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2]);
+}
+
+static double seg_dist_slow(const double *p0, const double *p1, const double *q0, const double *q1)
+{
+    /* distance from a point of segment P to segment Q is convex in P's parameter */
+    double lo = 0, hi = 1;
+    for (int it = 0; it < 100; it++) {
+        double m1 = lo + (hi - lo) * 0.381966, m2 = lo + (hi - lo) * 0.618034;
+        double a[3], b[3];
+        for (int k = 0; k < 3; k++) {
+            a[k] = p0[k] + m1 * (p1[k] - p0[k]);
+            b[k] = p0[k] + m2 * (p1[k] - p0[k]);
+        }
+        if (point_seg(a, q0, q1) < point_seg(b, q0, q1))
+            hi = m2;
+        else
+            lo = m1;
+    }
+    double best = fmin(point_seg(p0, q0, q1), point_seg(p1, q0, q1));
+    double m[3];
+    for (int k = 0; k < 3; k++)
+        m[k] = p0[k] + 0.5 * (lo + hi) * (p1[k] - p0[k]);
+    return fmin(best, point_seg(m, q0, q1));
+}
+
+static void run_case(const tr_cl_ctx *ctx, cl_program prog, int kind, size_t n, int edges,
+                     double r, int K, int cap)
+{
+    tr_error err;
+    tr_curve c;
+    if (make_curve(&c, kind, n, &err) != TR_OK) {
+        tr_test_failures++;
+        return;
+    }
+    int *next, *prev, *comp, *pos;
+    CHECK_OK(tr_topology_arrays(&c, &next, &prev, &comp, &pos, &err));
+    tr_cl_topology topo;
+    tr_cl_reduce red;
+    tr_cl_grid grid;
+    CHECK_OK(tr_cl_topology_upload(ctx, &c, &topo, &err));
+    CHECK_OK(tr_cl_reduce_init(&red, ctx, prog, c.nv, &err));
+    CHECK_OK(tr_cl_grid_init(&grid, ctx, prog, (int)c.nv, cap, &err));
+    cl_int e;
+    cl_mem x = clCreateBuffer(ctx->context, CL_MEM_READ_WRITE | CL_MEM_COPY_HOST_PTR,
+                              3 * c.nv * sizeof(double), c.x, &e);
+    int rc = tr_cl_grid_build(&grid, ctx, &red, &topo, x, edges, r, K, &err);
+    CHECK_OK(rc);
+    if (rc != TR_OK)
+        fprintf(stderr, "%s\n", err.msg);
+    int nv = (int)c.nv;
+    int *cnt = malloc(c.nv * sizeof *cnt), *list = malloc(c.nv * (size_t)grid.cap * sizeof *list);
+    clEnqueueReadBuffer(ctx->queue, grid.count, CL_TRUE, 0, c.nv * sizeof(int), cnt, 0, NULL, NULL);
+    clEnqueueReadBuffer(ctx->queue, grid.list, CL_TRUE, 0, c.nv * (size_t)grid.cap * sizeof(int),
+                        list, 0, NULL, NULL);
+    long total = 0, bad = 0;
+    int *want = malloc(c.nv * sizeof *want);
+    for (int i = 0; i < nv; i++) {
+        int m = 0;
+        if (!edges || next[i] >= 0)
+            for (int j = 0; j < nv; j++) {
+                if (j == i || (edges && next[j] < 0))
+                    continue;
+                if (comp[i] == comp[j]) {
+                    int g = abs(pos[i] - pos[j]), cn = (int)tr_comp_nv(&c, comp[i]);
+                    if (c.closed[comp[i]] && cn - g < g)
+                        g = cn - g;
+                    if (g < K)
+                        continue;
+                }
+                const double *a = c.x + 3 * i, *b = c.x + 3 * j;
+                double ab = sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) +
+                                 (a[2] - b[2]) * (a[2] - b[2]));
+                /* segments can be no closer than their start points minus both lengths */
+                if (edges && ab - 0.5 > r)
+                    continue;
+                double d = edges ? seg_dist_slow(a, c.x + 3 * next[i], b, c.x + 3 * next[j])
+                                 : sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) +
+                                        (a[2] - b[2]) * (a[2] - b[2]));
+                if (d < r)
+                    want[m++] = j;
+            }
+        total += m;
+        int same = cnt[i] == m && m <= grid.cap;
+        for (int k = 0; same && k < m; k++)
+            same = list[(size_t)i * grid.cap + k] == want[k];
+        if (!same && bad++ < 3)
+            fprintf(stderr, "kind %d n %d edges %d item %d: %d partners on device, %d by brute force\n",
+                    kind, nv, edges, i, cnt[i], m);
+    }
+    CHECK(bad == 0);
+    if (cap < 4 && total > 0)
+        CHECK(grid.cap > cap); /* an overflow grew the lists */
+    free(want), free(cnt), free(list);
+    free(next), free(prev), free(comp), free(pos);
+    clReleaseMemObject(x);
+    tr_cl_grid_free(&grid);
+    tr_cl_reduce_free(&red);
+    tr_cl_topology_free(&topo);
+    tr_curve_free(&c);
+}
+
+int main(void)
+{
+    tr_error err;
+    tr_device_choice ch;
+    if (tr_device_select("auto", &ch, &err) != TR_OK || ch.kind != TR_DEVICE_OPENCL) {
+        printf("no usable opencl device: skipped\n");
+        return TR_SKIP;
+    }
+    tr_cl_ctx ctx;
+    cl_program prog;
+    if (tr_cl_ctx_open(&ctx, &ch.cl, 0, &err) != TR_OK || tr_cl_build_all(&ctx, &prog, &err) != TR_OK) {
+        fprintf(stderr, "%s\n", err.msg);
+        return 1;
+    }
+    /* smallest legal curves: a triangle, two triangles, two 2-vertex ropes */
+    run_case(&ctx, prog, 0, 3, 1, 10.0, 2, 16);
+    run_case(&ctx, prog, 1, 6, 1, 10.0, 2, 16);
+    run_case(&ctx, prog, 2, 4, 1, 10.0, 2, 16);
+    const size_t sizes[] = {64, 1021, 1024};
+    for (int kind = 0; kind < 3; kind++)
+        for (size_t s = 0; s < 3; s++)
+            for (int edges = 0; edges <= 1; edges++) {
+                /* cutoff 2.2 with exclusion of ~pi/e index neighbours, as the engine uses */
+                size_t n = sizes[s];
+                int K = (int)ceil(TR_PI / (20.0 / (double)n));
+                run_case(&ctx, prog, kind, n, edges, 2.2, K, 8);
+            }
+    /* overflow: lists that start too short are grown and the result is the same */
+    run_case(&ctx, prog, 0, 1021, 1, 2.5, 30, 1);
+    clReleaseProgram(prog);
+    tr_cl_ctx_close(&ctx);
+    return tr_test_finish("test_opencl_grid");
+}
