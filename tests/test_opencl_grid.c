@@ -141,8 +141,15 @@ static void run_case(const tr_cl_ctx *ctx, cl_program prog, int kind, size_t n, 
                 double ab = sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) +
                                  (a[2] - b[2]) * (a[2] - b[2]));
                 /* segments can be no closer than their start points minus both lengths */
-                if (edges && ab - 0.5 > r)
-                    continue;
+                if (edges) {
+                    const double *a1 = c.x + 3 * next[i], *b1 = c.x + 3 * next[j];
+                    double la = sqrt((a1[0] - a[0]) * (a1[0] - a[0]) + (a1[1] - a[1]) * (a1[1] - a[1]) +
+                                     (a1[2] - a[2]) * (a1[2] - a[2]));
+                    double lb = sqrt((b1[0] - b[0]) * (b1[0] - b[0]) + (b1[1] - b[1]) * (b1[1] - b[1]) +
+                                     (b1[2] - b[2]) * (b1[2] - b[2]));
+                    if (ab - la - lb > r + 1e-9)
+                        continue;
+                }
                 double d = edges ? seg_dist_slow(a, c.x + 3 * next[i], b, c.x + 3 * next[j])
                                  : sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) +
                                         (a[2] - b[2]) * (a[2] - b[2]));
