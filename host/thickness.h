@@ -7,7 +7,9 @@
 #include "curve.h"
 
 /* A strut: a doubly-critical closest-point pair between edges ei and ej,
- * at parameters si, sj in [0,1] along them. */
+ * at parameters si, sj in [0,1] along them. Edges are numbered globally as in
+ * neighbour_search.h (component 0's edges first; edge l of a component runs
+ * from its vertex l to l+1); ei > ej. */
 typedef struct tr_strut {
     size_t ei, ej;
     double si, sj;
@@ -37,6 +39,8 @@ typedef struct tr_thickness_opts {
     /* Also collect every strut with dist <= (1 + strut_rel_tol) * dcsd into the
      * list passed to tr_thickness_measure (octrope's "struts within epsilon"). */
     double strut_rel_tol;
+    /* Look at all N^2 edge pairs instead of the tree search (tests). */
+    int brute_force;
 } tr_thickness_opts;
 
 /* Whole curve. struts may be NULL. */
