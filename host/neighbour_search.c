@@ -9,7 +9,7 @@
 
 /* Edges per leaf: small enough that a leaf box stays close to its edges,
  * large enough that the tree is shallow. */
-#define LEAF_EDGES 4
+#define LEAF_EDGES 8
 #define STACK_DEPTH 256
 
 /* Relative widening of every pruning test against rounding in the box
@@ -222,7 +222,10 @@ int tr_nsearch_pairs(const tr_nsearch *s, double *cutoff, size_t min_gap, unsign
     if (s->ne < 2)
         return 0;
     const double *x = s->c->x;
-    uint32_t stack[STACK_DEPTH];
+    struct {
+        uint32_t id;
+        double d2;
+    } stack[STACK_DEPTH];
     for (size_t i = 1; i < s->ne; i++) {
         query_edge q;
         edge_box(s, i, q.lo, q.hi);
@@ -233,14 +236,15 @@ int tr_nsearch_pairs(const tr_nsearch *s, double *cutoff, size_t min_gap, unsign
         int k = s->ecomp[i];
         q.last = !s->c->closed[k] && i + 1 == s->estart[k + 1];
         int sp = 0;
-        stack[sp++] = 0;
+        stack[sp].id = 0;
+        stack[sp++].d2 = box_dist2(q.lo, q.hi, s->node[0].lo, s->node[0].hi);
         while (sp > 0) {
-            const node_t *n = &s->node[stack[--sp]];
-            if (n->a >= i)
-                continue;
+            --sp;
+            const node_t *n = &s->node[stack[sp].id];
             double cut = *cutoff * (1.0 + PRUNE_SLACK);
             double cut2 = cut * cut;
-            if (box_dist2(q.lo, q.hi, n->lo, n->hi) > cut2)
+            /* The cutoff may have dropped since this node was pushed. */
+            if (stack[sp].d2 > cut2)
                 continue;
             size_t b = n->b < i ? n->b : i;
             if (n->comp == k && range_excluded(s, i, n->a, b, min_gap))
@@ -264,19 +268,23 @@ int tr_nsearch_pairs(const tr_nsearch *s, double *cutoff, size_t min_gap, unsign
                 }
                 continue;
             }
-            /* Nearer child last, so it is popped first and tightens the
-             * cutoff before the farther one is looked at. */
-            const node_t *l = &s->node[n->left], *r = &s->node[n->right];
-            double dl = box_dist2(q.lo, q.hi, l->lo, l->hi);
-            double dr = box_dist2(q.lo, q.hi, r->lo, r->hi);
+            /* Children that start at or after i hold no j < i. The nearer
+             * child goes on top, so it is looked at first and tightens the
+             * cutoff before the farther one. */
+            uint32_t ch[2] = {n->left, n->right};
+            double d2[2] = {INFINITY, INFINITY};
+            for (int c = 0; c < 2; c++)
+                if (s->node[ch[c]].a < i)
+                    d2[c] = box_dist2(q.lo, q.hi, s->node[ch[c]].lo, s->node[ch[c]].hi);
             if (sp + 2 > STACK_DEPTH)
-                return -1; /* cannot happen: depth is log2(N) */
-            if (dl < dr) {
-                stack[sp++] = n->right;
-                stack[sp++] = n->left;
-            } else {
-                stack[sp++] = n->left;
-                stack[sp++] = n->right;
+                return -1; /* cannot happen: the depth is log2(N) */
+            int near = d2[1] < d2[0];
+            for (int c = 0; c < 2; c++) {
+                int w = c == 0 ? 1 - near : near; /* farther first, nearer on top */
+                if (d2[w] <= cut2) {
+                    stack[sp].id = ch[w];
+                    stack[sp++].d2 = d2[w];
+                }
             }
         }
     }

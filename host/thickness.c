@@ -40,8 +40,9 @@ static double nm_get(const neumaier *s) { return s->sum + s->comp; }
 /* octrope's find_poca (Lumelsky's segment-segment closest points): s on
  * segment a, t on segment b. Ill-conditioned cases go to long double exactly
  * where octrope does (denominator < 1e-10); octrope's "parallel" test
- * (long-double denominator < 1e-25) is also made relative so that tiny edges
- * are not all called parallel. */
+ * (long-double denominator < 1e-25) is made relative (sin^2 of the angle
+ * < 1e-20) so that tiny edges are not all called parallel, and parallel overlapping edges get an interior
+ * closest pair (see below). */
 static double segment_poca(const double *a0, const double *a1, const double *b0, const double *b1,
                            double *s_out, double *t_out)
 {
@@ -54,10 +55,25 @@ static double segment_poca(const double *a0, const double *a1, const double *b0,
     double denom = D1 * D2 - R * R;
     if (denom < 1e-10) {
         long double LD1 = D1, LD2 = D2, LR = R, LS1 = S1, LS2 = S2;
-        long double Ldenom = LD1 * LD2 - LR * LR;
+        /* |d1 x d2|^2 rather than D1 D2 - R^2: no cancellation, so nearly
+         * parallel edges are told from parallel ones. */
+        long double cx = (long double)d1[1] * d2[2] - (long double)d1[2] * d2[1];
+        long double cy = (long double)d1[2] * d2[0] - (long double)d1[0] * d2[2];
+        long double cz = (long double)d1[0] * d2[1] - (long double)d1[1] * d2[0];
+        long double Ldenom = cx * cx + cy * cy + cz * cz;
         long double LT, LU;
-        if (Ldenom < 1e-25L && Ldenom < 1e-20L * LD1 * LD2) {
-            LT = 0;
+        if (Ldenom < 1e-20L * LD1 * LD2) {
+            /* Parallel. octrope takes LT = 0, which lands on an end vertex
+             * and misses the strut between parallel edges that overlap
+             * (e.g. opposite edges of a rectangle); take the middle of the
+             * overlap of the projections instead, when there is one. */
+            long double u0 = LS1 / LD1, u1 = (LS1 + LR) / LD1;
+            long double lo = u0 < u1 ? u0 : u1, hi = u0 < u1 ? u1 : u0;
+            if (lo < 0)
+                lo = 0;
+            if (hi > 1)
+                hi = 1;
+            LT = lo <= hi ? 0.5L * (lo + hi) : 0;
         } else {
             LT = (LS1 * LD2 - LS2 * LR) / Ldenom;
             if (LT > 1)
