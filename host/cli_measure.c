@@ -1,12 +1,314 @@
-/* PLACEHOLDER: replaced by the real 'measure' command. */
+/* tightrope measure FILE... [--json] [--struts OUT] [--per-component] [--strut-tol REL]
+ *
+ * Length, MinRad, shortest strut (dcsd), thickness, ropelength and the
+ * paper's L_p, L_c, L_a of each curve file (thickness.h). Every file is read
+ * before anything is measured or written, so bad input prints the reader's
+ * one line, exits 2 and leaves no --struts file behind. */
+#include <math.h>
+#include <stdarg.h>
 #include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
 
 #include "cli.h"
+#include "curve_io.h"
+#include "thickness.h"
+
+/* Struts within this relative distance of the shortest go to --struts:
+ * the contact set of a knot tight to a few 1e-4 (TightKnot at N ~ 400). */
+#define DEFAULT_STRUT_TOL 1e-3
+
+static void usage(FILE *out)
+{
+    fprintf(out,
+            "usage: tightrope measure FILE... [--json] [--per-component] [--struts OUT] [--strut-tol REL]\n"
+            "  FILE            curve file (.vect, .tsv, KnotPlot x y z list)\n"
+            "  --json          one JSON object per file (an array if several)\n"
+            "  --per-component also measure each component on its own (always in --json)\n"
+            "  --struts OUT    write the struts within REL of the shortest, and the MinRad\n"
+            "                  vertex, in octrope's STRUTS format (one FILE only)\n"
+            "  --strut-tol REL relative tolerance for --struts (default %g)\n",
+            DEFAULT_STRUT_TOL);
+}
+
+/* A growing text buffer; on allocation failure it stops growing and
+ * remembers that, so the caller checks once at the end. */
+typedef struct text {
+    char *p;
+    size_t n, cap;
+    int oom;
+} text;
+
+static void tprintf(text *t, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 2, 3)))
+#endif
+    ;
+
+static void tprintf(text *t, const char *fmt, ...)
+{
+    if (t->oom)
+        return;
+    for (;;) {
+        va_list ap;
+        va_start(ap, fmt);
+        size_t room = t->cap - t->n;
+        int k = vsnprintf(t->p ? t->p + t->n : NULL, room, fmt, ap);
+        va_end(ap);
+        if (k < 0) {
+            t->oom = 1;
+            return;
+        }
+        if ((size_t)k < room) {
+            t->n += (size_t)k;
+            return;
+        }
+        size_t cap = t->cap ? 2 * t->cap : 4096;
+        while (cap - t->n <= (size_t)k)
+            cap *= 2;
+        char *g = realloc(t->p, cap);
+        if (!g) {
+            t->oom = 1;
+            return;
+        }
+        t->p = g;
+        t->cap = cap;
+    }
+}
+
+/* JSON has no infinity or NaN: they are written as null. */
+static void json_num(text *t, const char *key, double v, int comma)
+{
+    if (isfinite(v))
+        tprintf(t, "\"%s\": %.17g%s", key, v, comma ? ", " : "");
+    else
+        tprintf(t, "\"%s\": null%s", key, comma ? ", " : "");
+}
+
+static void json_fields(text *t, const tr_thickness *m)
+{
+    tprintf(t, "\"vertices\": %zu, ", m->vertices);
+    json_num(t, "length", m->length, 1);
+    json_num(t, "minrad", m->minrad, 1);
+    json_num(t, "dcsd", m->dcsd, 1);
+    json_num(t, "thickness", m->thickness, 1);
+    json_num(t, "ropelength", m->ropelength, 1);
+    json_num(t, "L_p", m->L_p, 1);
+    json_num(t, "L_c", m->L_c, 1);
+    json_num(t, "L_a", m->L_a, 1);
+    tprintf(t, "\"minrad_vertex\": %zu", m->minrad_vertex);
+    if (isfinite(m->dcsd))
+        tprintf(t, ", \"shortest_strut\": {\"edges\": [%zu, %zu], \"positions\": [%.17g, %.17g], \"length\": %.17g}",
+                m->shortest.ei, m->shortest.ej, m->shortest.si, m->shortest.sj, m->shortest.dist);
+}
+
+static void json_string(text *t, const char *s)
+{
+    tprintf(t, "\"");
+    for (; *s; s++) {
+        unsigned char ch = (unsigned char)*s;
+        if (ch == '"' || ch == '\\')
+            tprintf(t, "\\%c", ch);
+        else if (ch < 0x20)
+            tprintf(t, "\\u%04x", ch);
+        else
+            tprintf(t, "%c", ch);
+    }
+    tprintf(t, "\"");
+}
+
+static void table_row(text *t, const char *label, const tr_thickness *m)
+{
+    tprintf(t, "%-10s %9zu %22.15g %22.15g %22.15g %22.15g %22.15g %22.15g %22.15g %22.15g\n", label,
+            m->vertices, m->length, m->minrad, m->dcsd, m->thickness, m->ropelength, m->L_p, m->L_c,
+            m->L_a);
+}
+
+/* octrope_strutfile_write's layout ("STRUTS", counts, then one line per
+ * strut: component[0] component[1] lead_vert[0] lead_vert[1] position[0]
+ * position[1] length compression, then one line per MinRad location:
+ * component vertex mr compression), with %.17g instead of %16g so the
+ * numbers survive the round trip. lead_vert is the edge's first vertex
+ * within its component; compression is 0 (we measure, we do not solve). */
+static int write_struts(const char *path, const tr_curve *c, const tr_thickness *m,
+                        const tr_strut_list *sl, tr_error *err)
+{
+    text t = {0};
+    int have_mr = isfinite(m->minrad);
+    tprintf(&t, "STRUTS \n%zu %d \n", sl->n, have_mr ? 1 : 0);
+    /* Global edge -> (component, first vertex in the component). */
+    for (size_t i = 0; i < sl->n; i++) {
+        const tr_strut *s = &sl->s[i];
+        size_t e[2] = {s->ei, s->ej};
+        int comp[2];
+        size_t lead[2];
+        for (int q = 0; q < 2; q++) {
+            size_t off = 0;
+            int k = 0;
+            while (k + 1 < c->ncomp && e[q] >= off + tr_comp_ne(c, k)) {
+                off += tr_comp_ne(c, k);
+                k++;
+            }
+            comp[q] = k;
+            lead[q] = e[q] - off;
+        }
+        tprintf(&t, "%d %d %zu %zu %.17g %.17g %.17g %.17g\n", comp[0], comp[1], lead[0], lead[1], s->si,
+                s->sj, s->dist, 0.0);
+    }
+    if (have_mr) {
+        int k = tr_curve_comp_of(c, m->minrad_vertex);
+        tprintf(&t, "%d %zu %.17g %.17g \n", k, m->minrad_vertex - c->start[k], m->minrad, 0.0);
+    }
+    if (t.oom) {
+        free(t.p);
+        return tr_fail(err, TR_ENOMEM, "out of memory formatting struts");
+    }
+    int rc = tr_write_file_atomic(path, t.p, t.n, err);
+    free(t.p);
+    return rc;
+}
 
 int tr_cmd_measure(int argc, char **argv)
 {
-    (void)argc;
-    (void)argv;
-    fprintf(stderr, "tightrope measure: not built yet\n");
-    return 2;
+    int json = 0, per_comp = 0;
+    const char *struts_path = NULL;
+    double strut_tol = DEFAULT_STRUT_TOL;
+    const char **files = calloc((size_t)argc + 1, sizeof *files);
+    int nfiles = 0;
+    if (!files) {
+        fprintf(stderr, "tightrope measure: out of memory\n");
+        return 1;
+    }
+    for (int i = 1; i < argc; i++) {
+        const char *a = argv[i];
+        if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
+            usage(stdout);
+            free(files);
+            return 0;
+        } else if (!strcmp(a, "--json")) {
+            json = 1;
+        } else if (!strcmp(a, "--per-component")) {
+            per_comp = 1;
+        } else if (!strcmp(a, "--struts") && i + 1 < argc) {
+            struts_path = argv[++i];
+        } else if (!strcmp(a, "--strut-tol") && i + 1 < argc) {
+            char *end;
+            strut_tol = strtod(argv[++i], &end);
+            if (*end || !(strut_tol >= 0) || !isfinite(strut_tol)) {
+                fprintf(stderr, "tightrope measure: --strut-tol wants a number >= 0, got '%s'\n", argv[i]);
+                free(files);
+                return 2;
+            }
+        } else if (a[0] == '-' && a[1] == '-') {
+            fprintf(stderr, "tightrope measure: unknown or incomplete option '%s'\n", a);
+            usage(stderr);
+            free(files);
+            return 2;
+        } else {
+            files[nfiles++] = a;
+        }
+    }
+    if (nfiles == 0 || (struts_path && nfiles != 1)) {
+        fprintf(stderr, nfiles ? "tightrope measure: --struts takes exactly one FILE\n"
+                               : "tightrope measure: no FILE given\n");
+        usage(stderr);
+        free(files);
+        return 2;
+    }
+
+    /* Read everything first: a bad file stops the run before any output. */
+    tr_curve *curves = calloc((size_t)nfiles, sizeof *curves);
+    if (!curves) {
+        fprintf(stderr, "tightrope measure: out of memory\n");
+        free(files);
+        return 1;
+    }
+    tr_error err;
+    int status = 0, nread = 0;
+    for (; nread < nfiles; nread++) {
+        int rc = tr_curve_read(files[nread], TR_FORMAT_AUTO, &curves[nread], &err);
+        if (rc) {
+            fprintf(stderr, "%s\n", err.msg);
+            status = 2;
+            break;
+        }
+    }
+
+    text out = {0};
+    tr_strut_list sl = {0};
+    if (json && nfiles > 1)
+        tprintf(&out, "[\n");
+    for (int f = 0; f < nfiles && status == 0; f++) {
+        const tr_curve *c = &curves[f];
+        tr_thickness m;
+        tr_thickness_opts opts = {.strut_rel_tol = strut_tol};
+        if (tr_thickness_measure(c, &opts, &m, struts_path ? &sl : NULL, &err)) {
+            fprintf(stderr, "%s: %s\n", files[f], err.msg);
+            status = 2;
+            break;
+        }
+        tr_thickness *pc = NULL;
+        if (json || per_comp) {
+            pc = calloc((size_t)c->ncomp, sizeof *pc);
+            if (!pc) {
+                fprintf(stderr, "tightrope measure: out of memory\n");
+                status = 1;
+                break;
+            }
+            for (int k = 0; k < c->ncomp && status == 0; k++) {
+                if (c->ncomp == 1) {
+                    pc[k] = m;
+                } else if (tr_thickness_measure_component(c, k, &pc[k], &err)) {
+                    fprintf(stderr, "%s: component %d: %s\n", files[f], k, err.msg);
+                    status = 2;
+                }
+            }
+        }
+        if (status == 0 && json) {
+            tprintf(&out, "%s{\"file\": ", nfiles > 1 ? "  " : "");
+            json_string(&out, files[f]);
+            tprintf(&out, ", \"components\": %d, ", c->ncomp);
+            json_fields(&out, &m);
+            tprintf(&out, ", \"per_component\": [");
+            for (int k = 0; k < c->ncomp; k++) {
+                tprintf(&out, "%s{\"component\": %d, \"closed\": %s, ", k ? ", " : "", k,
+                        c->closed[k] ? "true" : "false");
+                json_fields(&out, &pc[k]);
+                tprintf(&out, "}");
+            }
+            tprintf(&out, "]}%s\n", (nfiles > 1 && f + 1 < nfiles) ? "," : "");
+        } else if (status == 0) {
+            tprintf(&out, "%s: %d component%s\n", files[f], c->ncomp, c->ncomp == 1 ? "" : "s");
+            tprintf(&out, "%-10s %9s %22s %22s %22s %22s %22s %22s %22s %22s\n", "", "vertices", "length",
+                    "minrad", "dcsd", "thickness", "ropelength", "L_p", "L_c", "L_a");
+            table_row(&out, "curve", &m);
+            for (int k = 0; per_comp && k < c->ncomp; k++) {
+                char label[32];
+                snprintf(label, sizeof label, "comp %d", k);
+                table_row(&out, label, &pc[k]);
+            }
+            if (f + 1 < nfiles)
+                tprintf(&out, "\n");
+        }
+        free(pc);
+        if (status == 0 && struts_path && write_struts(struts_path, c, &m, &sl, &err)) {
+            fprintf(stderr, "%s\n", err.msg);
+            status = 1;
+        }
+    }
+    if (status == 0 && json && nfiles > 1)
+        tprintf(&out, "]\n");
+    if (status == 0 && out.oom) {
+        fprintf(stderr, "tightrope measure: out of memory formatting the output\n");
+        status = 1;
+    }
+    if (status == 0)
+        fwrite(out.p, 1, out.n, stdout);
+    free(out.p);
+    tr_strut_list_free(&sl);
+    for (int f = 0; f < nread && f < nfiles; f++)
+        tr_curve_free(&curves[f]);
+    free(curves);
+    free(files);
+    return status;
 }
