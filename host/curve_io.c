@@ -991,7 +991,7 @@ int tr_write_file_atomic(const char *path, const char *text, size_t len, tr_erro
     char tmp[4096];
     int fd = open_temp(path, tmp, sizeof tmp);
     if (fd < 0)
-        return tr_fail(err, TR_EIO, "cannot create a file beside %s: %s", path, strerror(errno));
+        return tr_fail(err, TR_EIO, "cannot write %s: %s", path, strerror(errno));
     size_t done = 0;
     while (done < len) {
         ssize_t w = write(fd, text + done, len - done);

@@ -25,4 +25,12 @@ int tr_make_clasp(tr_curve *out, size_t n, double h, tr_error *err);
  * their end vertices and constraints). n_per_comp may be NULL to keep counts. */
 int tr_resample(const tr_curve *in, const size_t *n_per_comp, tr_curve *out, tr_error *err);
 
+/* As tr_resample, but along an interpolating cubic spline through the
+ * vertices (parametrised by chord length; periodic for closed components,
+ * natural for open ones) instead of along the polygon itself: refining a
+ * smooth curve this way keeps it smooth (new vertices do not sit on the old
+ * straight edges). The spline passes through every old vertex; open
+ * components keep their end vertices and constraints. */
+int tr_resample_smooth(const tr_curve *in, const size_t *n_per_comp, tr_curve *out, tr_error *err);
+
 #endif
