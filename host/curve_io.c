@@ -930,25 +930,26 @@ static void write_lines(sbuf *b, const tr_curve *c, const char *comments)
     }
 }
 
-int tr_curve_write(const char *path, tr_format fmt, const tr_curve *c, const char *comments, tr_error *err)
+int tr_curve_format(const tr_curve *c, tr_format fmt, const char *comments, char **text, size_t *len,
+                    tr_error *err)
 {
-    if (fmt == TR_FORMAT_AUTO)
-        fmt = tr_format_from_name(path);
-    if (fmt == TR_FORMAT_AUTO)
-        return tr_fail(err, TR_EINVAL, "cannot tell the format of %s (use .vect, .tsv or .txt)", path);
+    *text = NULL;
+    *len = 0;
+    if (fmt != TR_FORMAT_VECT && fmt != TR_FORMAT_TSV && fmt != TR_FORMAT_KNOTPLOT)
+        return tr_fail(err, TR_EINVAL, "no curve format given (vect, tsv or knotplot)");
     for (size_t i = 0; i < 3 * c->nv; i++)
         if (!isfinite(c->x[i]))
-            return tr_fail(err, TR_EINVAL, "not writing %s: vertex %zu is not finite", path, i / 3);
+            return tr_fail(err, TR_EINVAL, "vertex %zu is not finite", i / 3);
     if (fmt != TR_FORMAT_VECT) {
+        const char *what = fmt == TR_FORMAT_TSV ? "tsv" : "knotplot";
         for (int k = 0; k < c->ncomp; k++)
             if (!c->closed[k])
-                return tr_fail(err, TR_EINVAL, "%s: %s files hold closed components only; use .vect", path,
-                               fmt == TR_FORMAT_TSV ? "tsv" : "knotplot");
+                return tr_fail(err, TR_EINVAL, "%s files hold closed components only; use .vect", what);
         if (c->ncst > 0)
-            return tr_fail(err, TR_EINVAL, "%s: only vect files carry constraints; use .vect", path);
+            return tr_fail(err, TR_EINVAL, "only vect files carry constraints; use .vect");
         if (fmt == TR_FORMAT_KNOTPLOT && c->ncomp != 1)
-            return tr_fail(err, TR_EINVAL, "%s: a knotplot list holds one component, this curve has %d; use .tsv or .vect",
-                           path, c->ncomp);
+            return tr_fail(err, TR_EINVAL, "a knotplot list holds one component, this curve has %d; use .tsv or .vect",
+                           c->ncomp);
     }
     sbuf b = {NULL, 0, 0, 0};
     if (fmt == TR_FORMAT_VECT)
@@ -957,10 +958,32 @@ int tr_curve_write(const char *path, tr_format fmt, const tr_curve *c, const cha
         write_lines(&b, c, comments);
     if (b.oom) {
         free(b.p);
-        return tr_fail(err, TR_ENOMEM, "out of memory formatting %s", path);
+        return tr_fail(err, TR_ENOMEM, "out of memory formatting a curve of %zu vertices", c->nv);
     }
-    int rc = tr_write_file_atomic(path, b.p ? b.p : "", b.n, err);
-    free(b.p);
+    if (!b.p) {
+        b.p = malloc(1);
+        if (!b.p)
+            return tr_fail(err, TR_ENOMEM, "out of memory formatting a curve");
+        b.p[0] = '\0';
+    }
+    *text = b.p;
+    *len = b.n;
+    return TR_OK;
+}
+
+int tr_curve_write(const char *path, tr_format fmt, const tr_curve *c, const char *comments, tr_error *err)
+{
+    if (fmt == TR_FORMAT_AUTO)
+        fmt = tr_format_from_name(path);
+    if (fmt == TR_FORMAT_AUTO)
+        return tr_fail(err, TR_EINVAL, "cannot tell the format of %s (use .vect, .tsv or .txt)", path);
+    char *text;
+    size_t len;
+    int rc = tr_curve_format(c, fmt, comments, &text, &len, err);
+    if (rc)
+        return tr_fail_wrap(err, rc, "not writing %s", path);
+    rc = tr_write_file_atomic(path, text, len, err);
+    free(text);
     return rc;
 }
 

@@ -29,6 +29,13 @@ int tr_curve_read(const char *path, tr_format fmt, tr_curve *out, tr_error *err)
 int tr_curve_write(const char *path, tr_format fmt, const tr_curve *c, const char *comments,
                    tr_error *err);
 
+/* Formats the curve as the text tr_curve_write would write, into a buffer
+ * the caller frees; fmt must not be TR_FORMAT_AUTO. TR_EINVAL if the format
+ * cannot hold the curve (open components or constraints in TSV/KnotPlot,
+ * several components in a KnotPlot list, non-finite coordinates). */
+int tr_curve_format(const tr_curve *c, tr_format fmt, const char *comments, char **text, size_t *len,
+                    tr_error *err);
+
 /* Writes whole text to path atomically (temporary name, fsync, rename). */
 int tr_write_file_atomic(const char *path, const char *text, size_t len, tr_error *err);
 
