@@ -194,13 +194,18 @@ int tr_contact_functions_build(const tr_contact_pair *p, size_t np, double L, do
     }
     for (size_t k = 0; k < np; k++) {
         double a = tr_wrap(p[k].li, L), c = tr_wrap(p[k].lj, L);
-        px[2 * k] = (pixel){(size_t)(a / bin) % nb, a, tr_wrap(c - a, L)};
-        px[2 * k + 1] = (pixel){(size_t)(c / bin) % nb, c, tr_wrap(a - c, L)};
+        /* offsets from the bin's left edge, not from the pixel's own l: within
+         * a bin a flat branch then has a spread of |sigma'| bin, not |sigma' - 1| bin,
+         * and stays apart from the other partner even where the two are close */
+        size_t ba = (size_t)(a / bin) % nb, bc = (size_t)(c / bin) % nb;
+        px[2 * k] = (pixel){ba, a, tr_wrap(c - (double)ba * bin, L)};
+        px[2 * k + 1] = (pixel){bc, c, tr_wrap(a - (double)bc * bin, L)};
     }
     qsort(px, npx, sizeof *px, by_bin_d);
-    /* Two partners are separated by a gap in offset far larger than the
-     * spread of one partner over one bin (slope of sigma times the bin). */
-    double gap_min = 0.03 * L;
+    /* Two partners of one point are distinct strands: their values differ by
+     * more than a small fraction of L (0.2 of 32.7 for the tight trefoil, where
+     * the partners of the long flat stretches are closest). */
+    double gap_min = 1e-3 * L;
     size_t ntwo = 0;
     for (size_t i = 0; i < npx;) {
         size_t j = i;
@@ -208,12 +213,17 @@ int tr_contact_functions_build(const tr_contact_pair *p, size_t np, double L, do
             j++;
         bin_acc *B = &b[px[i].bin];
         B->first = i, B->count = j - i;
-        double gmax = 0.0;
+        double gmax = 0.0, g2 = 0.0;
         size_t split = j;
-        for (size_t k = i + 1; k < j; k++)
-            if (px[k].d - px[k - 1].d > gmax)
-                gmax = px[k].d - px[k - 1].d, split = k;
-        B->two = gmax > gap_min;
+        for (size_t k = i + 1; k < j; k++) {
+            double g = px[k].d - px[k - 1].d;
+            if (g > gmax)
+                g2 = gmax, gmax = g, split = k;
+            else if (g > g2)
+                g2 = g;
+        }
+        /* two partners: one gap that dominates every gap inside the clusters */
+        B->two = gmax > gap_min && gmax > 3.0 * g2;
         B->split = B->two ? split : j;
         double sl = 0, sd = 0;
         for (size_t k = i; k < B->split; k++)
@@ -238,9 +248,10 @@ int tr_contact_functions_build(const tr_contact_pair *p, size_t np, double L, do
         bin_acc *B = &b[k];
         if (B->count == 0)
             continue;
+        double e0 = (double)k * bin; /* offsets are from the bin's left edge */
         if (B->two) {
-            ml[nm] = B->lo_l, mu[nm++] = B->lo_l + B->lo_d;
-            pl[npl] = B->hi_l, pu[npl++] = B->hi_l + B->hi_d;
+            ml[nm] = B->lo_l, mu[nm++] = e0 + B->lo_d;
+            pl[npl] = B->hi_l, pu[npl++] = e0 + B->hi_d;
             continue;
         }
         /* one cluster: compare with the nearest two-cluster bin */
@@ -250,10 +261,13 @@ int tr_contact_functions_build(const tr_contact_pair *p, size_t np, double L, do
                 A = &b[(k + nb - r % nb) % nb];
             if (!A->two)
                 continue;
-            if (fabs(B->lo_d - A->lo_d) <= fabs(B->lo_d - A->hi_d))
-                ml[nm] = B->lo_l, mu[nm++] = B->lo_l + B->lo_d;
+            /* compare partner values (both offsets refer to their own bin edges) */
+            double ea = (double)((size_t)(A - b)) * bin;
+            double v = e0 + B->lo_d;
+            if (fabs(tr_wrap_signed(v - (ea + A->lo_d), L)) <= fabs(tr_wrap_signed(v - (ea + A->hi_d), L)))
+                ml[nm] = B->lo_l, mu[nm++] = v;
             else
-                pl[npl] = B->lo_l, pu[npl++] = B->lo_l + B->lo_d;
+                pl[npl] = B->lo_l, pu[npl++] = v;
             break;
         }
     }
