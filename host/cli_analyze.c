@@ -30,7 +30,7 @@ static void usage(FILE *f)
             "  --plots            draw PNGs with gnuplot (CSV files are written regardless)\n"
             "  --plateau-eps E    plateau = arcs with kappa >= 1 - E (default 1e-4)\n"
             "  --plateau-min K    plateaus need at least K arcs (default 2)\n"
-            "  --jump-window w,W  one-sided fit windows [l-W, l-w], [l+w, l+W] (default 1.5me, w+max(0.03, 8me))\n"
+            "  --jump-window w,W  one-sided fit windows [l-W, l-w], [l+w, l+W] (default 2.5me, w+max(0.03, 8me))\n"
             "  --jump-at l,...    also measure jumps at these positions (from the origin)\n"
             "  --sym-tol T        symmetry threshold, relative to the radius of gyration (default 1e-3)\n"
             "  --strut-tol T      contacts: struts up to (1 + T) x the shortest (default 1e-3)\n"

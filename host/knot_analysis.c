@@ -137,7 +137,10 @@ int tr_analyze_component(const double *x, size_t n, const tr_contact_pair *pairs
     if ((rc = tr_find_plateaus(&out->prof, 1.0 - o.plateau_eps, o.plateau_min, &out->plateaus,
                                &out->nplateaus, err)) != TR_OK)
         goto fail;
-    out->jump_w = o.jump_w > 0 ? o.jump_w : 1.5 * o.m * e;
+    /* The inscribed-arc curvature of arc k uses two averaged edges and each
+     * averaged vertex smears over m edges: a step in kappa is spread over
+     * about +-1.5 m e, so the fits start 2.5 m e away. */
+    out->jump_w = o.jump_w > 0 ? o.jump_w : 2.5 * o.m * e;
     out->jump_W = o.jump_W > 0 ? o.jump_W : out->jump_w + fmax(0.03, 8.0 * o.m * e);
     if (out->jump_W > 0.2 * L)
         out->jump_W = 0.2 * L;
@@ -161,8 +164,17 @@ int tr_analyze_component(const double *x, size_t n, const tr_contact_pair *pairs
                     double t = ra;
                     ra = rb, rb = t;
                 }
-            } else if (cnt > 0) {
-                break; /* without D3: the first plateau after the origin */
+            } else {
+                /* without D3: the plateau through the origin, else the first after it */
+                size_t pick = 0;
+                for (size_t q = 0; q < out->nplateaus; q++) {
+                    const tr_plateau *P = &out->plateaus[q], *B = &out->plateaus[pick];
+                    int through = P->l1 > P->l2, bthrough = B->l1 > B->l2;
+                    if ((through && !bthrough) || (through == bthrough && P->l1 < B->l1))
+                        pick = q;
+                }
+                if (i != pick)
+                    continue;
             }
             s1 += ra, s1q += ra * ra, s2 += rb, s2q += rb * rb;
             cnt++;

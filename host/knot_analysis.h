@@ -19,7 +19,7 @@ typedef struct tr_analysis_opts {
     size_t m;             /* averaging block; 0: 10 (the paper's choice) */
     double plateau_eps;   /* plateau level 1 - eps; <= 0: 1e-4 */
     size_t plateau_min;   /* minimum arcs in a plateau; 0: 2 */
-    double jump_w, jump_W;/* one-sided fit windows; <= 0: w = 1.5 m e, W = w + max(0.03, 8 m e) */
+    double jump_w, jump_W;/* one-sided fit windows; <= 0: w = 2.5 m e, W = w + max(0.03, 8 m e) */
     double sym_tol;       /* relative symmetry threshold; <= 0: 1e-3 */
     double contact_bin;   /* bin width for the contact functions; <= 0: max(4 e, L/4000) */
     int power;            /* functional power for the cycles; 0: 9 */

@@ -1,0 +1,46 @@
+#!/usr/bin/env bash
+# CLI checks of 'tightrope analyze'. Usage: analyze_cli.sh CASE TIGHTROPE SHARED_DIR WORK_DIR
+# Exit 0 pass, 1 fail, 77 skipped.
+set -u
+case_=$1 tr=$2 shared=$3 work=$4
+knot=$shared/data/tightknot/3_1.vect
+rm -rf "$work" && mkdir -p "$work"
+fail() { echo "FAIL: $*"; exit 1; }
+case $case_ in
+trefoil)
+  # The tight trefoil (N = 400) is D3-symmetric; every table and the summary are written.
+  "$tr" analyze "$knot" --out "$work/out" -m 1 >"$work/stdout" 2>"$work/stderr" || fail "exit $?: $(cat "$work/stderr")"
+  for f in curvature.csv torsion.csv plateaus.csv symmetry.csv contacts.csv summary.json report.txt; do
+    [ -s "$work/out/$f" ] || fail "missing $f"
+  done
+  grep -q '"verdict": "D3"' "$work/out/summary.json" || fail "not D3: $(grep verdict "$work/out/summary.json")"
+  # one row per arc (m = 1: 400 vertices) after the comment and the header
+  [ "$(grep -vc '^#' "$work/out/curvature.csv")" = 401 ] || fail "curvature.csv rows"
+  grep -q '^symmetry: D3' "$work/stdout" || fail "report"
+  ;;
+no_gnuplot)
+  # Without gnuplot: a clear message, the CSV files still written, success.
+  PATH=/nonexistent "$tr" analyze "$knot" --out "$work/out" -m 2 --plots >"$work/stdout" 2>"$work/stderr" || fail "exit $?"
+  grep -q 'gnuplot not found' "$work/stderr" || fail "no message: $(cat "$work/stderr")"
+  [ -s "$work/out/curvature.csv" ] && [ -s "$work/out/summary.json" ] || fail "CSV missing"
+  ls "$work/out"/*.png >/dev/null 2>&1 && fail "PNG without gnuplot"
+  ;;
+plots)
+  command -v gnuplot >/dev/null || { echo "gnuplot not installed"; exit 77; }
+  "$tr" analyze "$knot" --out "$work/out" -m 1 --plots >"$work/stdout" 2>"$work/stderr" || fail "exit $?: $(cat "$work/stderr")"
+  for f in curvature_torsion plateau_zoom accumulated_torsion; do
+    [ -s "$work/out/$f.png" ] || fail "missing $f.png"
+    [ "$(head -c 4 "$work/out/$f.png" | od -An -c | tr -d ' ')" = '211PNG' ] || fail "$f.png is not a PNG"
+  done
+  ;;
+usage)
+  "$tr" analyze "$knot" >/dev/null 2>&1; [ $? = 2 ] || fail "no --out accepted"
+  "$tr" analyze "$knot" --out "$work/o" -m 0 >/dev/null 2>&1; [ $? = 2 ] || fail "-m 0 accepted"
+  "$tr" analyze "$knot" --out "$work/o" --jump-window 0.1 >/dev/null 2>&1; [ $? = 2 ] || fail "bad window accepted"
+  "$tr" analyze "$work/no_such.vect" --out "$work/o" >/dev/null 2>"$work/err"; [ $? = 2 ] || fail "missing file"
+  [ "$(wc -l <"$work/err")" = 1 ] || fail "more than one line: $(cat "$work/err")"
+  "$tr" analyze --help | grep -q 'usage: tightrope analyze' || fail "help"
+  ;;
+*) fail "unknown case $case_" ;;
+esac
+echo PASS
