@@ -402,7 +402,8 @@ static int vect_int(vect_state *st, const char *what, long lo, long *v, size_t *
     return TR_OK;
 }
 
-static int vect_double(vect_state *st, const char *what, double *v, size_t *line, long *cst,
+/* what is "vertex" or "colour", index its number (named only in a message). */
+static int vect_double(vect_state *st, const char *what, size_t index, double *v, size_t *line, long *cst,
                        size_t *cstline)
 {
     item it;
@@ -412,11 +413,11 @@ static int vect_double(vect_state *st, const char *what, double *v, size_t *line
     *line = it.line;
     char q[64];
     if (it.kind == IT_END)
-        return parse_fail(st->err, st->lx.name, it.line, "file ends where %s was expected", what);
+        return parse_fail(st->err, st->lx.name, it.line, "file ends where %s %zu was expected", what, index);
     int r = token_double(it.p, it.n, v);
     if (r)
-        return parse_fail(st->err, st->lx.name, it.line, "%s in %s: '%s'",
-                          r == 2 ? "not a finite number" : "not a number", what,
+        return parse_fail(st->err, st->lx.name, it.line, "%s in %s %zu: '%s'",
+                          r == 2 ? "not a finite number" : "not a number", what, index,
                           quote(q, sizeof q, it.p, it.n));
     return TR_OK;
 }
@@ -514,12 +515,10 @@ static int parse_vect(const char *name, const char *text, size_t len, tr_curve *
     }
     long *pending = NULL; /* where a "# Cst:" comment goes: the last vertex read */
     size_t *pending_line = NULL;
-    char what[64];
     for (size_t i = 0; i < out->nv; i++) {
         for (int a = 0; a < 3; a++) {
             size_t line;
-            snprintf(what, sizeof what, "vertex %zu", i);
-            if ((rc = vect_double(&st, what, &out->x[3 * i + a], &line, a == 0 ? pending : NULL,
+            if ((rc = vect_double(&st, "vertex", i, &out->x[3 * i + a], &line, a == 0 ? pending : NULL,
                                   pending_line)))
                 goto done;
             if (a == 0)
@@ -532,8 +531,7 @@ static int parse_vect(const char *name, const char *text, size_t len, tr_curve *
         for (int a = 0; a < 4; a++) {
             double v;
             size_t line;
-            snprintf(what, sizeof what, "colour %ld", j);
-            if ((rc = vect_double(&st, what, &v, &line, (j == 0 && a == 0) ? pending : NULL, pending_line)))
+            if ((rc = vect_double(&st, "colour", (size_t)j, &v, &line, (j == 0 && a == 0) ? pending : NULL, pending_line)))
                 goto done;
         }
     }

@@ -98,6 +98,10 @@ static int equal_chords(curve_eval f, const void *ctx, double t0, double T, int 
     }
     free(dt);
     free(ch);
+    /* the floor is rounding in the coordinates, ~1e-16 |x| / edge; far
+     * above it the iteration did not converge (a pathological polygon) */
+    if (*spread > 1e-8)
+        return tr_fail(err, TR_EGEOMETRY, "could not make the %zu edges equal (spread %.2g)", m, *spread);
     return TR_OK;
 }
 

@@ -4,9 +4,13 @@
 
 #include "curve.h"
 
-/* Torus knot T(p,q) on a torus of radii (R, r) scaled so the curve is
- * embedded with room to tighten; n vertices, equilateral (resampled by
- * arclength). gcd(p,q) must be 1. */
+/* Torus knot T(p,q): winds p times around the z axis and q times around the
+ * core circle of a torus whose radii balance the two strand spacings; scaled
+ * so that its radius of curvature is >= 2 and points more than pi apart
+ * along it are >= 3 apart (a rope of radius 1 would touch at 2), so it is
+ * embedded with room to tighten. n vertices, equilateral (equal chords to
+ * ~1e-13 relative). gcd(p,q) must be 1 and 2 <= |p|,|q| <= 1000; a negative
+ * p or q gives the mirror image. TR_EINVAL if n makes edges longer than 1. */
 int tr_make_torus(tr_curve *out, int p, int q, size_t n, tr_error *err);
 
 /* Circle of the given radius in the xy plane, n vertices. */
@@ -16,8 +20,14 @@ int tr_make_circle(tr_curve *out, double radius, size_t n, tr_error *err);
 int tr_make_hopf(tr_curve *out, size_t n, tr_error *err);
 
 /* Simple clasp (REFERENCE.md 6.1): two open ropes hooked in perpendicular
- * planes, end vertices of rope A on plane z = +h, of rope B on z = -h;
- * n vertices per rope, minimum non-local distance >= 2 at the start. */
+ * planes. Rope A (component 0) lies in the plane y = 0: a half circle of
+ * radius 3 centred at (0, 0, 1.5), opening upwards, with vertical legs from
+ * (+-3, 0, 1.5) up to z = +h; rope B (component 1) is the same turned upside
+ * down in the plane x = 0 (centre (0, 0, -1.5), legs down to z = -h). Each
+ * arch's tip sits at the other's centre, so the ropes come no closer than 3.
+ * The end vertices of A carry constraint 0 (TR_CST_PLANE z = h, file id 1),
+ * those of B constraint 1 (z = -h, id 2). n vertices per rope, equal edges;
+ * h >= 1.5. TR_EINVAL if n makes edges longer than 1. */
 int tr_make_clasp(tr_curve *out, size_t n, double h, tr_error *err);
 
 /* Resamples every component to the given number of vertices at equal
