@@ -50,9 +50,9 @@ static int equal_chords(curve_eval f, const void *ctx, double t0, double T, int 
     }
     for (size_t i = 0; i < m; i++)
         dt[i] = (i + 1 < n ? t[i + 1] : t0 + T) - t[i];
-    double best = INFINITY;
+    double best = INFINITY, relax = 1.0;
     int stall = 0;
-    for (int iter = 0; iter < 200; iter++) {
+    for (int iter = 0; iter < 400; iter++) {
         /* parameters from intervals, compensated so t[n-1] lands on the end */
         ksum acc = {t0, 0};
         size_t hint = 0;
@@ -84,12 +84,17 @@ static int equal_chords(curve_eval f, const void *ctx, double t0, double T, int 
         if (dev < best * 0.9) {
             best = dev;
             stall = 0;
-        } else if (++stall >= 4) {
-            break; /* at the rounding floor */
+        } else if (++stall >= 8) {
+            if (dev < 1e-10 || relax < 0.01)
+                break; /* at the rounding floor, or hopeless */
+            /* overshooting on a very coarse polygon (chords across several
+             * corners): take smaller steps */
+            relax *= 0.5;
+            stall = 0;
         }
         ksum ds = {0, 0};
         for (size_t i = 0; i < m; i++) {
-            dt[i] *= mean / ch[i];
+            dt[i] *= relax == 1.0 ? mean / ch[i] : pow(mean / ch[i], relax);
             ks_add(&ds, dt[i]);
         }
         double s = T / ks_val(&ds);
