@@ -1,5 +1,6 @@
 #include "neighbour_search.h"
 
+#include <float.h>
 #include <math.h>
 #include <stdint.h>
 #include <stdlib.h>
@@ -17,8 +18,8 @@
 #define PRUNE_SLACK 1e-12
 
 typedef struct tr_nsearch_node {
-    double lo[3], hi[3];
-    size_t a, b;   /* edges [a, b) */
+    double m[3], r[3]; /* box centre and half-widths (widened a few ulps) */
+    size_t a, b;       /* edges [a, b) */
     int comp;      /* the component if all edges share one, else -1 */
     uint32_t left; /* child indices; left == 0 marks a leaf (the root is 0) */
     uint32_t right;
@@ -28,9 +29,27 @@ static void edge_box(const tr_nsearch *s, size_t e, double *lo, double *hi)
 {
     const double *p = s->c->x + 3 * s->ea[e], *q = s->c->x + 3 * s->eb[e];
     for (int k = 0; k < 3; k++) {
-        lo[k] = fmin(p[k], q[k]);
-        hi[k] = fmax(p[k], q[k]);
+        lo[k] = p[k] < q[k] ? p[k] : q[k];
+        hi[k] = p[k] < q[k] ? q[k] : p[k];
     }
+}
+
+/* Centre and half-widths of [lo, hi], widened so that the rounding of the
+ * centre never shrinks the box. */
+static void centre_half(const double *lo, const double *hi, double *m, double *r)
+{
+    for (int k = 0; k < 3; k++) {
+        m[k] = 0.5 * (lo[k] + hi[k]);
+        r[k] = 0.5 * (hi[k] - lo[k]);
+        r[k] += 4 * DBL_EPSILON * (fabs(m[k]) + r[k]);
+    }
+}
+
+static void edge_centre_half(const tr_nsearch *s, size_t e, double *m, double *r)
+{
+    double lo[3], hi[3];
+    edge_box(s, e, lo, hi);
+    centre_half(lo, hi, m, r);
 }
 
 static size_t build_node(tr_nsearch *s, size_t a, size_t b)
@@ -56,23 +75,27 @@ void tr_nsearch_refit(tr_nsearch *s)
     /* Nodes are stored in preorder, so children come after their parent. */
     for (size_t id = s->nnodes; id-- > 0;) {
         node_t *n = &s->node[id];
+        double lo[3], hi[3];
         if (n->left == 0) {
-            edge_box(s, n->a, n->lo, n->hi);
+            edge_box(s, n->a, lo, hi);
             for (size_t e = n->a + 1; e < n->b; e++) {
-                double lo[3], hi[3];
-                edge_box(s, e, lo, hi);
+                double elo[3], ehi[3];
+                edge_box(s, e, elo, ehi);
                 for (int k = 0; k < 3; k++) {
-                    n->lo[k] = fmin(n->lo[k], lo[k]);
-                    n->hi[k] = fmax(n->hi[k], hi[k]);
+                    lo[k] = elo[k] < lo[k] ? elo[k] : lo[k];
+                    hi[k] = ehi[k] > hi[k] ? ehi[k] : hi[k];
                 }
             }
         } else {
             const node_t *l = &s->node[n->left], *r = &s->node[n->right];
             for (int k = 0; k < 3; k++) {
-                n->lo[k] = fmin(l->lo[k], r->lo[k]);
-                n->hi[k] = fmax(l->hi[k], r->hi[k]);
+                double a0 = l->m[k] - l->r[k], a1 = r->m[k] - r->r[k];
+                double b0 = l->m[k] + l->r[k], b1 = r->m[k] + r->r[k];
+                lo[k] = a0 < a1 ? a0 : a1;
+                hi[k] = b0 > b1 ? b0 : b1;
             }
         }
+        centre_half(lo, hi, n->m, n->r);
     }
 }
 
@@ -160,39 +183,41 @@ static int range_excluded(const tr_nsearch *s, size_t i, size_t a, size_t b, siz
     return dmin + min_gap > m;
 }
 
-static double box_dist2(const double *alo, const double *ahi, const double *blo, const double *bhi)
+static inline double box_dist2(const double *am, const double *ar, const double *bm, const double *br)
 {
     double d2 = 0.0;
     for (int k = 0; k < 3; k++) {
-        double g = fmax(blo[k] - ahi[k], alo[k] - bhi[k]);
+        double g = fabs(am[k] - bm[k]) - ar[k] - br[k];
         if (g > 0)
             d2 += g * g;
     }
     return d2;
 }
 
-/* What a query needs to know about edge i for the critical-point pruning. */
+/* What a query needs to know about edge i. */
 typedef struct query_edge {
-    double lo[3], hi[3];
-    const double *p;  /* start vertex */
-    double t[3];      /* edge vector */
-    double tprev[3];  /* v_i - v_{i-1} */
-    double tt;        /* |t|^2 */
-    int last;         /* last edge of an open component: no "front" */
+    double m[3], r[3]; /* its box */
+    const double *p;   /* start vertex */
+    double t[3];       /* edge vector */
+    double at[3];      /* |t| componentwise */
+    double tprev[3];   /* v_i - v_{i-1} */
+    double atprev[3];
+    double tt;         /* |t|^2 */
+    int last;          /* last edge of an open component: no "front" */
 } query_edge;
 
 /* Interval of (y - p).u over a box, widened for rounding. */
-static void box_project(const double *lo, const double *hi, const double *p, const double *u,
-                        double *pmin, double *pmax)
+static inline void box_project(const double *m, const double *r, const double *p, const double *u,
+                               const double *au, double *pmin, double *pmax)
 {
     double c = 0.0, w = 0.0, scale = 0.0;
     for (int k = 0; k < 3; k++) {
-        double m = 0.5 * (lo[k] + hi[k]), r = 0.5 * (hi[k] - lo[k]);
-        c += (m - p[k]) * u[k];
-        w += r * fabs(u[k]);
-        scale += (fabs(m - p[k]) + r) * fabs(u[k]);
+        double d = m[k] - p[k];
+        c += d * u[k];
+        w += r[k] * au[k];
+        scale += fabs(d) * au[k];
     }
-    double slack = 1e-10 * scale;
+    double slack = 1e-10 * (scale + w);
     *pmin = c - w - slack;
     *pmax = c + w + slack;
 }
@@ -201,15 +226,15 @@ static void box_project(const double *lo, const double *hi, const double *p, con
  * 0 < (y-p).t < |t|^2 (interior), or (y-p).t <= 0 and (y-p).tprev >= 0
  * (normal wedge at the start vertex); the end vertex belongs to the next
  * edge, except on the last edge of an open component. */
-static int box_may_be_critical(const query_edge *q, const double *lo, const double *hi)
+static inline int box_may_be_critical(const query_edge *q, const double *m, const double *r)
 {
     double tmin, tmax;
-    box_project(lo, hi, q->p, q->t, &tmin, &tmax);
+    box_project(m, r, q->p, q->t, q->at, &tmin, &tmax);
     if (!q->last && tmin >= q->tt)
         return 0;
     if (tmax <= 0) {
         double pmin, pmax;
-        box_project(lo, hi, q->p, q->tprev, &pmin, &pmax);
+        box_project(m, r, q->p, q->tprev, q->atprev, &pmin, &pmax);
         if (pmax < 0)
             return 0;
     }
@@ -228,16 +253,20 @@ int tr_nsearch_pairs(const tr_nsearch *s, double *cutoff, size_t min_gap, unsign
     } stack[STACK_DEPTH];
     for (size_t i = 1; i < s->ne; i++) {
         query_edge q;
-        edge_box(s, i, q.lo, q.hi);
+        edge_centre_half(s, i, q.m, q.r);
         q.p = x + 3 * s->ea[i];
         v3_sub(q.t, x + 3 * s->eb[i], q.p);
         v3_sub(q.tprev, q.p, x + 3 * s->eprev[i]);
+        for (int a = 0; a < 3; a++) {
+            q.at[a] = fabs(q.t[a]);
+            q.atprev[a] = fabs(q.tprev[a]);
+        }
         q.tt = v3_dot(q.t, q.t);
         int k = s->ecomp[i];
         q.last = !s->c->closed[k] && i + 1 == s->estart[k + 1];
         int sp = 0;
         stack[sp].id = 0;
-        stack[sp++].d2 = box_dist2(q.lo, q.hi, s->node[0].lo, s->node[0].hi);
+        stack[sp++].d2 = box_dist2(q.m, q.r, s->node[0].m, s->node[0].r);
         while (sp > 0) {
             --sp;
             const node_t *n = &s->node[stack[sp].id];
@@ -249,18 +278,18 @@ int tr_nsearch_pairs(const tr_nsearch *s, double *cutoff, size_t min_gap, unsign
             size_t b = n->b < i ? n->b : i;
             if (n->comp == k && range_excluded(s, i, n->a, b, min_gap))
                 continue;
-            if ((flags & TR_NSEARCH_CRITICAL) && !box_may_be_critical(&q, n->lo, n->hi))
+            if ((flags & TR_NSEARCH_CRITICAL) && !box_may_be_critical(&q, n->m, n->r))
                 continue;
             if (n->left == 0) {
                 for (size_t j = n->a; j < b; j++) {
                     if (tr_nsearch_excluded(s, i, j, min_gap))
                         continue;
-                    double lo[3], hi[3];
-                    edge_box(s, j, lo, hi);
+                    double em[3], er[3];
+                    edge_centre_half(s, j, em, er);
                     cut = *cutoff * (1.0 + PRUNE_SLACK);
-                    if (box_dist2(q.lo, q.hi, lo, hi) > cut * cut)
+                    if (box_dist2(q.m, q.r, em, er) > cut * cut)
                         continue;
-                    if ((flags & TR_NSEARCH_CRITICAL) && !box_may_be_critical(&q, lo, hi))
+                    if ((flags & TR_NSEARCH_CRITICAL) && !box_may_be_critical(&q, em, er))
                         continue;
                     int rc = fn(ctx, i, j, cutoff);
                     if (rc)
@@ -275,7 +304,7 @@ int tr_nsearch_pairs(const tr_nsearch *s, double *cutoff, size_t min_gap, unsign
             double d2[2] = {INFINITY, INFINITY};
             for (int c = 0; c < 2; c++)
                 if (s->node[ch[c]].a < i)
-                    d2[c] = box_dist2(q.lo, q.hi, s->node[ch[c]].lo, s->node[ch[c]].hi);
+                    d2[c] = box_dist2(q.m, q.r, s->node[ch[c]].m, s->node[ch[c]].r);
             if (sp + 2 > STACK_DEPTH)
                 return -1; /* cannot happen: the depth is log2(N) */
             int near = d2[1] < d2[0];
