@@ -170,17 +170,24 @@ int tr_nsearch_excluded(const tr_nsearch *s, size_t ei, size_t ej, size_t min_ga
     return s->c->closed[k] && d + min_gap > m;
 }
 
-/* Are all edges j in [a, b) (all j < i, all in i's component) excluded? */
-static int range_excluded(const tr_nsearch *s, size_t i, size_t a, size_t b, size_t min_gap)
+/* Are all pairs (i, j), i in [i0, i1] and j in [a, b), excluded? Both runs
+ * lie in component k. In terms of the index difference d = i - j, which runs
+ * over [i0 - (b-1), i1 - a], a pair is excluded when |d| < g, or on a closed
+ * component when |d| > m - g (m edges): the excluded d form intervals, and
+ * the whole range must fall in one of them. */
+static int range_excluded(const tr_nsearch *s, int k, size_t i0, size_t i1, size_t a, size_t b,
+                          size_t min_gap)
 {
-    int k = s->ecomp[i];
-    size_t dmax = i - a, dmin = i - (b - 1);
-    if (dmax < min_gap)
+    long long dlo = (long long)i0 - (long long)(b - 1), dhi = (long long)i1 - (long long)a;
+    long long g = (long long)min_gap;
+    if (dlo > -g && dhi < g)
         return 1;
     if (!s->c->closed[k])
         return 0;
-    size_t m = s->estart[k + 1] - s->estart[k];
-    return dmin + min_gap > m;
+    long long m = (long long)(s->estart[k + 1] - s->estart[k]);
+    if (2 * g > m)
+        return 1;
+    return dlo > m - g || dhi < -(m - g);
 }
 
 static inline double box_dist2(const double *am, const double *ar, const double *bm, const double *br)
@@ -241,83 +248,292 @@ static inline int box_may_be_critical(const query_edge *q, const double *m, cons
     return 1;
 }
 
+typedef struct stack_entry {
+    uint32_t id;
+    double d2;
+} stack_entry;
+
+static void query_setup(const tr_nsearch *s, size_t i, query_edge *q)
+{
+    const double *x = s->c->x;
+    edge_centre_half(s, i, q->m, q->r);
+    q->p = x + 3 * s->ea[i];
+    v3_sub(q->t, x + 3 * s->eb[i], q->p);
+    v3_sub(q->tprev, q->p, x + 3 * s->eprev[i]);
+    for (int a = 0; a < 3; a++) {
+        q->at[a] = fabs(q->t[a]);
+        q->atprev[a] = fabs(q->tprev[a]);
+    }
+    q->tt = v3_dot(q->t, q->t);
+    int k = s->ecomp[i];
+    q->last = !s->c->closed[k] && i + 1 == s->estart[k + 1];
+}
+
+/* The edges j < jend of one leaf against query edge i. */
+static int query_leaf(const tr_nsearch *s, const query_edge *q, size_t i, size_t jend, const node_t *n,
+                      size_t min_gap, unsigned flags, double *cutoff, tr_pair_fn fn, void *ctx)
+{
+    size_t b = n->b < jend ? n->b : jend;
+    for (size_t j = n->a; j < b; j++) {
+        if (tr_nsearch_excluded(s, i, j, min_gap))
+            continue;
+        double em[3], er[3];
+        edge_centre_half(s, j, em, er);
+        double cut = *cutoff * (1.0 + PRUNE_SLACK);
+        if (box_dist2(q->m, q->r, em, er) > cut * cut)
+            continue;
+        if ((flags & TR_NSEARCH_CRITICAL) && !box_may_be_critical(q, em, er))
+            continue;
+        int rc = fn(ctx, i, j, cutoff);
+        if (rc)
+            return rc;
+    }
+    return 0;
+}
+
+/* Pushes the children of n that may hold some j < jend and lie within the
+ * cutoff of the box (m, r), the nearer one on top. */
+static int push_children(const tr_nsearch *s, const node_t *n, const double *m, const double *r,
+                         size_t jend, double cut2, stack_entry *stack, int *sp)
+{
+    uint32_t ch[2] = {n->left, n->right};
+    double d2[2] = {INFINITY, INFINITY};
+    for (int c = 0; c < 2; c++)
+        if (s->node[ch[c]].a < jend)
+            d2[c] = box_dist2(m, r, s->node[ch[c]].m, s->node[ch[c]].r);
+    if (*sp + 2 > STACK_DEPTH)
+        return -1; /* cannot happen: the depth is log2(N) */
+    int near = d2[1] < d2[0];
+    for (int c = 0; c < 2; c++) {
+        int w = c == 0 ? 1 - near : near; /* farther first, nearer on top */
+        if (d2[w] <= cut2) {
+            stack[*sp].id = ch[w];
+            stack[(*sp)++].d2 = d2[w];
+        }
+    }
+    return 0;
+}
+
+/* One query edge walks the tree from the root, partners j < jend. */
+static int query_edge_walk(const tr_nsearch *s, size_t i, size_t jend, size_t min_gap, unsigned flags,
+                           double *cutoff, tr_pair_fn fn, void *ctx)
+{
+    stack_entry stack[STACK_DEPTH];
+    query_edge q;
+    query_setup(s, i, &q);
+    int k = s->ecomp[i];
+    int sp = 0;
+    stack[sp].id = 0;
+    stack[sp++].d2 = box_dist2(q.m, q.r, s->node[0].m, s->node[0].r);
+    while (sp > 0) {
+        --sp;
+        const node_t *n = &s->node[stack[sp].id];
+        double cut = *cutoff * (1.0 + PRUNE_SLACK);
+        double cut2 = cut * cut;
+        /* The cutoff may have dropped since this node was pushed. */
+        if (stack[sp].d2 > cut2)
+            continue;
+        if (n->a >= jend)
+            continue;
+        size_t b = n->b < jend ? n->b : jend;
+        if (n->comp == k && range_excluded(s, k, i, i, n->a, b, min_gap))
+            continue;
+        if ((flags & TR_NSEARCH_CRITICAL) && !box_may_be_critical(&q, n->m, n->r))
+            continue;
+        if (n->left == 0) {
+            int rc = query_leaf(s, &q, i, jend, n, min_gap, flags, cutoff, fn, ctx);
+            if (rc)
+                return rc;
+            continue;
+        }
+        if (push_children(s, n, q.m, q.r, jend, cut2, stack, &sp))
+            return -1;
+    }
+    return 0;
+}
+
+/* A run of consecutive edges of one component (a leaf) as one query: the
+ * union of their normal slabs and wedges, for partners within distance D,
+ * lies in a slab along the chord u of the run,
+ *   (y - p0).u in [min_k (p_k - p0).u - w, max_k ((p_k - p0).u + l_k) + w],
+ *   w = (D + l_max) max_k |u - tau_k|,
+ * because (y - p_k).tau_k is in [0, l_k] on edge k's slab (and <= 0 <= the
+ * previous edge's along its wedge) and |y - p_k| <= D + l_k. Returns 0 if the
+ * run cannot be treated so (a fold-back), else fills lo, hi. */
+typedef struct block_query {
+    double m[3], r[3]; /* box of the run */
+    const double *p0;
+    double u[3], au[3];
+    double lo, hi;
+} block_query;
+
+static int block_setup(const tr_nsearch *s, const node_t *leaf, double D, block_query *bq)
+{
+    const double *x = s->c->x;
+    bq->m[0] = leaf->m[0], bq->m[1] = leaf->m[1], bq->m[2] = leaf->m[2];
+    bq->r[0] = leaf->r[0], bq->r[1] = leaf->r[1], bq->r[2] = leaf->r[2];
+    bq->p0 = x + 3 * s->ea[leaf->a];
+    double ch[3];
+    v3_sub(ch, x + 3 * s->eb[leaf->b - 1], bq->p0);
+    double L = v3_norm(ch);
+    if (!(L > 0))
+        return 0;
+    v3_scale(bq->u, 1.0 / L, ch);
+    for (int a = 0; a < 3; a++)
+        bq->au[a] = fabs(bq->u[a]);
+    double lo = 0.0, hi = -INFINITY, lmax = 0.0, dmax = 0.0;
+    int open_end = 0;
+    for (size_t e = leaf->a; e <= leaf->b; e++) {
+        /* e == leaf->b stands for the edge before the run (its wedge). */
+        const double *pa = x + 3 * (e < leaf->b ? s->ea[e] : s->eprev[leaf->a]);
+        const double *pb = x + 3 * (e < leaf->b ? s->eb[e] : s->ea[leaf->a]);
+        double t[3];
+        v3_sub(t, pb, pa);
+        double l = v3_norm(t);
+        if (!(l > 0))
+            return 0;
+        double du[3] = {t[0] / l - bq->u[0], t[1] / l - bq->u[1], t[2] / l - bq->u[2]};
+        double dn = v3_norm(du);
+        if (dn > 0.5)
+            return 0; /* the run turns too much for one chord */
+        dmax = dn > dmax ? dn : dmax;
+        if (e == leaf->b)
+            continue;
+        lmax = l > lmax ? l : lmax;
+        double w[3];
+        v3_sub(w, pa, bq->p0);
+        double pr = v3_dot(w, bq->u);
+        lo = pr < lo ? pr : lo;
+        hi = pr + l > hi ? pr + l : hi;
+        int k = s->ecomp[e];
+        if (!s->c->closed[k] && e + 1 == s->estart[k + 1])
+            open_end = 1;
+    }
+    double wdt = (D + lmax) * dmax;
+    double slack = 1e-10 * (L + lmax + D);
+    bq->lo = lo - wdt - slack;
+    bq->hi = open_end ? INFINITY : hi + wdt + slack;
+    return 1;
+}
+
+static int block_may_be_critical(const block_query *bq, const double *m, const double *r)
+{
+    double pmin, pmax;
+    box_project(m, r, bq->p0, bq->u, bq->au, &pmin, &pmax);
+    return pmax >= bq->lo && pmin <= bq->hi;
+}
+
+typedef struct leaf_list {
+    uint32_t *id;
+    size_t n, cap;
+} leaf_list;
+
+/* Walks the tree once for the run of edges in `leaf`, collecting the leaves
+ * that may hold a partner of any of its edges, then tests each edge of the
+ * run against those leaves only. */
+static int query_block(const tr_nsearch *s, const node_t *leaf, size_t min_gap, unsigned flags,
+                       double *cutoff, tr_pair_fn fn, void *ctx, leaf_list *cand)
+{
+    block_query bq;
+    if (!block_setup(s, leaf, *cutoff, &bq)) {
+        for (size_t i = leaf->a; i < leaf->b; i++) {
+            int rc = query_edge_walk(s, i, i, min_gap, flags, cutoff, fn, ctx);
+            if (rc)
+                return rc;
+        }
+        return 0;
+    }
+    stack_entry stack[STACK_DEPTH];
+    size_t iend = leaf->b; /* partners j < iend - 1 at most */
+    size_t i0 = leaf->a, i1 = leaf->b - 1;
+    cand->n = 0;
+    int sp = 0;
+    stack[sp].id = 0;
+    stack[sp++].d2 = box_dist2(bq.m, bq.r, s->node[0].m, s->node[0].r);
+    while (sp > 0) {
+        --sp;
+        const node_t *n = &s->node[stack[sp].id];
+        double cut = *cutoff * (1.0 + PRUNE_SLACK);
+        double cut2 = cut * cut;
+        if (stack[sp].d2 > cut2)
+            continue;
+        if (n->comp == leaf->comp && range_excluded(s, n->comp, i0, i1, n->a, n->b, min_gap))
+            continue;
+        if (!block_may_be_critical(&bq, n->m, n->r))
+            continue;
+        if (n->left == 0) {
+            if (cand->n == cand->cap) {
+                size_t cap = cand->cap ? 2 * cand->cap : 256;
+                uint32_t *g = realloc(cand->id, cap * sizeof *g);
+                if (!g)
+                    return -1;
+                cand->id = g;
+                cand->cap = cap;
+            }
+            cand->id[cand->n++] = (uint32_t)(n - s->node);
+            continue;
+        }
+        if (push_children(s, n, bq.m, bq.r, iend - 1, cut2, stack, &sp))
+            return -1;
+    }
+    for (size_t i = leaf->a; i < leaf->b; i++) {
+        if (i == 0)
+            continue;
+        query_edge q;
+        query_setup(s, i, &q);
+        int k = s->ecomp[i];
+        for (size_t c = 0; c < cand->n; c++) {
+            const node_t *n = &s->node[cand->id[c]];
+            if (n->a >= i)
+                continue;
+            double cut = *cutoff * (1.0 + PRUNE_SLACK);
+            if (box_dist2(q.m, q.r, n->m, n->r) > cut * cut)
+                continue;
+            size_t b = n->b < i ? n->b : i;
+            if (n->comp == k && range_excluded(s, k, i, i, n->a, b, min_gap))
+                continue;
+            if ((flags & TR_NSEARCH_CRITICAL) && !box_may_be_critical(&q, n->m, n->r))
+                continue;
+            int rc = query_leaf(s, &q, i, i, n, min_gap, flags, cutoff, fn, ctx);
+            if (rc)
+                return rc;
+        }
+    }
+    return 0;
+}
+
 int tr_nsearch_pairs(const tr_nsearch *s, double *cutoff, size_t min_gap, unsigned flags,
                      tr_pair_fn fn, void *ctx)
 {
     if (s->ne < 2)
         return 0;
-    const double *x = s->c->x;
-    struct {
-        uint32_t id;
-        double d2;
-    } stack[STACK_DEPTH];
-    for (size_t i = 1; i < s->ne; i++) {
-        query_edge q;
-        edge_centre_half(s, i, q.m, q.r);
-        q.p = x + 3 * s->ea[i];
-        v3_sub(q.t, x + 3 * s->eb[i], q.p);
-        v3_sub(q.tprev, q.p, x + 3 * s->eprev[i]);
-        for (int a = 0; a < 3; a++) {
-            q.at[a] = fabs(q.t[a]);
-            q.atprev[a] = fabs(q.tprev[a]);
-        }
-        q.tt = v3_dot(q.t, q.t);
-        int k = s->ecomp[i];
-        q.last = !s->c->closed[k] && i + 1 == s->estart[k + 1];
-        int sp = 0;
-        stack[sp].id = 0;
-        stack[sp++].d2 = box_dist2(q.m, q.r, s->node[0].m, s->node[0].r);
-        while (sp > 0) {
-            --sp;
-            const node_t *n = &s->node[stack[sp].id];
-            double cut = *cutoff * (1.0 + PRUNE_SLACK);
-            double cut2 = cut * cut;
-            /* The cutoff may have dropped since this node was pushed. */
-            if (stack[sp].d2 > cut2)
-                continue;
-            size_t b = n->b < i ? n->b : i;
-            if (n->comp == k && range_excluded(s, i, n->a, b, min_gap))
-                continue;
-            if ((flags & TR_NSEARCH_CRITICAL) && !box_may_be_critical(&q, n->m, n->r))
-                continue;
-            if (n->left == 0) {
-                for (size_t j = n->a; j < b; j++) {
-                    if (tr_nsearch_excluded(s, i, j, min_gap))
-                        continue;
-                    double em[3], er[3];
-                    edge_centre_half(s, j, em, er);
-                    cut = *cutoff * (1.0 + PRUNE_SLACK);
-                    if (box_dist2(q.m, q.r, em, er) > cut * cut)
-                        continue;
-                    if ((flags & TR_NSEARCH_CRITICAL) && !box_may_be_critical(&q, em, er))
-                        continue;
-                    int rc = fn(ctx, i, j, cutoff);
-                    if (rc)
-                        return rc;
-                }
-                continue;
-            }
-            /* Children that start at or after i hold no j < i. The nearer
-             * child goes on top, so it is looked at first and tightens the
-             * cutoff before the farther one. */
-            uint32_t ch[2] = {n->left, n->right};
-            double d2[2] = {INFINITY, INFINITY};
-            for (int c = 0; c < 2; c++)
-                if (s->node[ch[c]].a < i)
-                    d2[c] = box_dist2(q.m, q.r, s->node[ch[c]].m, s->node[ch[c]].r);
-            if (sp + 2 > STACK_DEPTH)
-                return -1; /* cannot happen: the depth is log2(N) */
-            int near = d2[1] < d2[0];
-            for (int c = 0; c < 2; c++) {
-                int w = c == 0 ? 1 - near : near; /* farther first, nearer on top */
-                if (d2[w] <= cut2) {
-                    stack[sp].id = ch[w];
-                    stack[sp++].d2 = d2[w];
-                }
-            }
+    /* Runs of edges (the leaves, in order) are queried together once the
+     * cutoff is finite and the run lies on one component; before that, and
+     * without the critical-point pruning, each edge walks the tree itself. */
+    leaf_list cand = {0};
+    int rc = 0;
+    for (size_t id = 0; id < s->nnodes && rc == 0; id++) {
+        const node_t *leaf = &s->node[id];
+        if (leaf->left != 0)
+            continue;
+        if ((flags & TR_NSEARCH_CRITICAL) && isfinite(*cutoff) && leaf->comp >= 0 && leaf->b - leaf->a > 1) {
+            rc = query_block(s, leaf, min_gap, flags, cutoff, fn, ctx, &cand);
+        } else {
+            for (size_t i = leaf->a; i < leaf->b && rc == 0; i++)
+                if (i > 0)
+                    rc = query_edge_walk(s, i, i, min_gap, flags, cutoff, fn, ctx);
         }
     }
-    return 0;
+    free(cand.id);
+    return rc;
+}
+
+int tr_nsearch_edge(const tr_nsearch *s, size_t i, double *cutoff, size_t min_gap, unsigned flags,
+                    tr_pair_fn fn, void *ctx)
+{
+    if (i >= s->ne)
+        return 0;
+    return query_edge_walk(s, i, s->ne, min_gap, flags, cutoff, fn, ctx);
 }
 
 int tr_nsearch_pairs_brute(const tr_nsearch *s, double *cutoff, size_t min_gap, unsigned flags,

@@ -70,6 +70,12 @@ int tr_nsearch_excluded(const tr_nsearch *s, size_t ei, size_t ej, size_t min_ga
 int tr_nsearch_pairs(const tr_nsearch *s, double *cutoff, size_t min_gap, unsigned flags,
                      tr_pair_fn fn, void *ctx);
 
+/* The partners j != i (on both sides) of one edge i, with the same tests:
+ * fn gets (i, j) in that order. The thickness oracle uses a few of these to
+ * find a first strut, so that the full search starts with a finite cutoff. */
+int tr_nsearch_edge(const tr_nsearch *s, size_t i, double *cutoff, size_t min_gap, unsigned flags,
+                    tr_pair_fn fn, void *ctx);
+
 /* The O(N^2) reference the tests compare tr_nsearch_pairs against: offers
  * every pair that is not excluded by index, ignoring boxes and flags. */
 int tr_nsearch_pairs_brute(const tr_nsearch *s, double *cutoff, size_t min_gap, unsigned flags,

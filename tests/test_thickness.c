@@ -318,6 +318,36 @@ static void test_tree_against_brute(void)
         compare_with_brute(&c, k ? "torus T(3,5)" : "torus T(2,3)");
         tr_curve_free(&c);
     }
+    /* Finer smooth curves, where runs of edges are queried together:
+     * T(2,5) at N = 4000 and a Hopf link of two 900-gons (radius 1, each
+     * through the other's centre, perpendicular planes). */
+    {
+        size_t n = 4000;
+        tr_curve c;
+        CHECK_OK(tr_curve_alloc(&c, 1, &n, NULL, &err));
+        for (size_t i = 0; i < n; i++) {
+            double ph = 2 * PI * (double)i / (double)n;
+            double rr = 1.0 + 0.4 * cos(5 * ph);
+            c.x[3 * i] = rr * cos(2 * ph);
+            c.x[3 * i + 1] = rr * sin(2 * ph);
+            c.x[3 * i + 2] = 0.4 * sin(5 * ph);
+        }
+        compare_with_brute(&c, "torus T(2,5), N = 4000");
+        tr_curve_free(&c);
+        size_t nv[2] = {900, 900};
+        CHECK_OK(tr_curve_alloc(&c, 2, nv, NULL, &err));
+        for (size_t i = 0; i < 900; i++) {
+            double ph = 2 * PI * (double)i / 900.0;
+            c.x[3 * i] = cos(ph);
+            c.x[3 * i + 1] = sin(ph);
+            c.x[3 * i + 2] = 0.0;
+            c.x[2700 + 3 * i] = 1.0 + cos(ph);
+            c.x[2700 + 3 * i + 1] = 0.0;
+            c.x[2700 + 3 * i + 2] = sin(ph);
+        }
+        compare_with_brute(&c, "Hopf link, 2 x 900");
+        tr_curve_free(&c);
+    }
 }
 
 static int count_pair(void *ctx, size_t ei, size_t ej, double *cutoff)
