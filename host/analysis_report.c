@@ -336,6 +336,12 @@ int tr_report_summary_json(const tr_analysis *a, const tr_report_ctx *ctx, char 
     else {
         sb_printf(&b, ", \"sigma_inverse_err\": ");
         sb_num(&b, a->sigma_inverse_err);
+        sb_printf(&b, ", \"rotation_number\": ");
+        sb_num(&b, a->rotation_number);
+        sb_printf(&b, ", \"power_minus_identity_min\": ");
+        sb_num(&b, a->gap_min);
+        sb_printf(&b, ", \"power_minus_identity_max\": ");
+        sb_num(&b, a->gap_max);
         sb_printf(&b, ", \"power\": %d, \"fixed_points\": %zu, \"stable\": ", a->power, a->nfixed);
         size_t ns = 0;
         for (size_t i = 0; i < a->nfixed; i++)
@@ -425,6 +431,10 @@ int tr_report_text(const tr_analysis *a, const tr_report_ctx *ctx, char **out)
         for (size_t i = 0; i < a->nfixed; i++)
             ns += a->fixed[i].stable;
         sb_printf(&b, "  max |sigma+(sigma-(l)) - l| = %.3g\n", a->sigma_inverse_err);
+        sb_printf(&b, "  rotation number of sigma-: %.6f%s\n", a->rotation_number,
+                  cmp ? "   (4/9 = 0.444444 for the paper's 9-cycles)" : "");
+        sb_printf(&b, "  sigma-^%d(l) - l ranges over [%.4g, %.4g] (mod L)\n", a->power, a->gap_min,
+                  a->gap_max);
         sb_printf(&b, "  fixed points of sigma-^%d: %zu (%zu stable)%s\n", a->power, a->nfixed, ns,
                   cmp ? "   paper: 18 (9 stable)" : "");
         double *l = malloc((a->nfixed + 1) * sizeof *l);

@@ -33,7 +33,8 @@ static void usage(FILE *f)
             "  --jump-window w,W  one-sided fit windows [l-W, l-w], [l+w, l+W] (default 2.5me, w+max(0.03, 8me))\n"
             "  --jump-at l,...    also measure jumps at these positions (from the origin)\n"
             "  --sym-tol T        symmetry threshold, relative to the radius of gyration (default 1e-3)\n"
-            "  --strut-tol T      contacts: struts up to (1 + T) x the shortest (default 1e-3)\n"
+            "  --strut-tol T      contacts: struts up to (1 + T) x the shortest (default 1e-4; a converged\n"
+            "                     knot needs less, a loose one more)\n"
             "  --contact-bin B    bin width for the contact functions (default max(4e, L/4000))\n"
             "  --power P          functional power for the cycles (default 9)\n"
             "  --paper / --no-paper  set the paper's trefoil values beside ours (default: when the\n"
@@ -198,7 +199,7 @@ int tr_cmd_analyze(int argc, char **argv)
 {
     cli_opts o;
     memset(&o, 0, sizeof o);
-    o.strut_tol = 1e-3;
+    o.strut_tol = 1e-4;
     o.paper = -1;
     o.scale = 1;
     const char *in = NULL, *out = NULL;

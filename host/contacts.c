@@ -96,6 +96,9 @@ int tr_contact_fn_from_samples(const double *l, const double *u, size_t n, doubl
             out->l[k] = s[k].l;
             out->u[k] = v[b];
         }
+    /* Across the period: u(l_0) + L must not lie below u(l_{n-1}). */
+    for (size_t j = n; j-- > 1 && out->u[j] > out->u[0] + L;)
+        out->u[j] = out->u[0] + L;
     out->n = n;
     out->L = L;
     free(s), free(w), free(v), free(len);
@@ -153,11 +156,10 @@ double tr_contact_fn_slope(const tr_contact_fn *f, double l)
 }
 
 typedef struct bin_acc {
-    size_t first, count; /* into the sorted pixel array */
-    int two;             /* split into two clusters */
-    size_t split;        /* first index of the high cluster */
-    double lo_d, hi_d;   /* mean offsets (lo only when !two: the single cluster) */
-    double lo_l, hi_l;   /* mean positions */
+    size_t count;
+    int two;            /* split into two clusters */
+    double lo_d, hi_d;  /* mean offsets (lo only when !two: the single cluster) */
+    double lo_l, hi_l;  /* mean positions */
 } bin_acc;
 
 typedef struct pixel {
@@ -173,6 +175,19 @@ static int by_bin_d(const void *a, const void *b)
     return (x->d > y->d) - (x->d < y->d);
 }
 
+/* Mean position and offset of pixels [i, j); positions unwrapped about the
+ * first one (a cluster can straddle l = 0). */
+static void cluster_mean(const pixel *px, size_t i, size_t j, double L, double *ml, double *md)
+{
+    double sl = 0.0, sd = 0.0;
+    for (size_t k = i; k < j; k++) {
+        sl += px[i].l + tr_wrap_signed(px[k].l - px[i].l, L);
+        sd += px[k].d;
+    }
+    *ml = sl / (double)(j - i);
+    *md = sd / (double)(j - i);
+}
+
 int tr_contact_functions_build(const tr_contact_pair *p, size_t np, double L, double bin,
                                tr_contact_fn *minus, tr_contact_fn *plus, tr_error *err)
 {
@@ -182,7 +197,12 @@ int tr_contact_functions_build(const tr_contact_pair *p, size_t np, double L, do
         return tr_fail(err, TR_EGEOMETRY, "too few contacts (%zu) for contact functions", np);
     if (!(bin > 0) || bin > L / 8)
         return tr_fail(err, TR_EINVAL, "contact-function bin %g out of range", bin);
-    size_t nb = (size_t)ceil(L / bin), npx = 2 * np;
+    /* Pixels are binned along t = l + partner = 2l + d (mod 2L), d the forward
+     * offset, not along l: t grows along every monotone branch (dt/dl = 1 +
+     * sigma' >= 1), so a bin of width `bin` holds a piece of each branch
+     * whose offsets spread by at most `bin`, steep and flat parts alike, and
+     * the two partners stay apart by the difference of their offsets. */
+    size_t nb = (size_t)ceil(2.0 * L / bin), npx = 2 * np;
     pixel *px = malloc(npx * sizeof *px);
     bin_acc *b = calloc(nb, sizeof *b);
     double *ml = malloc(nb * sizeof *ml), *mu = malloc(nb * sizeof *mu);
@@ -194,17 +214,13 @@ int tr_contact_functions_build(const tr_contact_pair *p, size_t np, double L, do
     }
     for (size_t k = 0; k < np; k++) {
         double a = tr_wrap(p[k].li, L), c = tr_wrap(p[k].lj, L);
-        /* offsets from the bin's left edge, not from the pixel's own l: within
-         * a bin a flat branch then has a spread of |sigma'| bin, not |sigma' - 1| bin,
-         * and stays apart from the other partner even where the two are close */
-        size_t ba = (size_t)(a / bin) % nb, bc = (size_t)(c / bin) % nb;
-        px[2 * k] = (pixel){ba, a, tr_wrap(c - (double)ba * bin, L)};
-        px[2 * k + 1] = (pixel){bc, c, tr_wrap(a - (double)bc * bin, L)};
+        double dac = tr_wrap(c - a, L), dca = tr_wrap(a - c, L);
+        px[2 * k] = (pixel){(size_t)(tr_wrap(2.0 * a + dac, 2.0 * L) / bin) % nb, a, dac};
+        px[2 * k + 1] = (pixel){(size_t)(tr_wrap(2.0 * c + dca, 2.0 * L) / bin) % nb, c, dca};
     }
     qsort(px, npx, sizeof *px, by_bin_d);
-    /* Two partners of one point are distinct strands: their values differ by
-     * more than a small fraction of L (0.2 of 32.7 for the tight trefoil, where
-     * the partners of the long flat stretches are closest). */
+    /* Two partners of one point are distinct strands: their offsets differ by
+     * more than a small fraction of L. */
     double gap_min = 1e-3 * L;
     size_t ntwo = 0;
     for (size_t i = 0; i < npx;) {
@@ -212,7 +228,7 @@ int tr_contact_functions_build(const tr_contact_pair *p, size_t np, double L, do
         while (j < npx && px[j].bin == px[i].bin)
             j++;
         bin_acc *B = &b[px[i].bin];
-        B->first = i, B->count = j - i;
+        B->count = j - i;
         double gmax = 0.0, g2 = 0.0;
         size_t split = j;
         for (size_t k = i + 1; k < j; k++) {
@@ -223,18 +239,13 @@ int tr_contact_functions_build(const tr_contact_pair *p, size_t np, double L, do
                 g2 = g;
         }
         /* two partners: one gap that dominates every gap inside the clusters */
-        B->two = gmax > gap_min && gmax > 3.0 * g2;
-        B->split = B->two ? split : j;
-        double sl = 0, sd = 0;
-        for (size_t k = i; k < B->split; k++)
-            sl += px[k].l, sd += px[k].d;
-        B->lo_l = sl / (double)(B->split - i), B->lo_d = sd / (double)(B->split - i);
+        B->two = gmax > gap_min && gmax > 3.0 * g2 && gmax > 2.0 * bin;
         if (B->two) {
-            sl = 0, sd = 0;
-            for (size_t k = B->split; k < j; k++)
-                sl += px[k].l, sd += px[k].d;
-            B->hi_l = sl / (double)(j - B->split), B->hi_d = sd / (double)(j - B->split);
+            cluster_mean(px, i, split, L, &B->lo_l, &B->lo_d);
+            cluster_mean(px, split, j, L, &B->hi_l, &B->hi_d);
             ntwo++;
+        } else {
+            cluster_mean(px, i, j, L, &B->lo_l, &B->lo_d);
         }
         i = j;
     }
@@ -248,26 +259,23 @@ int tr_contact_functions_build(const tr_contact_pair *p, size_t np, double L, do
         bin_acc *B = &b[k];
         if (B->count == 0)
             continue;
-        double e0 = (double)k * bin; /* offsets are from the bin's left edge */
         if (B->two) {
-            ml[nm] = B->lo_l, mu[nm++] = e0 + B->lo_d;
-            pl[npl] = B->hi_l, pu[npl++] = e0 + B->hi_d;
+            ml[nm] = B->lo_l, mu[nm++] = B->lo_l + B->lo_d;
+            pl[npl] = B->hi_l, pu[npl++] = B->hi_l + B->hi_d;
             continue;
         }
-        /* one cluster: compare with the nearest two-cluster bin */
+        /* one cluster: the branch whose offset in the nearest two-cluster bin
+         * is closer (offsets change by at most one bin width per bin) */
         for (size_t r = 1; r <= nb; r++) {
             const bin_acc *A = &b[(k + r) % nb];
             if (!A->two)
                 A = &b[(k + nb - r % nb) % nb];
             if (!A->two)
                 continue;
-            /* compare partner values (both offsets refer to their own bin edges) */
-            double ea = (double)((size_t)(A - b)) * bin;
-            double v = e0 + B->lo_d;
-            if (fabs(tr_wrap_signed(v - (ea + A->lo_d), L)) <= fabs(tr_wrap_signed(v - (ea + A->hi_d), L)))
-                ml[nm] = B->lo_l, mu[nm++] = v;
+            if (fabs(B->lo_d - A->lo_d) <= fabs(B->lo_d - A->hi_d))
+                ml[nm] = B->lo_l, mu[nm++] = B->lo_l + B->lo_d;
             else
-                pl[npl] = B->lo_l, pu[npl++] = v;
+                pl[npl] = B->lo_l, pu[npl++] = B->lo_l + B->lo_d;
             break;
         }
     }

@@ -42,14 +42,14 @@ double tr_contact_fn_eval(const tr_contact_fn *f, double l); /* in [0, L) */
 double tr_contact_fn_slope(const tr_contact_fn *f, double l);
 
 /* Both contact functions from a contact set. Each strut gives the oriented
- * pixels (li, lj) and (lj, li); pixels are binned along l (bin width `bin`)
- * and, within a bin, split at the largest gap of the forward offsets
- * (lj - li mod L) into the two partners. sigma- is the branch with the
- * smaller forward offset, sigma+ the larger: the two partners of a point
- * never coincide, so the offsets never cross and the naming is consistent
- * along the knot (for the tight trefoil it reproduces the paper's
- * sigma-(0.189) = 15.674). A bin with one cluster is given to the branch
- * whose nearest two-cluster bin it is closer to. */
+ * pixels (li, lj) and (lj, li); pixels are binned along t = l + partner (bin
+ * width `bin` in t) and, within a bin, split at the largest gap of the
+ * forward offsets (partner - l mod L) into the two partners. sigma- is the
+ * branch with the smaller forward offset, sigma+ the larger: the two partners
+ * of a point never coincide, so the offsets never cross and the naming is
+ * consistent along the knot (for the tight trefoil it gives the paper's
+ * sigma-(0.189) = 15.674 < sigma+(0.189) = 21.455). A bin with one cluster is
+ * given to the branch whose nearest two-cluster bin it is closer to. */
 int tr_contact_functions_build(const tr_contact_pair *p, size_t np, double L, double bin,
                                tr_contact_fn *minus, tr_contact_fn *plus, tr_error *err);
 

@@ -237,6 +237,21 @@ int tr_analyze_component(const double *x, size_t n, const tr_contact_pair *pairs
             emax = fmax(emax, fabs(tr_wrap_signed(b - l, L)));
         }
         out->sigma_inverse_err = emax;
+        /* Rotation number: mean advance of the lift over many turns. */
+        double y = 0.0;
+        const int turns = 2000;
+        for (int k = 0; k < turns; k++)
+            y = tr_contact_fn_lift(&out->sigma_minus, y);
+        out->rotation_number = y / ((double)turns * L);
+        out->gap_min = INFINITY, out->gap_max = -INFINITY;
+        for (int k = 0; k < 4000; k++) {
+            double l = (k + 0.5) * L / 4000.0, z = l;
+            for (int q = 0; q < o.power; q++)
+                z = tr_contact_fn_lift(&out->sigma_minus, z);
+            double g = tr_wrap_signed(z - l, L);
+            out->gap_min = fmin(out->gap_min, g);
+            out->gap_max = fmax(out->gap_max, g);
+        }
         if (tr_power_fixed_points(&out->sigma_minus, o.power, 20000, &out->fixed, &out->nfixed,
                                   &out->cycles, &out->ncycles, &cerr) != TR_OK) {
             out->have_sigma = 0;

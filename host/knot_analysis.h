@@ -60,6 +60,8 @@ typedef struct tr_analysis {
     tr_contact_fn sigma_minus, sigma_plus;
     double sigma_inverse_err; /* max |sigma+(sigma-(l)) - l| over a grid */
     int power;
+    double rotation_number;  /* of sigma- (lift advance per turn / L); 4/9 for the 9-cycles */
+    double gap_min, gap_max; /* range of ((sigma-^power(l) - l + L/2) mod L) - L/2 */
     tr_fixed_point *fixed;
     size_t nfixed;
     tr_cycle *cycles;
