@@ -194,13 +194,15 @@ int tr_cmd_make(int argc, char **argv)
         return 2;
     }
     char comments[1024];
-    snprintf(comments, sizeof comments, "%s\nlength %.17g\nmade by tightrope %s", comment, tr_curve_length(&c),
-             TIGHTROPE_VERSION);
+    double length = tr_curve_length(&c);
+    snprintf(comments, sizeof comments, "%s\nlength %.17g\nmade by tightrope %s", comment, length, TIGHTROPE_VERSION);
     rc = tr_curve_write(outpath, TR_FORMAT_AUTO, &c, comments, &err);
+    size_t nv = c.nv;
     tr_curve_free(&c);
     if (rc) {
         fprintf(stderr, "tightrope make: %s\n", err.msg);
         return 2;
     }
+    printf("%s: %s; %zu vertices in all, length %.10g\n", outpath, comment, nv, length);
     return 0;
 }

@@ -79,13 +79,19 @@ static int equal_chords(curve_eval f, const void *ctx, double t0, double T, int 
             return tr_fail(err, TR_EGEOMETRY, "resampling failed: a degenerate edge");
         }
         *spread = dev;
-        if (dev < 1e-14)
+        /* rounding floor: each chord carries an error of a few ulp of the
+         * coordinates, which is large relative to a short edge */
+        double xmax = 0;
+        for (size_t i = 0; i < n; i++)
+            xmax = fmax(xmax, fmax(fabs(x[3 * i]), fmax(fabs(x[3 * i + 1]), fabs(x[3 * i + 2]))));
+        double floor = 8 * 2.220446049250313e-16 * xmax / mean;
+        if (dev < fmax(1e-14, floor))
             break;
         if (dev < best * 0.9) {
             best = dev;
             stall = 0;
         } else if (++stall >= 8) {
-            if (dev < 1e-10 || relax < 0.01)
+            if (dev < fmax(1e-10, 100 * floor) || relax < 0.01)
                 break; /* at the rounding floor, or hopeless */
             /* overshooting on a very coarse polygon (chords across several
              * corners): take smaller steps */

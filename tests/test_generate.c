@@ -4,6 +4,7 @@
  * oracle's), the Hopf link pierced once, the clasp hooked with its ends on
  * their walls, and resampling (equilateral, on the old polygon or close to
  * the smooth curve, ends and constraints kept). */
+#include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -160,7 +161,20 @@ static void test_torus(void)
         CHECK(flips == 2 * abs(q));
         tr_curve_free(&c);
     }
+    /* A fine one is equilateral to rounding: a vertex is placed to about
+     * an ulp of its parameter (2 pi) times the speed (~10) and an ulp of its
+     * coordinates (~6), i.e. ~1e-14 absolute, which relative to an edge of
+     * 6e-4 is ~2e-11; allow 64 ulp of the coordinates over the edge. */
     tr_curve c;
+    CHECK_OK(tr_make_torus(&c, 2, 3, 100000, &err));
+    if (c.nv) {
+        double e, s = edge_spread(&c, 0, &e), xmax = 0;
+        for (size_t i = 0; i < 3 * c.nv; i++)
+            xmax = fmax(xmax, fabs(c.x[i]));
+        printf("T(2,3) n=100000: edge %.3g spread %.2e (rounding bound %.2e)\n", e, s, 64 * DBL_EPSILON * xmax / e);
+        CHECK(s < 64 * DBL_EPSILON * xmax / e);
+        tr_curve_free(&c);
+    }
     CHECK(tr_make_torus(&c, 2, 4, 300, &err) == TR_EINVAL);
     CHECK(tr_make_torus(&c, 1, 3, 300, &err) == TR_EINVAL);
     CHECK(tr_make_torus(&c, 2, 3, 20, &err) == TR_EINVAL); /* edges longer than 1 */
