@@ -10,10 +10,13 @@
  * tree never needs sorting; when vertices move (the engine), tr_nsearch_refit
  * recomputes the boxes in O(N) and the topology stays.
  *
- * A query walks the tree once per edge i and reports every pair (i, j), j < i,
- * whose edge boxes are within the cutoff and that is not excluded by index.
- * The callback may lower the cutoff as it goes (branch and bound: the
- * thickness oracle shrinks it to the shortest strut found so far), which is
+ * A query reports every pair (i, j), j < i, whose edge boxes are within the
+ * cutoff and that is not excluded by index. The callback may lower the cutoff
+ * as it goes (branch and bound: the thickness oracle shrinks it to the
+ * shortest strut found so far). With TR_NSEARCH_CRITICAL and a finite cutoff,
+ * each leaf's run of consecutive edges walks the tree once, against a slab
+ * along its chord that holds the normal slabs and wedges of all its edges
+ * out to the cutoff, and then each edge tests only the leaves found; this is
  * what makes the oracle linear in N for tight or smooth curves.
  * Pruning is conservative (boxes are widened by a relative 1e-12 against
  * rounding), so the set of pairs reported is a superset of the pairs whose
