@@ -77,8 +77,17 @@
  *      Jacobi passes G <- S G starting from G = F, where
  *        (S G)_i = (G_prev + 2 G_i + G_next) / 4 for vertices with both
  *        neighbours, (3 G_i + G_nb) / 4 for an open end (nb its neighbour).
+ *   2b. Tangent projection (only if project != NULL; q = *project): evaluate
+ *      every row at x as in correct (a); G_i <- P_i G_i; then up to
+ *      q.max_newton passes: b = J (G, debar = 0) (the apply-J of correct (b)
+ *      with y = 0, reg term 0), solve A y = b by the CG of correct (c);
+ *      if another pass is allowed and some active strut/curvature row has
+ *      y_r > 0 (the force pulls it apart), deactivate all such rows and
+ *      repeat, else stop. Finally G_i <- G_i - dx_i(y) and the ebar
+ *      velocity vbar_k = -debar_k(y) (dx, debar as in correct (b)).
  *   3. Motion: dx_i = h P_i(G_i); if |dx_i| > max_move, dx_i *= max_move/|dx_i|
  *      (per vertex). x_i += dx_i, then snap constrained vertices.
+ *   With projection, ebar_k += h vbar_k after the motion.
  *   Stats: force2 = sum_i |P_i F_i|^2, predicted = sum_i F_i . dx_i (the
  *   first-order length decrease), max_move = max_i |dx_i|.
  *
@@ -153,10 +162,17 @@ typedef struct tr_contact_stats {
     double min_dist; /* smallest segment distance among them (INFINITY if none) */
 } tr_contact_stats;
 
+struct tr_correct_params;
+
 typedef struct tr_tension_params {
     double h;          /* step length per unit force */
     double max_move;   /* per-vertex cap on |dx| */
     int smooth_passes; /* low-pass passes on the force, >= 0 */
+    /* NULL: move along the smoothed force. Else project it first onto the
+     * tangent cone of the rows in the active band (see tension_step 2b);
+     * uses max_newton (= solve passes), max_cg, cg_rtol, the bands,
+     * strut_dist, minrad, ebar_weight, reg. */
+    const struct tr_correct_params *project;
 } tr_tension_params;
 
 typedef struct tr_tension_stats {

@@ -412,74 +412,6 @@ static void edge_unit(const ref_state *s, size_t a, double *u)
     v3_scale(u, 1.0 / l, u);
 }
 
-static int ref_tension_step(void *sp, const tr_tension_params *prm, tr_tension_stats *out,
-                            tr_error *err)
-{
-    (void)err;
-    ref_state *s = sp;
-    size_t nv = s->nv;
-    double *F = s->F, *G = s->G, *H = s->H;
-    for (size_t i = 0; i < nv; i++) {
-        double f[3] = {0, 0, 0}, u[3];
-        if (s->next[i] >= 0) {
-            edge_unit(s, i, u);
-            v3_add(f, f, u);
-        }
-        if (s->prev[i] >= 0) {
-            edge_unit(s, (size_t)s->prev[i], u);
-            v3_sub(f, f, u);
-        }
-        memcpy(F + 3 * i, f, sizeof f);
-    }
-    memcpy(G, F, 3 * nv * sizeof *F);
-    for (int pass = 0; pass < prm->smooth_passes; pass++) {
-        for (size_t i = 0; i < nv; i++) {
-            const double *g = G + 3 * i;
-            double *h = H + 3 * i;
-            ptrdiff_t pv = s->prev[i], nx = s->next[i];
-            if (pv >= 0 && nx >= 0) {
-                const double *gp = G + 3 * (size_t)pv, *gn = G + 3 * (size_t)nx;
-                for (int k = 0; k < 3; k++)
-                    h[k] = (gp[k] + 2.0 * g[k] + gn[k]) / 4.0;
-            } else if (pv >= 0 || nx >= 0) {
-                const double *gb = G + 3 * (size_t)(pv >= 0 ? pv : nx);
-                for (int k = 0; k < 3; k++)
-                    h[k] = (3.0 * g[k] + gb[k]) / 4.0;
-            } else {
-                memcpy(h, g, 3 * sizeof *h);
-            }
-        }
-        double *t = G;
-        G = H;
-        H = t;
-    }
-    double force2 = 0.0, pred = 0.0, maxm = 0.0;
-    for (size_t i = 0; i < nv; i++) {
-        double f[3], d[3];
-        memcpy(f, F + 3 * i, sizeof f);
-        project_motion(s, i, f);
-        force2 += v3_dot(f, f);
-        v3_scale(d, prm->h, G + 3 * i);
-        project_motion(s, i, d);
-        double m = v3_norm(d);
-        if (m > prm->max_move) {
-            v3_scale(d, prm->max_move / m, d);
-            m = prm->max_move;
-        }
-        if (m > maxm)
-            maxm = m;
-        pred += v3_dot(F + 3 * i, d);
-        v3_add(s->x + 3 * i, s->x + 3 * i, d);
-        snap(s, i);
-    }
-    if (out) {
-        out->force2 = force2;
-        out->predicted = pred;
-        out->max_move = maxm;
-    }
-    return TR_OK;
-}
-
 /* ---- coupled constraint correction ---- */
 
 static double chord_min(double e, double r) { return 2.0 * e / sqrt(1.0 + e * e / (4.0 * r * r)); }
@@ -631,6 +563,38 @@ static double dot_rows(const double *a, const double *b, size_t n)
     return s;
 }
 
+/* Solves A y = b (rows, s->b) by CG from y = 0 as backend.h specifies;
+ * returns the iterations taken. */
+static int cg_solve(ref_state *s, const tr_correct_params *prm)
+{
+    size_t nr = 2 * s->nv + s->np;
+    for (size_t r = 0; r < nr; r++) {
+        s->y[r] = 0.0;
+        s->r[r] = s->b[r];
+        s->p[r] = s->b[r];
+    }
+    double rr = dot_rows(s->r, s->r, nr), rr0 = rr;
+    int k;
+    for (k = 0; k < prm->max_cg; k++) {
+        if (rr <= prm->cg_rtol * prm->cg_rtol * rr0)
+            break;
+        apply_JT(s, prm, s->p);
+        apply_J(s, prm, s->p, s->q);
+        double pq = dot_rows(s->p, s->q, nr);
+        double alpha = rr / pq;
+        for (size_t r = 0; r < nr; r++) {
+            s->y[r] += alpha * s->p[r];
+            s->r[r] -= alpha * s->q[r];
+        }
+        double rr1 = dot_rows(s->r, s->r, nr);
+        double beta = rr1 / rr;
+        for (size_t r = 0; r < nr; r++)
+            s->p[r] = s->r[r] + beta * s->p[r];
+        rr = rr1;
+    }
+    return k;
+}
+
 static int ref_correct(void *sp, const tr_correct_params *prm, tr_correct_stats *out, tr_error *err)
 {
     ref_state *s = sp;
@@ -651,30 +615,9 @@ static int ref_correct(void *sp, const tr_correct_params *prm, tr_correct_stats 
             /* inequality rows inside the active band are held, not pulled */
             s->b[r] = !s->ract[r] ? 0.0 : (r < nv ? -s->rC[r] : -fmin(s->rC[r], 0.0));
             nact += s->ract[r];
-            s->y[r] = 0.0;
-            s->r[r] = s->b[r];
-            s->p[r] = s->b[r];
         }
         st.active_rows = nact;
-        double rr = dot_rows(s->r, s->r, nr), rr0 = rr;
-        for (int k = 0; k < prm->max_cg; k++) {
-            if (rr <= prm->cg_rtol * prm->cg_rtol * rr0)
-                break;
-            apply_JT(s, prm, s->p);
-            apply_J(s, prm, s->p, s->q);
-            double pq = dot_rows(s->p, s->q, nr);
-            double alpha = rr / pq;
-            for (size_t r = 0; r < nr; r++) {
-                s->y[r] += alpha * s->p[r];
-                s->r[r] -= alpha * s->q[r];
-            }
-            double rr1 = dot_rows(s->r, s->r, nr);
-            double beta = rr1 / rr;
-            for (size_t r = 0; r < nr; r++)
-                s->p[r] = s->r[r] + beta * s->p[r];
-            rr = rr1;
-            st.cg_iters++;
-        }
+        st.cg_iters += cg_solve(s, prm);
         apply_JT(s, prm, s->y);
         double maxdx = 0.0;
         for (size_t i = 0; i < nv; i++) {
@@ -696,6 +639,121 @@ static int ref_correct(void *sp, const tr_correct_params *prm, tr_correct_stats 
     st.viol_after = eval_rows(s, prm);
     if (out)
         *out = st;
+    return TR_OK;
+}
+
+/* Tangent projection of the (smoothed) force G: rows in the active band
+ * (edges always) evaluated at x; solve A y = J (P G); v = P G - M^-1 J^T y;
+ * inequality rows whose multiplier pulls (y_r > 0: the force would separate
+ * them) are released and the solve repeated, passes times in all. G <- v,
+ * s->debar <- the ebar velocity. */
+static void project_tangent(ref_state *s, const tr_correct_params *prm, double *G)
+{
+    size_t nv = s->nv, nr = 2 * nv + s->np;
+    eval_rows(s, prm);
+    for (size_t i = 0; i < nv; i++) {
+        project_motion(s, i, G + 3 * i);
+    }
+    for (int pass = 0; pass < prm->max_newton; pass++) {
+        memcpy(s->dx, G, 3 * nv * sizeof *G);
+        for (int k = 0; k < s->ncomp; k++)
+            s->debar[k] = 0.0;
+        for (size_t r = 0; r < nr; r++)
+            s->y[r] = 0.0;
+        apply_J(s, prm, s->y, s->b);
+        cg_solve(s, prm);
+        if (pass + 1 < prm->max_newton) {
+            int changed = 0;
+            for (size_t r = nv; r < nr; r++)
+                if (s->ract[r] && s->y[r] > 0.0) {
+                    s->ract[r] = 0;
+                    changed = 1;
+                }
+            if (changed)
+                continue;
+        }
+        break;
+    }
+    apply_JT(s, prm, s->y);
+    for (size_t i = 0; i < 3 * nv; i++)
+        G[i] -= s->dx[i];
+    for (int k = 0; k < s->ncomp; k++)
+        s->debar[k] = -s->debar[k];
+}
+
+static int ref_tension_step(void *sp, const tr_tension_params *prm, tr_tension_stats *out,
+                            tr_error *err)
+{
+    ref_state *s = sp;
+    size_t nv = s->nv;
+    double *F = s->F, *G = s->G, *H = s->H;
+    for (size_t i = 0; i < nv; i++) {
+        double f[3] = {0, 0, 0}, u[3];
+        if (s->next[i] >= 0) {
+            edge_unit(s, i, u);
+            v3_add(f, f, u);
+        }
+        if (s->prev[i] >= 0) {
+            edge_unit(s, (size_t)s->prev[i], u);
+            v3_sub(f, f, u);
+        }
+        memcpy(F + 3 * i, f, sizeof f);
+    }
+    memcpy(G, F, 3 * nv * sizeof *F);
+    for (int pass = 0; pass < prm->smooth_passes; pass++) {
+        for (size_t i = 0; i < nv; i++) {
+            const double *g = G + 3 * i;
+            double *h = H + 3 * i;
+            ptrdiff_t pv = s->prev[i], nx = s->next[i];
+            if (pv >= 0 && nx >= 0) {
+                const double *gp = G + 3 * (size_t)pv, *gn = G + 3 * (size_t)nx;
+                for (int k = 0; k < 3; k++)
+                    h[k] = (gp[k] + 2.0 * g[k] + gn[k]) / 4.0;
+            } else if (pv >= 0 || nx >= 0) {
+                const double *gb = G + 3 * (size_t)(pv >= 0 ? pv : nx);
+                for (int k = 0; k < 3; k++)
+                    h[k] = (3.0 * g[k] + gb[k]) / 4.0;
+            } else {
+                memcpy(h, g, 3 * sizeof *h);
+            }
+        }
+        double *t = G;
+        G = H;
+        H = t;
+    }
+    if (prm->project) {
+        int rc = ensure_rows(s, err);
+        if (rc)
+            return rc;
+        project_tangent(s, prm->project, G);
+    }
+    double force2 = 0.0, pred = 0.0, maxm = 0.0;
+    for (size_t i = 0; i < nv; i++) {
+        double f[3], d[3];
+        memcpy(f, F + 3 * i, sizeof f);
+        project_motion(s, i, f);
+        force2 += v3_dot(f, f);
+        v3_scale(d, prm->h, G + 3 * i);
+        project_motion(s, i, d);
+        double m = v3_norm(d);
+        if (m > prm->max_move) {
+            v3_scale(d, prm->max_move / m, d);
+            m = prm->max_move;
+        }
+        if (m > maxm)
+            maxm = m;
+        pred += v3_dot(F + 3 * i, d);
+        v3_add(s->x + 3 * i, s->x + 3 * i, d);
+        snap(s, i);
+    }
+    if (prm->project)
+        for (int k = 0; k < s->ncomp; k++)
+            s->ebar[k] += prm->h * s->debar[k];
+    if (out) {
+        out->force2 = force2;
+        out->predicted = pred;
+        out->max_move = maxm;
+    }
     return TR_OK;
 }
 

@@ -1,0 +1,677 @@
+#include "engine.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "curve_io.h"
+#include "resample_smooth.h"
+
+#ifndef M_PI
+#define M_PI 3.14159265358979323846
+#endif
+
+struct tr_engine {
+    char device[128];
+    tr_engine_params prm;
+    tr_backend be;
+    tr_curve curve; /* topology, constraints; coordinates as of the last download */
+    int *gap;       /* exclusion gap per component, fixed between rebuilds */
+    double *ebar;   /* scratch, ncomp */
+    int contacts_valid;
+    double disp_acc; /* max vertex motion summed since the contact list was built */
+    double h;
+    long steps, rejected;
+    double length, residual, min_strut, minrad, edge_dev;
+    int jammed;
+    double elapsed_base; /* seconds before this process (from a checkpoint) */
+    double t0;           /* monotonic start of this process's run */
+    long steps_at_t0;
+};
+
+static double now_s(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+void tr_engine_params_default(tr_engine_params *p)
+{
+    memset(p, 0, sizeof *p);
+    p->skin = 0.3;
+    p->max_move = 0.03;
+    p->guard_move = 0.06;
+    p->smooth_passes = 8;
+    p->h_min = 1e-9;
+    p->h_max = 10.0;
+    p->grow = 1.25;
+    p->shrink = 0.5;
+    p->accept_viol = 1e-9;
+    p->minrad_tol = 1e-6;
+    p->max_edge = 1.0;
+    p->correct.max_newton = 8;
+    p->correct.max_cg = 400;
+    p->correct.cg_rtol = 1e-9;
+    p->correct.viol_tol = 1e-12;
+    p->correct.active_strut = 1e-4;
+    p->correct.active_curv = 1e-4;
+    p->correct.strut_dist = 2.0;
+    p->correct.minrad = 1.0;
+    p->correct.ebar_weight = 1.0;
+    p->correct.reg = 1e-12;
+    p->correct.max_step = 0.03;
+    p->project = 1;
+    p->proj = p->correct;
+    p->proj.max_newton = 3;
+    p->proj.cg_rtol = 1e-4;
+    p->proj.max_cg = 200;
+}
+
+const char *tr_stop_reason_name(tr_stop_reason r)
+{
+    switch (r) {
+    case TR_STOP_RESIDUAL:
+        return "residual";
+    case TR_STOP_JAMMED:
+        return "jammed";
+    case TR_STOP_TARGET:
+        return "target";
+    case TR_STOP_STEPS:
+        return "steps";
+    case TR_STOP_TIME:
+        return "time-limit";
+    case TR_STOP_SIGNAL:
+        return "signal";
+    default:
+        return "none";
+    }
+}
+
+static int measure(tr_engine *e, tr_measure *m, tr_error *err)
+{
+    int rc = e->be.ops->measure(e->be.state, m, NULL, e->ebar, err);
+    if (rc)
+        return rc;
+    return TR_OK;
+}
+
+static int rebuild_contacts(tr_engine *e, int recompute_gap, tr_error *err)
+{
+    if (recompute_gap) {
+        tr_measure m;
+        int rc = measure(e, &m, err);
+        if (rc)
+            return rc;
+        for (int k = 0; k < e->curve.ncomp; k++) {
+            double g = ceil(M_PI / e->ebar[k]);
+            e->gap[k] = g < 2.0 ? 2 : (g > 1e9 ? 1000000000 : (int)g);
+        }
+    }
+    tr_contact_params cp = {.cutoff = 2.0 + e->prm.skin, .exclude_gap = e->gap};
+    tr_contact_stats cs;
+    int rc = e->be.ops->find_contacts(e->be.state, &cp, &cs, err);
+    if (rc)
+        return rc;
+    e->contacts_valid = 1;
+    e->disp_acc = 0.0;
+    return TR_OK;
+}
+
+static void fill_state(tr_engine *e, const tr_measure *m)
+{
+    e->length = m->length;
+    e->min_strut = m->min_strut;
+    e->minrad = m->min_minrad;
+    e->edge_dev = m->edge_dev;
+}
+
+/* Brings a fresh backend state onto the constraint set (equal edges,
+ * struts, chords) in damped Newton steps, guarding every one. */
+static int settle(tr_engine *e, const char *what, tr_error *err)
+{
+    const tr_backend_ops *op = e->be.ops;
+    tr_measure m;
+    int rc = rebuild_contacts(e, 1, err);
+    if (rc)
+        return rc;
+    rc = measure(e, &m, err);
+    if (rc)
+        return rc;
+    for (int k = 0; k < e->curve.ncomp; k++)
+        if (!(e->ebar[k] < e->prm.max_edge))
+            return tr_fail(err, TR_EGEOMETRY,
+                           "%s: component %d is too coarse for its thickness: edges of length %.3g, "
+                           "need < %.3g (use more vertices)",
+                           what, k + 1, e->ebar[k], e->prm.max_edge);
+    if (m.min_strut < e->prm.correct.strut_dist * (1.0 - 1e-6))
+        return tr_fail(err, TR_EGEOMETRY,
+                       "%s overlaps itself: two non-neighbouring parts are %.6g apart, closer than the "
+                       "rope diameter 2 (scale it up or use a thicker start)",
+                       what, m.min_strut);
+    if (m.min_minrad < 0.5)
+        return tr_fail(err, TR_EGEOMETRY,
+                       "%s is bent far tighter than the rope allows (MinRad %.4g < 1)", what, m.min_minrad);
+    tr_correct_params cp = e->prm.correct;
+    cp.max_newton = 1;
+    for (int it = 0; it < 400; it++) {
+        if (e->disp_acc + e->prm.guard_move > 0.5 * e->prm.skin && (rc = rebuild_contacts(e, 1, err)))
+            return rc;
+        tr_correct_stats cs;
+        if ((rc = op->save(e->be.state, err)) || (rc = op->correct(e->be.state, &cp, &cs, err)) ||
+            (rc = measure(e, &m, err)))
+            return rc;
+        e->disp_acc += m.max_disp;
+        if (m.min_strut < e->prm.correct.strut_dist - 0.5)
+            return tr_fail(err, TR_ETOPOLOGY, "%s: equalising the edges brought strands to %.4g apart",
+                           what, m.min_strut);
+        if (cs.viol_after <= e->prm.accept_viol) {
+            if ((rc = rebuild_contacts(e, 1, err)) || (rc = measure(e, &m, err)))
+                return rc;
+            fill_state(e, &m);
+            return TR_OK;
+        }
+    }
+    return tr_fail(err, TR_EGEOMETRY,
+                   "%s: could not bring the curve to equal edges, MinRad >= 1 and distances >= 2", what);
+}
+
+static int open_backend(tr_engine *e, const tr_curve *c, tr_error *err)
+{
+    int rc = tr_backend_open(e->device[0] ? e->device : NULL, c, &e->be, err);
+    if (rc)
+        return rc;
+    e->contacts_valid = 0;
+    return TR_OK;
+}
+
+static int alloc_comp_arrays(tr_engine *e, tr_error *err)
+{
+    free(e->gap);
+    free(e->ebar);
+    e->gap = calloc((size_t)e->curve.ncomp, sizeof *e->gap);
+    e->ebar = calloc((size_t)e->curve.ncomp, sizeof *e->ebar);
+    if (!e->gap || !e->ebar)
+        return tr_fail(err, TR_ENOMEM, "out of memory");
+    return TR_OK;
+}
+
+static tr_engine *engine_new(const char *device, const tr_engine_params *p)
+{
+    tr_engine *e = calloc(1, sizeof *e);
+    if (!e)
+        return NULL;
+    if (device)
+        snprintf(e->device, sizeof e->device, "%s", device);
+    if (p)
+        e->prm = *p;
+    else
+        tr_engine_params_default(&e->prm);
+    e->t0 = now_s();
+    return e;
+}
+
+int tr_engine_create(tr_engine **out, const tr_curve *c, const char *device,
+                     const tr_engine_params *p, tr_error *err)
+{
+    *out = NULL;
+    tr_engine *e = engine_new(device, p);
+    if (!e)
+        return tr_fail(err, TR_ENOMEM, "out of memory");
+    int rc = tr_curve_copy(&e->curve, c, err);
+    if (!rc)
+        rc = alloc_comp_arrays(e, err);
+    if (!rc)
+        rc = open_backend(e, c, err);
+    if (!rc)
+        rc = settle(e, "the start curve", err);
+    if (rc) {
+        tr_engine_destroy(e);
+        return rc;
+    }
+    e->h = e->ebar[0];
+    *out = e;
+    return TR_OK;
+}
+
+void tr_engine_destroy(tr_engine *e)
+{
+    if (!e)
+        return;
+    tr_backend_close(&e->be);
+    tr_curve_free(&e->curve);
+    free(e->gap);
+    free(e->ebar);
+    free(e);
+}
+
+const char *tr_engine_device(const tr_engine *e) { return e->be.description; }
+const char *tr_engine_warning(const tr_engine *e) { return e->be.warning; }
+
+int tr_engine_step(tr_engine *e, int *accepted, tr_error *err)
+{
+    const tr_backend_ops *op = e->be.ops;
+    int rc;
+    *accepted = 0;
+    if (!e->contacts_valid || e->disp_acc + e->prm.guard_move > 0.5 * e->prm.skin)
+        if ((rc = rebuild_contacts(e, 1, err)))
+            return rc;
+    tr_tension_params tp = {.h = e->h, .max_move = e->prm.max_move, .smooth_passes = e->prm.smooth_passes,
+                            .project = e->prm.project ? &e->prm.proj : NULL};
+    tr_tension_stats ts;
+    tr_correct_stats cs;
+    tr_measure m;
+    if ((rc = op->save(e->be.state, err)) || (rc = op->tension_step(e->be.state, &tp, &ts, err)) ||
+        (rc = op->correct(e->be.state, &e->prm.correct, &cs, err)) || (rc = measure(e, &m, err)))
+        return rc;
+    int ok = cs.viol_after <= e->prm.accept_viol && m.length < e->length &&
+             m.max_disp <= e->prm.guard_move &&
+             m.min_strut >= e->prm.correct.strut_dist - 10.0 * e->prm.accept_viol &&
+             m.min_minrad >= e->prm.correct.minrad * (1.0 - e->prm.minrad_tol) && isfinite(m.length);
+    if (getenv("TR_DEBUG"))
+        fprintf(stderr, "h %.3g viol %.3g->%.3g nw %d cg %d act %zu dL %.3g disp %.3g strut %.9f minrad %.9f ok %d\n", e->h,
+                cs.viol_before, cs.viol_after, cs.newton_iters, cs.cg_iters, cs.active_rows, e->length - m.length,
+                m.max_disp, m.min_strut, m.min_minrad, ok);
+    if (!ok) {
+        if ((rc = op->restore(e->be.state, err)))
+            return rc;
+        e->rejected++;
+        e->h *= e->prm.shrink;
+        if (e->h < e->prm.h_min) {
+            e->h = e->prm.h_min;
+            e->jammed = 1;
+        }
+        return TR_OK;
+    }
+    double dl = e->length - m.length;
+    e->residual = ts.predicted > 0 ? sqrt(fmin(1.0, fmax(0.0, dl / ts.predicted))) : 0.0;
+    fill_state(e, &m);
+    e->disp_acc += m.max_disp;
+    e->steps++;
+    e->jammed = 0;
+    e->h = fmin(e->h * e->prm.grow, e->prm.h_max);
+    *accepted = 1;
+    return TR_OK;
+}
+
+void tr_engine_get_progress(const tr_engine *e, tr_engine_progress *p)
+{
+    memset(p, 0, sizeof *p);
+    double t = now_s() - e->t0;
+    p->steps = e->steps;
+    p->rejected = e->rejected;
+    p->n = e->curve.nv;
+    p->length = e->length;
+    double th = fmin(1.0, fmin(e->min_strut / 2.0, e->minrad));
+    p->ropelength = e->length / th;
+    p->residual = e->residual;
+    p->min_strut = e->min_strut;
+    p->minrad = e->minrad;
+    p->edge_dev = e->edge_dev;
+    p->h = e->h;
+    p->elapsed = e->elapsed_base + t;
+    p->steps_per_s = t > 0 ? (double)(e->steps - e->steps_at_t0) / t : 0.0;
+}
+
+int tr_engine_get_curve(tr_engine *e, tr_curve *out, tr_error *err)
+{
+    int rc = e->be.ops->download(e->be.state, e->curve.x, NULL, err);
+    if (rc)
+        return rc;
+    return tr_curve_copy(out, &e->curve, err);
+}
+
+int tr_engine_refine(tr_engine *e, size_t n, tr_error *err)
+{
+    int rc = e->be.ops->download(e->be.state, e->curve.x, NULL, err);
+    if (rc)
+        return rc;
+    tr_curve fine;
+    rc = tr_resample_smooth(&e->curve, n, 0.5, 0.5, &fine, err);
+    if (rc)
+        return rc;
+    tr_backend_close(&e->be);
+    tr_curve_free(&e->curve);
+    e->curve = fine;
+    if ((rc = alloc_comp_arrays(e, err)) || (rc = open_backend(e, &e->curve, err)))
+        return rc;
+    rc = settle(e, "the refined curve", err);
+    if (rc == TR_EGEOMETRY)
+        return tr_fail_wrap(err, TR_ETOPOLOGY, "refining to %zu vertices", n);
+    if (rc)
+        return rc;
+    e->h = e->ebar[0];
+    e->jammed = 0;
+    return TR_OK;
+}
+
+/* ---- checkpoints: exact text (hex floats) ---- */
+
+typedef struct sbuf {
+    char *s;
+    size_t n, cap;
+    int oom;
+} sbuf;
+
+static void sb_printf(sbuf *b, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 2, 3)))
+#endif
+    ;
+
+#include <stdarg.h>
+static void sb_printf(sbuf *b, const char *fmt, ...)
+{
+    if (b->oom)
+        return;
+    for (;;) {
+        va_list ap;
+        va_start(ap, fmt);
+        int k = vsnprintf(b->s ? b->s + b->n : NULL, b->s ? b->cap - b->n : 0, fmt, ap);
+        va_end(ap);
+        if (k < 0) {
+            b->oom = 1;
+            return;
+        }
+        if (b->s && b->n + (size_t)k < b->cap) {
+            b->n += (size_t)k;
+            return;
+        }
+        size_t nc = (b->cap + (size_t)k + 1) * 2;
+        char *ns = realloc(b->s, nc);
+        if (!ns) {
+            b->oom = 1;
+            return;
+        }
+        b->s = ns;
+        b->cap = nc;
+    }
+}
+
+int tr_engine_checkpoint_write(tr_engine *e, const char *path, tr_error *err)
+{
+    int rc = e->be.ops->download(e->be.state, e->curve.x, e->ebar, err);
+    if (rc)
+        return rc;
+    tr_engine_progress p;
+    tr_engine_get_progress(e, &p);
+    const tr_curve *c = &e->curve;
+    sbuf b = {0};
+    sb_printf(&b, "tightrope-checkpoint 1\n");
+    sb_printf(&b, "ncomp %d\n", c->ncomp);
+    for (int k = 0; k < c->ncomp; k++)
+        sb_printf(&b, "comp %zu %d %a %d\n", tr_comp_nv(c, k), c->closed[k], e->ebar[k], e->gap[k]);
+    sb_printf(&b, "state %ld %ld %a %a %a %a %a %d\n", e->steps, e->rejected, e->h, e->disp_acc,
+              p.elapsed, e->residual, e->length, e->jammed);
+    sb_printf(&b, "ncst %d\n", c->ncst);
+    for (int q = 0; q < c->ncst; q++) {
+        const tr_constraint *k = &c->cst[q];
+        sb_printf(&b, "cst %d %d %a %a %a %a %a %a %a\n", (int)k->kind, k->id, k->p[0], k->p[1], k->p[2],
+                  k->u[0], k->u[1], k->u[2], k->d);
+    }
+    for (size_t i = 0; i < c->nv; i++)
+        if (c->vcst && c->vcst[i] >= 0)
+            sb_printf(&b, "vcst %zu %d\n", i, c->vcst[i]);
+    sb_printf(&b, "x\n");
+    for (size_t i = 0; i < c->nv; i++)
+        sb_printf(&b, "%a %a %a\n", c->x[3 * i], c->x[3 * i + 1], c->x[3 * i + 2]);
+    sb_printf(&b, "end\n");
+    if (b.oom) {
+        free(b.s);
+        return tr_fail(err, TR_ENOMEM, "out of memory writing a checkpoint");
+    }
+    rc = tr_write_file_atomic(path, b.s, b.n, err);
+    free(b.s);
+    return rc;
+}
+
+static char *read_all(const char *path, tr_error *err)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f) {
+        tr_fail(err, TR_EIO, "%s: cannot open checkpoint", path);
+        return NULL;
+    }
+    size_t cap = 1 << 16, n = 0;
+    char *s = malloc(cap);
+    while (s) {
+        size_t k = fread(s + n, 1, cap - n - 1, f);
+        n += k;
+        if (n + 1 < cap)
+            break;
+        cap *= 2;
+        char *ns = realloc(s, cap);
+        if (!ns) {
+            free(s);
+            s = NULL;
+        } else {
+            s = ns;
+        }
+    }
+    fclose(f);
+    if (!s) {
+        tr_fail(err, TR_ENOMEM, "%s: out of memory reading checkpoint", path);
+        return NULL;
+    }
+    s[n] = 0;
+    return s;
+}
+
+int tr_engine_resume(tr_engine **out, const char *path, const char *device,
+                     const tr_engine_params *p, tr_error *err)
+{
+    *out = NULL;
+    char *text = read_all(path, err);
+    if (!text)
+        return TR_EIO;
+    tr_engine *e = engine_new(device, p);
+    size_t *nv = NULL;
+    unsigned char *closed = NULL;
+    double *ebar = NULL;
+    int *gap = NULL;
+    int rc = TR_OK, line = 1, ncomp = 0;
+    char *save = NULL;
+    char *ln = strtok_r(text, "\n", &save);
+#define BAD(what)                                                                                  \
+    do {                                                                                           \
+        rc = tr_fail(err, TR_EPARSE, "%s:%d: %s", path, line, what);                               \
+        goto fail;                                                                                 \
+    } while (0)
+#define NEXT()                                                                                     \
+    do {                                                                                           \
+        ln = strtok_r(NULL, "\n", &save);                                                          \
+        line++;                                                                                    \
+        if (!ln)                                                                                   \
+            BAD("checkpoint ends early");                                                          \
+    } while (0)
+    if (!e) {
+        rc = tr_fail(err, TR_ENOMEM, "out of memory");
+        goto fail;
+    }
+    if (!ln || strcmp(ln, "tightrope-checkpoint 1") != 0)
+        BAD("not a tightrope checkpoint (expected 'tightrope-checkpoint 1')");
+    NEXT();
+    if (sscanf(ln, "ncomp %d", &ncomp) != 1 || ncomp <= 0 || ncomp > 1000000)
+        BAD("expected 'ncomp K'");
+    nv = calloc((size_t)ncomp, sizeof *nv);
+    closed = calloc((size_t)ncomp, 1);
+    ebar = calloc((size_t)ncomp, sizeof *ebar);
+    gap = calloc((size_t)ncomp, sizeof *gap);
+    if (!nv || !closed || !ebar || !gap) {
+        rc = tr_fail(err, TR_ENOMEM, "out of memory");
+        goto fail;
+    }
+    for (int k = 0; k < ncomp; k++) {
+        NEXT();
+        int cl;
+        char eb[64];
+        if (sscanf(ln, "comp %zu %d %63s %d", &nv[k], &cl, eb, &gap[k]) != 4 || nv[k] < 2)
+            BAD("expected 'comp NV CLOSED EBAR GAP'");
+        closed[k] = (unsigned char)(cl != 0);
+        ebar[k] = strtod(eb, NULL);
+    }
+    NEXT();
+    {
+        char h[64], da[64], el[64], rs[64], le[64];
+        if (sscanf(ln, "state %ld %ld %63s %63s %63s %63s %63s %d", &e->steps, &e->rejected, h, da, el, rs,
+                   le, &e->jammed) != 8)
+            BAD("expected the 'state' line");
+        e->h = strtod(h, NULL);
+        e->disp_acc = strtod(da, NULL);
+        e->elapsed_base = strtod(el, NULL);
+        e->residual = strtod(rs, NULL);
+        e->length = strtod(le, NULL);
+    }
+    if ((rc = tr_curve_alloc(&e->curve, ncomp, nv, closed, err)))
+        goto fail;
+    NEXT();
+    int ncst;
+    if (sscanf(ln, "ncst %d", &ncst) != 1 || ncst < 0)
+        BAD("expected 'ncst C'");
+    for (int q = 0; q < ncst; q++) {
+        NEXT();
+        tr_constraint k;
+        int kind;
+        char f[7][64];
+        if (sscanf(ln, "cst %d %d %63s %63s %63s %63s %63s %63s %63s", &kind, &k.id, f[0], f[1], f[2], f[3],
+                   f[4], f[5], f[6]) != 9)
+            BAD("expected a 'cst' line");
+        k.kind = (tr_cst_kind)kind;
+        for (int a = 0; a < 3; a++) {
+            k.p[a] = strtod(f[a], NULL);
+            k.u[a] = strtod(f[3 + a], NULL);
+        }
+        k.d = strtod(f[6], NULL);
+        if ((rc = tr_curve_add_constraint(&e->curve, &k, err)) < 0)
+            goto fail;
+        rc = TR_OK;
+    }
+    NEXT();
+    while (!strncmp(ln, "vcst ", 5)) {
+        size_t i;
+        int q;
+        if (sscanf(ln, "vcst %zu %d", &i, &q) != 2 || i >= e->curve.nv || q < 0 || q >= ncst)
+            BAD("bad 'vcst' line");
+        e->curve.vcst[i] = q;
+        NEXT();
+    }
+    if (strcmp(ln, "x") != 0)
+        BAD("expected 'x'");
+    for (size_t i = 0; i < e->curve.nv; i++) {
+        NEXT();
+        char *q = ln;
+        for (int a = 0; a < 3; a++) {
+            char *endp;
+            e->curve.x[3 * i + a] = strtod(q, &endp);
+            if (endp == q)
+                BAD("expected three coordinates");
+            q = endp;
+        }
+    }
+    NEXT();
+    if (strcmp(ln, "end") != 0)
+        BAD("expected 'end' (truncated checkpoint?)");
+#undef BAD
+#undef NEXT
+    if ((rc = alloc_comp_arrays(e, err)) || (rc = open_backend(e, &e->curve, err)))
+        goto fail;
+    memcpy(e->gap, gap, (size_t)ncomp * sizeof *gap);
+    if ((rc = e->be.ops->upload(e->be.state, e->curve.x, ebar, err)))
+        goto fail;
+    /* the list is rebuilt with the saved exclusion gaps: pairs it adds beyond
+     * the uninterrupted run's list are inactive and contribute exact zeros */
+    {
+        double acc = e->disp_acc;
+        if ((rc = rebuild_contacts(e, 0, err)))
+            goto fail;
+        e->disp_acc = acc;
+        tr_measure m;
+        if ((rc = measure(e, &m, err)))
+            goto fail;
+        double len = e->length;
+        fill_state(e, &m);
+        e->length = len;
+    }
+    e->steps_at_t0 = e->steps;
+    free(text);
+    free(nv);
+    free(closed);
+    free(ebar);
+    free(gap);
+    *out = e;
+    return TR_OK;
+fail:
+    free(text);
+    free(nv);
+    free(closed);
+    free(ebar);
+    free(gap);
+    tr_engine_destroy(e);
+    return rc;
+}
+
+/* ---- the run loop with levels, stops, checkpoints, progress ---- */
+
+int tr_engine_run(tr_engine *e, const tr_engine_limits *lim, tr_stop_reason *why, tr_error *err)
+{
+    int rc;
+    double t_last_ckpt = now_s(), t_last_prog = 0.0;
+    double level_t0 = now_s();
+    double time_left_at_level = lim->time_limit > 0 ? lim->time_limit - (e->elapsed_base + now_s() - e->t0) : 0;
+    *why = TR_STOP_NONE;
+    for (;;) {
+        tr_engine_progress p;
+        tr_engine_get_progress(e, &p);
+        int final_level = lim->refine_to == 0 || e->curve.nv / (size_t)e->curve.ncomp >= lim->refine_to;
+        tr_stop_reason stop = TR_STOP_NONE;
+        int level_done = 0;
+        if (lim->stop && *lim->stop)
+            stop = TR_STOP_SIGNAL;
+        else if (lim->time_limit > 0 && p.elapsed >= lim->time_limit)
+            stop = TR_STOP_TIME;
+        else if (lim->max_steps > 0 && e->steps >= lim->max_steps)
+            stop = TR_STOP_STEPS;
+        else if (final_level && lim->target > 0 && p.ropelength <= lim->target)
+            stop = TR_STOP_TARGET;
+        else if (final_level && e->steps > 0 && lim->residual > 0 && e->residual < lim->residual)
+            stop = TR_STOP_RESIDUAL;
+        else if (final_level && e->jammed)
+            stop = TR_STOP_JAMMED;
+        else if (!final_level) {
+            double coarse_res = lim->coarse_residual > 0 ? lim->coarse_residual : 1e-3;
+            if (e->jammed || (e->steps > 0 && e->residual < coarse_res))
+                level_done = 1;
+            if (lim->time_limit > 0 && now_s() - level_t0 > 0.3 * time_left_at_level)
+                level_done = 1;
+        }
+        if (lim->progress && (stop != TR_STOP_NONE || now_s() - t_last_prog >= lim->progress_every)) {
+            lim->progress(&p, lim->user);
+            t_last_prog = now_s();
+        }
+        if (stop != TR_STOP_NONE) {
+            *why = stop;
+            if (lim->checkpoint_path && (rc = tr_engine_checkpoint_write(e, lim->checkpoint_path, err)))
+                return rc;
+            return TR_OK;
+        }
+        if (level_done) {
+            size_t n = e->curve.nv / (size_t)e->curve.ncomp;
+            size_t next = 2 * n < lim->refine_to ? 2 * n : lim->refine_to;
+            if ((rc = tr_engine_refine(e, next, err)))
+                return rc;
+            level_t0 = now_s();
+            time_left_at_level = lim->time_limit > 0 ? lim->time_limit - (e->elapsed_base + now_s() - e->t0) : 0;
+            continue;
+        }
+        if (lim->checkpoint_path && lim->checkpoint_every > 0 && now_s() - t_last_ckpt >= lim->checkpoint_every) {
+            if ((rc = tr_engine_checkpoint_write(e, lim->checkpoint_path, err)))
+                return rc;
+            t_last_ckpt = now_s();
+        }
+        int acc;
+        if ((rc = tr_engine_step(e, &acc, err)))
+            return rc;
+    }
+}
