@@ -44,6 +44,7 @@ typedef struct ref_state {
     double *rs, *rt;    /* strut closest-point parameters (np) */
     unsigned char *ract;
     double *y, *r, *p, *q, *b;
+    double *cgq, *cdeb; /* curvature rows: second gradient vector, dC/debar */
 } ref_state;
 
 static void ref_destroy(void *sp)
@@ -54,7 +55,7 @@ static void ref_destroy(void *sp)
     void *ptrs[] = {s->start, s->closed, s->comp, s->next, s->prev, s->ne, s->x, s->xs, s->ebar,
                     s->ebar_s, s->pj, s->pu, s->vcst, s->cst, s->pa, s->pb, s->adj_start, s->adj,
                     s->F, s->G, s->H, s->dx, s->debar, s->rC, s->rgrad, s->rs, s->rt, s->ract,
-                    s->y, s->r, s->p, s->q, s->b};
+                    s->y, s->r, s->p, s->q, s->b, s->cgq, s->cdeb};
     for (size_t i = 0; i < sizeof ptrs / sizeof ptrs[0]; i++)
         free(ptrs[i]);
     free(s);
@@ -414,13 +415,6 @@ static void edge_unit(const ref_state *s, size_t a, double *u)
 
 /* ---- coupled constraint correction ---- */
 
-static double chord_min(double e, double r) { return 2.0 * e / sqrt(1.0 + e * e / (4.0 * r * r)); }
-static double chord_min_deriv(double e, double r)
-{
-    double q = 1.0 + e * e / (4.0 * r * r);
-    return 2.0 / (q * sqrt(q));
-}
-
 /* Evaluates every row at the current x; returns the worst violation. */
 static double eval_rows(ref_state *s, const tr_correct_params *prm)
 {
@@ -444,13 +438,29 @@ static double eval_rows(ref_state *s, const tr_correct_params *prm)
         s->ract[r] = 0;
         if (s->prev[i] < 0 || s->next[i] < 0)
             continue;
-        double *w = s->rgrad + 3 * r;
-        v3_sub(w, s->x + 3 * (size_t)s->next[i], s->x + 3 * (size_t)s->prev[i]);
-        double l = v3_norm(w);
-        v3_scale(w, 1.0 / l, w);
-        double C = l - chord_min(s->ebar[s->comp[i]], prm->minrad);
+        double pe[3], qe[3], cr[3];
+        v3_sub(pe, s->x + 3 * i, s->x + 3 * (size_t)s->prev[i]);
+        v3_sub(qe, s->x + 3 * (size_t)s->next[i], s->x + 3 * i);
+        v3_cross(cr, pe, qe);
+        double lp = v3_norm(pe), lq = v3_norm(qe), sn = v3_norm(cr), cs = v3_dot(pe, qe);
+        double theta = atan2(sn, cs);
+        double eb = s->ebar[s->comp[i]], rr = prm->minrad;
+        double tmax = 2.0 * atan(eb / (2.0 * rr));
+        double C = eb * (tmax - theta);
+        double *ga = s->rgrad + 3 * r, *gb = s->cgq + 3 * i;
         s->rC[r] = C;
-        s->ract[r] = C < prm->active_curv;
+        s->cdeb[i] = (tmax - theta) + eb * (1.0 / rr) / (1.0 + eb * eb / (4.0 * rr * rr));
+        if (sn < 1e-12 * lp * lq) {
+            ga[0] = ga[1] = ga[2] = gb[0] = gb[1] = gb[2] = 0.0;
+        } else {
+            double c = cs / (lp * lq), sinv = lp * lq / sn;
+            for (int k = 0; k < 3; k++) {
+                double ph = pe[k] / lp, qh = qe[k] / lq;
+                ga[k] = eb * (c * ph - qh) / lp * sinv;
+                gb[k] = eb * (c * qh - ph) / lq * sinv;
+            }
+            s->ract[r] = C < prm->active_curv;
+        }
         if (-C > viol)
             viol = -C;
     }
@@ -487,9 +497,13 @@ static void apply_JT(ref_state *s, const tr_correct_params *prm, const double *y
         if (nx >= 0)
             v3_axpy(g, -y[i], s->rgrad + 3 * i);
         if (pv >= 0 && s->ract[nv + (size_t)pv])
-            v3_axpy(g, y[nv + (size_t)pv], s->rgrad + 3 * (nv + (size_t)pv));
+            v3_axpy(g, -y[nv + (size_t)pv], s->cgq + 3 * (size_t)pv);
+        if (s->ract[nv + i]) {
+            v3_axpy(g, y[nv + i], s->cgq + 3 * i);
+            v3_axpy(g, -y[nv + i], s->rgrad + 3 * (nv + i));
+        }
         if (nx >= 0 && s->ract[nv + (size_t)nx])
-            v3_axpy(g, -y[nv + (size_t)nx], s->rgrad + 3 * (nv + (size_t)nx));
+            v3_axpy(g, y[nv + (size_t)nx], s->rgrad + 3 * (nv + (size_t)nx));
         for (size_t m = s->adj_start[i]; m < s->adj_start[i + 1]; m++) {
             size_t p = s->adj[m] / 4, slot = s->adj[m] % 4, r = 2 * nv + p;
             if (!s->ract[r])
@@ -502,13 +516,12 @@ static void apply_JT(ref_state *s, const tr_correct_params *prm, const double *y
     }
     for (int k = 0; k < s->ncomp; k++) {
         double sum = 0.0;
-        double cp = chord_min_deriv(s->ebar[k], prm->minrad);
         for (size_t a = s->start[k]; a < s->start[k + 1]; a++)
             if (s->ract[a])
                 sum += -y[a];
         for (size_t i = s->start[k]; i < s->start[k + 1]; i++)
             if (s->ract[nv + i])
-                sum += -cp * y[nv + i];
+                sum += s->cdeb[i] * y[nv + i];
         s->debar[k] = s->ne[k] ? sum / (prm->ebar_weight * (double)s->ne[k]) : 0.0;
     }
 }
@@ -533,11 +546,12 @@ static void apply_J(ref_state *s, const tr_correct_params *prm, const double *y,
             out[r] = 0.0;
             continue;
         }
-        double d[3];
-        v3_sub(d, dx + 3 * (size_t)s->next[i], dx + 3 * (size_t)s->prev[i]);
-        int k = s->comp[i];
-        out[r] = v3_dot(s->rgrad + 3 * r, d) - chord_min_deriv(s->ebar[k], prm->minrad) * s->debar[k] +
-                 prm->reg * y[r];
+        const double *ga = s->rgrad + 3 * r, *gb = s->cgq + 3 * i;
+        const double *dp = dx + 3 * (size_t)s->prev[i], *di = dx + 3 * i, *dn = dx + 3 * (size_t)s->next[i];
+        double v = 0.0;
+        for (int k = 0; k < 3; k++)
+            v += ga[k] * dp[k] + (gb[k] - ga[k]) * di[k] - gb[k] * dn[k];
+        out[r] = v + s->cdeb[i] * s->debar[s->comp[i]] + prm->reg * y[r];
     }
     for (size_t p = 0; p < s->np; p++) {
         size_t r = 2 * nv + p;
@@ -862,9 +876,11 @@ int tr_backend_reference_open(const char *spec, const tr_curve *c, tr_backend *o
     s->G = malloc(3 * nv * sizeof *s->G);
     s->H = malloc(3 * nv * sizeof *s->H);
     s->dx = malloc(3 * nv * sizeof *s->dx);
+    s->cgq = malloc(3 * nv * sizeof *s->cgq);
+    s->cdeb = malloc(nv * sizeof *s->cdeb);
     if (!s->start || !s->closed || !s->ne || !s->comp || !s->next || !s->prev || !s->x || !s->xs ||
         !s->ebar || !s->ebar_s || !s->debar || !s->pj || !s->pu || !s->vcst || !s->cst ||
-        !s->adj_start || !s->F || !s->G || !s->H || !s->dx) {
+        !s->adj_start || !s->F || !s->G || !s->H || !s->dx || !s->cgq || !s->cdeb) {
         ref_destroy(s);
         return tr_fail(err, TR_ENOMEM, "out of memory opening the reference backend (%zu vertices)", nv);
     }

@@ -270,10 +270,6 @@ int tr_engine_step(tr_engine *e, int *accepted, tr_error *err)
              m.max_disp <= e->prm.guard_move &&
              m.min_strut >= e->prm.correct.strut_dist - 10.0 * e->prm.accept_viol &&
              m.min_minrad >= e->prm.correct.minrad * (1.0 - e->prm.minrad_tol) && isfinite(m.length);
-    if (getenv("TR_DEBUG"))
-        fprintf(stderr, "h %.3g viol %.3g->%.3g nw %d cg %d act %zu dL %.3g disp %.3g strut %.9f minrad %.9f ok %d\n", e->h,
-                cs.viol_before, cs.viol_after, cs.newton_iters, cs.cg_iters, cs.active_rows, e->length - m.length,
-                m.max_disp, m.min_strut, m.min_minrad, ok);
     if (!ok) {
         if ((rc = op->restore(e->be.state, err)))
             return rc;
