@@ -50,7 +50,13 @@
  *       C = d - strut_dist
  *       dC/dx[a] = (1-s) n, dC/dx[next a] = s n,
  *       dC/dx[b] = -(1-t) n, dC/dx[next b] = -t n
- *       active iff C < active_strut.
+ *       active iff C < active_strut AND the pair is a local minimum of
+ *       the distance along both strands: d <= d(a', b) for a' = prev(a),
+ *       next(a) and d <= d(a, b') for b' = prev(b), next(b), over those
+ *       neighbour edges that exist and share no vertex with the other edge
+ *       (distances by tr_segment_distance, same argument order: the a-side
+ *       edge first). Neighbouring pairs of one contact carry nearly the same
+ *       row; keeping them all makes the system singular in all but name.
  *   Inactive rows have multiplier 0 and contribute exactly nothing.
  *
  * CANDIDATE CONTACTS (find_contacts)
@@ -89,7 +95,8 @@
  *      (per vertex). x_i += dx_i, then snap constrained vertices.
  *   With projection, ebar_k += h vbar_k after the motion.
  *   Stats: force2 = sum_i |P_i F_i|^2, predicted = sum_i F_i . dx_i (the
- *   first-order length decrease), max_move = max_i |dx_i|.
+ *   first-order length decrease), max_move = max_i |dx_i|, smooth2 =
+ *   sum_i |P_i G_i|^2 before 2b, free2 = sum_i |G_i|^2 after 2b.
  *
  * correct(params)  -- "distance-constraint projection" + "curvature moments",
  *   solved coupled (Gauss-Newton on the active set, CG on J M^-1 J^T):
@@ -179,6 +186,9 @@ typedef struct tr_tension_stats {
     double force2;    /* sum |P F|^2 */
     double predicted; /* sum F . dx: first-order length decrease */
     double max_move;  /* max |dx| */
+    double smooth2;   /* sum |P G|^2 after smoothing, before projection */
+    double free2;     /* sum |G|^2 after projection (= smooth2 without): the
+                         resolved force; sqrt(free2/smooth2) is the KKT residual */
 } tr_tension_stats;
 
 typedef struct tr_correct_params {

@@ -415,6 +415,37 @@ static void edge_unit(const ref_state *s, size_t a, double *u)
 
 /* ---- coupled constraint correction ---- */
 
+static double edge_pair_distance(const ref_state *s, size_t a, size_t b)
+{
+    double ss, tt;
+    return tr_segment_distance(s->x + 3 * a, s->x + 3 * (size_t)s->next[a], s->x + 3 * b,
+                               s->x + 3 * (size_t)s->next[b], &ss, &tt);
+}
+
+/* A strut row is kept only where the pair is a local minimum of the
+ * distance along both strands (d <= the pairs with a or b moved one edge):
+ * neighbouring pairs of a contact carry nearly the same row, and solving
+ * with all of them is singular in all but name. */
+static int strut_local_min(const ref_state *s, size_t a, size_t b, double d)
+{
+    size_t e[2] = {a, b};
+    for (int side = 0; side < 2; side++) {
+        size_t me = e[side], other = e[1 - side];
+        ptrdiff_t nb[2] = {s->prev[me], s->next[me]};
+        for (int k = 0; k < 2; k++) {
+            if (nb[k] < 0 || s->next[nb[k]] < 0 || (size_t)nb[k] == other)
+                continue;
+            size_t x = (size_t)nb[k];
+            if ((size_t)s->next[x] == other || (size_t)s->next[other] == x)
+                continue;
+            double dn = side == 0 ? edge_pair_distance(s, x, other) : edge_pair_distance(s, other, x);
+            if (dn < d)
+                return 0;
+        }
+    }
+    return 1;
+}
+
 /* Evaluates every row at the current x; returns the worst violation. */
 static double eval_rows(ref_state *s, const tr_correct_params *prm)
 {
@@ -478,7 +509,7 @@ static double eval_rows(ref_state *s, const tr_correct_params *prm)
         s->rt[p] = tt;
         double C = d - prm->strut_dist;
         s->rC[r] = C;
-        s->ract[r] = C < prm->active_strut;
+        s->ract[r] = C < prm->active_strut && strut_local_min(s, a, b, d);
         if (-C > viol)
             viol = -C;
     }
@@ -735,11 +766,21 @@ static int ref_tension_step(void *sp, const tr_tension_params *prm, tr_tension_s
         G = H;
         H = t;
     }
+    double smooth2 = 0.0, free2 = 0.0;
+    for (size_t i = 0; i < nv; i++) {
+        double g[3] = {G[3 * i], G[3 * i + 1], G[3 * i + 2]};
+        project_motion(s, i, g);
+        smooth2 += v3_dot(g, g);
+    }
     if (prm->project) {
         int rc = ensure_rows(s, err);
         if (rc)
             return rc;
         project_tangent(s, prm->project, G);
+        for (size_t i = 0; i < 3 * nv; i++)
+            free2 += G[i] * G[i];
+    } else {
+        free2 = smooth2;
     }
     double force2 = 0.0, pred = 0.0, maxm = 0.0;
     for (size_t i = 0; i < nv; i++) {
@@ -767,6 +808,8 @@ static int ref_tension_step(void *sp, const tr_tension_params *prm, tr_tension_s
         out->force2 = force2;
         out->predicted = pred;
         out->max_move = maxm;
+        out->smooth2 = smooth2;
+        out->free2 = free2;
     }
     return TR_OK;
 }

@@ -7,7 +7,7 @@
 #include <time.h>
 
 #include "curve_io.h"
-#include "resample_smooth.h"
+#include "refine_lowpass.h"
 
 #ifndef M_PI
 #define M_PI 3.14159265358979323846
@@ -130,7 +130,7 @@ static void fill_state(tr_engine *e, const tr_measure *m)
 
 /* Brings a fresh backend state onto the constraint set (equal edges,
  * struts, chords) in damped Newton steps, guarding every one. */
-static int settle(tr_engine *e, const char *what, tr_error *err)
+static int settle(tr_engine *e, const char *what, double overlap_ok, tr_error *err)
 {
     const tr_backend_ops *op = e->be.ops;
     tr_measure m;
@@ -146,7 +146,7 @@ static int settle(tr_engine *e, const char *what, tr_error *err)
                            "%s: component %d is too coarse for its thickness: edges of length %.3g, "
                            "need < %.3g (use more vertices)",
                            what, k + 1, e->ebar[k], e->prm.max_edge);
-    if (m.min_strut < e->prm.correct.strut_dist * (1.0 - 1e-6))
+    if (m.min_strut < e->prm.correct.strut_dist * (1.0 - 1e-6) - overlap_ok)
         return tr_fail(err, TR_EGEOMETRY,
                        "%s overlaps itself: two non-neighbouring parts are %.6g apart, closer than the "
                        "rope diameter 2 (scale it up or use a thicker start)",
@@ -226,7 +226,7 @@ int tr_engine_create(tr_engine **out, const tr_curve *c, const char *device,
     if (!rc)
         rc = open_backend(e, c, err);
     if (!rc)
-        rc = settle(e, "the start curve", err);
+        rc = settle(e, "the start curve", 0.0, err);
     if (rc) {
         tr_engine_destroy(e);
         return rc;
@@ -282,7 +282,8 @@ int tr_engine_step(tr_engine *e, int *accepted, tr_error *err)
         return TR_OK;
     }
     double dl = e->length - m.length;
-    e->residual = ts.predicted > 0 ? sqrt(fmin(1.0, fmax(0.0, dl / ts.predicted))) : 0.0;
+    (void)dl;
+    e->residual = ts.smooth2 > 0 ? sqrt(ts.free2 / ts.smooth2) : 0.0;
     fill_state(e, &m);
     e->disp_acc += m.max_disp;
     e->steps++;
@@ -325,7 +326,7 @@ int tr_engine_refine(tr_engine *e, size_t n, tr_error *err)
     if (rc)
         return rc;
     tr_curve fine;
-    rc = tr_resample_smooth(&e->curve, n, 0.5, 0.5, &fine, err);
+    rc = tr_refine_lowpass(&e->curve, n, 0.5, 0.5, &fine, err);
     if (rc)
         return rc;
     tr_backend_close(&e->be);
@@ -333,7 +334,9 @@ int tr_engine_refine(tr_engine *e, size_t n, tr_error *err)
     e->curve = fine;
     if ((rc = alloc_comp_arrays(e, err)) || (rc = open_backend(e, &e->curve, err)))
         return rc;
-    rc = settle(e, "the refined curve", err);
+    /* resampling may bring strands slightly closer than 2 (never near
+     * crossing): the correction pushes them back out */
+    rc = settle(e, "the refined curve", 0.25, err);
     if (rc == TR_EGEOMETRY)
         return tr_fail_wrap(err, TR_ETOPOLOGY, "refining to %zu vertices", n);
     if (rc)

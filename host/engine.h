@@ -64,7 +64,7 @@ typedef struct tr_engine_progress {
     size_t n;          /* vertices */
     double length;
     double ropelength; /* length / min(1, min_strut/2, minrad) - an estimate; the oracle certifies */
-    double residual;   /* sqrt(actual / predicted length decrease) of the last accepted step */
+    double residual;   /* |resolved force| / |force| of the last accepted step (KKT residual) */
     double min_strut;
     double minrad;
     double edge_dev;

@@ -1,8 +1,8 @@
 /* Low-pass resampling for refinement: a coarse optimum carries vertex-level
  * curvature noise that plain resampling would hand to the finer level
  * (MinRad far below 1); a Fourier low-pass in arclength removes it. */
-#ifndef TR_RESAMPLE_SMOOTH_H
-#define TR_RESAMPLE_SMOOTH_H
+#ifndef TR_REFINE_LOWPASS_H
+#define TR_REFINE_LOWPASS_H
 
 #include "curve.h"
 
@@ -13,7 +13,7 @@
  * series is evaluated at the n new points. Open components: linear
  * interpolation at equal arclength, end vertices (and their constraints)
  * kept. Constraints on other vertices are dropped. */
-int tr_resample_smooth(const tr_curve *in, size_t n, double cut, double taper_from, tr_curve *out,
+int tr_refine_lowpass(const tr_curve *in, size_t n, double cut, double taper_from, tr_curve *out,
                        tr_error *err);
 
 #endif

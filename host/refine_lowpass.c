@@ -1,4 +1,4 @@
-#include "resample_smooth.h"
+#include "refine_lowpass.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -42,7 +42,7 @@ static int linear_resample(const tr_curve *c, int k, size_t m, double *y)
     return TR_OK;
 }
 
-int tr_resample_smooth(const tr_curve *in, size_t n, double cut, double taper_from, tr_curve *out,
+int tr_refine_lowpass(const tr_curve *in, size_t n, double cut, double taper_from, tr_curve *out,
                        tr_error *err)
 {
     memset(out, 0, sizeof *out);

@@ -1,0 +1,37 @@
+# tightrope tighten: bad options and impossible starts are refused with one
+# line and exit status 2 (nothing written); a short run writes a certified
+# curve; --json prints the summary; a checkpoint can be resumed.
+set(_eng_check ${CMAKE_CURRENT_SOURCE_DIR}/scripts/check_cli.cmake)
+set(_eng_dir ${CMAKE_CURRENT_BINARY_DIR}/cli_tighten)
+set(_tr $<TARGET_FILE:tightrope>)
+
+function(tr_engine_test name expect)
+  cmake_parse_arguments(T "" "DIR;MATCH;OUT" "CMD;ONLY" ${ARGN})
+  add_test(NAME ${name} COMMAND ${CMAKE_COMMAND} "-DCMD=${T_CMD}" -DEXPECT=${expect} "-DDIR=${T_DIR}"
+    "-DONLY=${T_ONLY}" "-DMATCH=${T_MATCH}" "-DOUT=${T_OUT}" -P ${_eng_check})
+  set_tests_properties(${name} PROPERTIES ENVIRONMENT "${TR_TEST_ENV}")
+endfunction()
+
+tr_engine_test(tighten_help 0 CMD ${_tr} tighten --help)
+tr_engine_test(tighten_no_input 2 CMD ${_tr} tighten -o ${_eng_dir}/x.vect)
+tr_engine_test(tighten_no_output 2 CMD ${_tr} tighten ${CMAKE_CURRENT_SOURCE_DIR}/data/engine_overlap.tsv)
+tr_engine_test(tighten_bad_option 2 DIR ${_eng_dir}/badopt ONLY ""
+  CMD ${_tr} tighten ${CMAKE_CURRENT_SOURCE_DIR}/data/engine_overlap.tsv -o ${_eng_dir}/badopt/x.vect --bogus)
+tr_engine_test(tighten_bad_steps 2 DIR ${_eng_dir}/badsteps ONLY ""
+  CMD ${_tr} tighten ${CMAKE_CURRENT_SOURCE_DIR}/data/engine_overlap.tsv -o ${_eng_dir}/badsteps/x.vect --steps many)
+tr_engine_test(tighten_bad_time 2 DIR ${_eng_dir}/badtime ONLY ""
+  CMD ${_tr} tighten ${CMAKE_CURRENT_SOURCE_DIR}/data/engine_overlap.tsv -o ${_eng_dir}/badtime/x.vect --time-limit -3)
+tr_engine_test(tighten_missing_file 2 DIR ${_eng_dir}/missing ONLY ""
+  CMD ${_tr} tighten ${_eng_dir}/missing/none.vect -o ${_eng_dir}/missing/x.vect)
+tr_engine_test(tighten_overlapping_start 2 DIR ${_eng_dir}/overlap ONLY ""
+  CMD ${_tr} tighten ${CMAKE_CURRENT_SOURCE_DIR}/data/engine_overlap.tsv -o ${_eng_dir}/overlap/x.vect)
+tr_engine_test(tighten_too_coarse 2 DIR ${_eng_dir}/coarse ONLY "c.vect"
+  CMD sh -c "'${_tr}' make circle --radius 3 --n 12 -o '${_eng_dir}/coarse/c.vect' && exec '${_tr}' tighten '${_eng_dir}/coarse/c.vect' -o '${_eng_dir}/coarse/x.vect'")
+tr_engine_test(tighten_bad_device 2 DIR ${_eng_dir}/dev ONLY "s.vect"
+  CMD sh -c "'${_tr}' make torus 2 3 --n 72 -o '${_eng_dir}/dev/s.vect' && exec '${_tr}' tighten '${_eng_dir}/dev/s.vect' -o '${_eng_dir}/dev/x.vect' --device no-such-device-xyz")
+tr_engine_test(tighten_trefoil_steps 0 DIR ${_eng_dir}/trefoil ONLY "s.vect;t.vect" OUT ${_eng_dir}/trefoil/t.vect
+  MATCH "^VECT\n# tightened by tightrope[^\n]*\n# command: tighten [^\n]*--steps 20[^\n]*\n# N 72\n# length [0-9.]+\n# MinRad [0-9.]+\n# dcsd [0-9.]+\n# thickness 1[.0-9]*\n# ropelength [0-9.]+\n# residual [^\n]+\n# steps 20\n# stop steps\n"
+  CMD sh -c "'${_tr}' make torus 2 3 --n 72 -o '${_eng_dir}/trefoil/s.vect' && exec '${_tr}' tighten '${_eng_dir}/trefoil/s.vect' -o '${_eng_dir}/trefoil/t.vect' --steps 20 --quiet")
+tr_engine_test(tighten_json_resume 0 DIR ${_eng_dir}/resume ONLY "s.vect;t.vect;u.vect;ck.txt;json.txt" OUT ${_eng_dir}/resume/json.txt
+  MATCH "^{\n  \"output\": [^\n]*\n  \"device\": \"serial reference[^\n]*\n  \"stop\": \"steps\",\n  \"N\": 72,\n  \"steps\": 16,\n"
+  CMD sh -c "'${_tr}' make torus 2 3 --n 72 -o '${_eng_dir}/resume/s.vect' && '${_tr}' tighten '${_eng_dir}/resume/s.vect' -o '${_eng_dir}/resume/t.vect' --steps 8 --checkpoint '${_eng_dir}/resume/ck.txt' --quiet --device reference > /dev/null && exec '${_tr}' tighten --resume '${_eng_dir}/resume/ck.txt' -o '${_eng_dir}/resume/u.vect' --steps 16 --json --device reference > '${_eng_dir}/resume/json.txt'")
