@@ -43,9 +43,10 @@ int tr_analysis_plots(const char *dir, const tr_analysis *a, tr_error *err)
     double xmax = d3 ? L6 : a->L;
     double z0 = 0.0, z1 = fmin(0.6, xmax);
     if (a->have_l12) {
-        double w = a->l2 - a->l1;
-        z0 = fmax(0.0, a->l1 - 0.6 * w);
-        z1 = fmin(xmax, a->l2 + 0.6 * w);
+        /* the plateau, and at least four averaged arcs either side of it */
+        double w = a->l2 - a->l1, pad = fmax(0.6 * w, 4.0 * a->m * a->L / (double)a->n);
+        z0 = fmax(0.0, a->l1 - pad);
+        z1 = fmin(xmax, a->l2 + pad);
     }
     char *s = NULL;
     size_t cap = 16384;
@@ -59,7 +60,8 @@ int tr_analysis_plots(const char *dir, const tr_analysis *a, tr_error *err)
         "set terminal pngcairo size 1100,700 noenhanced font ',11'\n"
         "L = %.15g; XM = %.15g; l1 = %.15g; l2 = %.15g; have12 = %d\n"
         "set grid\n"
-        "set key top right\n"
+        "set key top right opaque\n"
+        "set offsets 0, 0, graph 0.05, graph 0.05\n"
         "sec0(x, s) = (s == 0 ? x : 1/0)\n"
         "if (have12) { set arrow 1 from l1, graph 0 to l1, graph 1 nohead dt 2 lc rgb 'gray40'; "
         "set arrow 2 from l2, graph 0 to l2, graph 1 nohead dt 2 lc rgb 'gray40' }\n"
@@ -68,12 +70,14 @@ int tr_analysis_plots(const char *dir, const tr_analysis *a, tr_error *err)
         "set multiplot layout 2,1 title 'K_c^(%zu): curvature and torsion over [0, %s)'\n"
         "set xrange [0:XM]\n"
         "set ylabel 'curvature kappa'\n"
-        "plot 'curvature.csv' every ::1 using (sec0($2,$4)):5 with lines lw 2 lc rgb '#1f4e9c' title 'kappa (sector I)', "
-        "'' every ::1 using 3:5 with dots lc rgb '#90a0c0' title 'all sectors, reduced', 1 dt 3 lc rgb 'black' notitle\n"
+        "plot 'curvature.csv' every ::1 using 3:5 with points pt 7 ps 0.3 lc rgb '#a0b4d8' title 'all six sectors, folded', "
+        "'' every ::1 using (sec0($2,$4)):5 with lines lw 2 lc rgb '#1f4e9c' title 'kappa (sector I)', 1 dt 3 lc rgb 'black' notitle\n"
         "set xlabel 'arclength l from the origin'\n"
         "set ylabel 'torsion tau'\n"
-        "plot 'torsion.csv' every ::1 using (sec0($2,$4)):6 with lines lw 2 lc rgb '#b03020' title 'tau (sector I)', "
-        "'' every ::1 using 3:6 with dots lc rgb '#d0a090' title 'all sectors, reduced'\n"
+        "set key bottom right opaque\n"
+        "plot 'torsion.csv' every ::1 using 3:6 with points pt 7 ps 0.3 lc rgb '#e0b0a0' title 'all six sectors, folded', "
+        "'' every ::1 using (sec0($2,$4)):6 with lines lw 2 lc rgb '#b03020' title 'tau (sector I)'\n"
+        "set key top right opaque\n"
         "unset multiplot\n"
         /* 2: the plateau region */
         "set output 'plateau_zoom.png'\n"
