@@ -43,8 +43,8 @@ static double nm_get(const neumaier *s) { return s->sum + s->comp; }
  * (long-double denominator < 1e-25) is made relative (sin^2 of the angle
  * < 1e-20) so that tiny edges are not all called parallel, and parallel overlapping edges get an interior
  * closest pair (see below). */
-static double segment_poca(const double *a0, const double *a1, const double *b0, const double *b1,
-                           double *s_out, double *t_out)
+double tr_segment_closest(const double *a0, const double *a1, const double *b0, const double *b1,
+                          double *s_out, double *t_out)
 {
     double d1[3], d2[3], d12[3];
     v3_sub(d1, a1, a0);
@@ -198,7 +198,7 @@ static int strut_candidate(void *ctx, size_t ei, size_t ej, double *cutoff)
     const double *a0 = x + 3 * ns->ea[ei], *a1 = x + 3 * ns->eb[ei], *ap = x + 3 * ns->eprev[ei];
     const double *b0 = x + 3 * ns->ea[ej], *b1 = x + 3 * ns->eb[ej], *bp = x + 3 * ns->eprev[ej];
     double s, t;
-    double dist = segment_poca(a0, a1, b0, b1, &s, &t);
+    double dist = tr_segment_closest(a0, a1, b0, b1, &s, &t);
     if (!(dist <= *cutoff))
         return 0;
     if (!(s < 1 || is_last_edge(ns, ei)) || !(t < 1 || is_last_edge(ns, ej)))

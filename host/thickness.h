@@ -52,4 +52,10 @@ int tr_thickness_measure_component(const tr_curve *c, int k, tr_thickness *out, 
 
 void tr_strut_list_free(tr_strut_list *l);
 
+/* Closest points of segments a0-a1 and b0-b1 (octrope's find_poca, Lumelsky's
+ * method): returns the distance, parameters s on a and t on b in [0,1].
+ * Parallel overlapping segments get the middle of the overlap. */
+double tr_segment_closest(const double *a0, const double *a1, const double *b0, const double *b1,
+                          double *s, double *t);
+
 #endif

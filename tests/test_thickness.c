@@ -168,6 +168,27 @@ static void test_normal_wedge(void)
     tr_curve_free(&c);
 }
 
+static void test_segment_closest(void)
+{
+    double s, t;
+    /* Skew: x-axis segment [0,2] and a z-parallel segment over (1, 1, .),
+     * z in [-1, 3]: closest (1,0,0)-(1,1,0), distance 1, s = 1/2, t = 1/4. */
+    const double a0[3] = {0, 0, 0}, a1[3] = {2, 0, 0}, b0[3] = {1, 1, -1}, b1[3] = {1, 1, 3};
+    CHECK_NEAR(tr_segment_closest(a0, a1, b0, b1, &s, &t), 1.0, 1e-15);
+    CHECK_NEAR(s, 0.5, 1e-15);
+    CHECK_NEAR(t, 0.25, 1e-15);
+    /* Parallel, overlapping in [1, 2] along x, 3 apart: the middle of the
+     * overlap, s = 3/4 on [0,2], t = 1/4 on [1,3]. */
+    const double c0[3] = {1, 3, 0}, c1[3] = {3, 3, 0};
+    CHECK_NEAR(tr_segment_closest(a0, a1, c0, c1, &s, &t), 3.0, 1e-15);
+    CHECK_NEAR(s, 0.75, 1e-15);
+    CHECK_NEAR(t, 0.25, 1e-15);
+    /* Collinear and apart: end to end. */
+    const double d0[3] = {5, 0, 0}, d1[3] = {4, 0, 0};
+    CHECK_NEAR(tr_segment_closest(a0, a1, d0, d1, &s, &t), 2.0, 1e-15);
+    CHECK(s == 1.0 && t == 1.0);
+}
+
 static void test_minrad(void)
 {
     /* Open chain with one interior vertex, turn of 60 degrees, unit edges:
@@ -393,6 +414,7 @@ int main(void)
     test_regular_polygons();
     test_perpendicular_segments();
     test_normal_wedge();
+    test_segment_closest();
     test_minrad();
     test_components();
     test_tree_against_brute();
