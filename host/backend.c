@@ -37,7 +37,7 @@ int tr_backend_open(const char *spec, const tr_curve *c, tr_backend *out, tr_err
             if (rc == TR_OK)
                 return TR_OK;
             if (rc != TR_EUNSUPPORTED || !why[0])
-                snprintf(why, sizeof why, "%s: %s", registry[i].name, e2.msg);
+                snprintf(why, sizeof why, "%.40s: %.400s", registry[i].name, e2.msg);
             memset(out, 0, sizeof *out);
         }
         int rc = tr_backend_reference_open("reference", c, out, err);
