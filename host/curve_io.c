@@ -251,7 +251,7 @@ static int parse_constraint_comment(const item *it, const char *name, cst_def *d
     size_t nw = split_words(it->p, it->n, w, wn, 12);
     if (nw < 2 || !word_is(w[0], wn[0], "constraint"))
         return 0;
-    long id;
+    long id = 0;
     if (token_long(w[1], wn[1], &id))
         return 0; /* "# Constraint violation ..." is prose, not a definition */
     char q[64];
@@ -371,7 +371,7 @@ static int vect_token(vect_state *st, item *out, long *cst, size_t *cstline)
                 return rc;
             continue;
         }
-        long id;
+        long id = 0;
         r = parse_cst_comment(&it, st->lx.name, &id, st->err);
         if (r < 0)
             return r;
