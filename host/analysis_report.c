@@ -363,6 +363,12 @@ int tr_report_summary_json(const tr_analysis *a, const tr_report_ctx *ctx, char 
         free(l);
         sb_printf(&b, "]");
         if (cmp) {
+            sb_printf(&b, ", \"sigma_minus_at_0.189\": %.8g, \"paper_sigma_minus_at_0.189\": 15.674",
+                      tr_contact_fn_eval(&a->sigma_minus, 0.189));
+            sb_printf(&b, ", \"sigma_minus_at_0.3185\": %.8g, \"paper_sigma_minus_at_0.3185\": 16.7467",
+                      tr_contact_fn_eval(&a->sigma_minus, 0.3185));
+            sb_printf(&b, ", \"sigma_plus_at_0.189\": %.8g, \"paper_sigma_plus_at_0.189\": 21.455",
+                      tr_contact_fn_eval(&a->sigma_plus, 0.189));
             sb_printf(&b, ", \"paper_fixed_points\": 18, \"paper_C9_minus\": [");
             for (int i = 0; i < 9; i++)
                 sb_printf(&b, "%s%g", i ? ", " : "", P_c9m[i]);
@@ -431,6 +437,12 @@ int tr_report_text(const tr_analysis *a, const tr_report_ctx *ctx, char **out)
         for (size_t i = 0; i < a->nfixed; i++)
             ns += a->fixed[i].stable;
         sb_printf(&b, "  max |sigma+(sigma-(l)) - l| = %.3g\n", a->sigma_inverse_err);
+        if (cmp) /* paper: sigma-(0.189), sigma-(l2 = 0.3185), and sigma+(0.189) from C9- closing */
+            sb_printf(&b, "  sigma-(0.189) = %.4f (paper 15.674), sigma-(0.3185) = %.4f (paper 16.7467), "
+                          "sigma+(0.189) = %.4f (paper 21.455)\n",
+                      tr_contact_fn_eval(&a->sigma_minus, 0.189),
+                      tr_contact_fn_eval(&a->sigma_minus, 0.3185),
+                      tr_contact_fn_eval(&a->sigma_plus, 0.189));
         sb_printf(&b, "  rotation number of sigma-: %.6f%s\n", a->rotation_number,
                   cmp ? "   (4/9 = 0.444444 for the paper's 9-cycles)" : "");
         sb_printf(&b, "  sigma-^%d(l) - l ranges over [%.4g, %.4g] (mod L)\n", a->power, a->gap_min,
