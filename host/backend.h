@@ -118,16 +118,28 @@
  *        each term only if the row exists and is active.
  *        Row vector order (for dot products and debar sums): edge rows by
  *        a, curvature rows by i, strut rows by list index.
- *     c. Solve A y = b by CG from y = 0, where b_r = -C_r on edge rows and
- *        b_r = -min(C_r, 0) on active strut and curvature rows (rows inside
- *        the active band are held where they are, violated ones pushed to 0;
- *        this keeps the active set from chattering), b_r = 0 on inactive rows:
- *          r = b, p = r, rr = r.r, rr0 = rr
+ *     c. Solve A y = b by preconditioned CG from y = 0, where b_r = -C_r on
+ *        edge rows and b_r = -min(C_r, 0) on active strut and curvature rows
+ *        (rows inside the active band are held where they are, violated ones
+ *        pushed to 0; this keeps the active set from chattering), b_r = 0 on
+ *        inactive rows:
+ *          r = b, z = M^-1 r, p = z, rz = r.z, rr0 = r.r, rr = rr0
  *          repeat up to max_cg times, stopping first if rr <= cg_rtol^2 rr0:
- *            q = A p; alpha = rr / (p.q); y += alpha p; r -= alpha q;
- *            rr' = r.r; p = r + (rr'/rr) p; rr = rr'
+ *            q = A p; alpha = rz / (p.q); y += alpha p; r -= alpha q;
+ *            rr = r.r; z = M^-1 r; rz' = r.z; p = z + (rz'/rz) p; rz = rz'
  *        (a port may run a fixed count with the stop test turning the
  *        remaining iterations into no-ops.)
+ *        Preconditioner M (set up once per solve from the evaluated rows):
+ *          diagonal of every active row: D_r = sum over its vertices v of
+ *          |P_v dC_r/dx_v|^2 + (dC_r/debar)^2 / (ebar_weight ne_k) + reg;
+ *          edge rows of component k form a tridiagonal block (cyclic when
+ *          closed, corner entry between its last and first edge) with
+ *          diagonal D_a and off-diagonal between a and next(a) (when that
+ *          edge exists) o_a = -(P_v u_a) . u_next(a), v = next(a);
+ *          M^-1 on curvature and strut rows: z_r = r_r / D_r (0 inactive);
+ *          on the edge block: exact solve (Thomas; cyclic via
+ *          Sherman-Morrison with gamma = -D_first, as Numerical Recipes 2.7).
+ *          The debar coupling enters M only through D (rank-1 part dropped).
  *     d. Apply: dx, debar from y as in (b); m = max_i |dx_i|; if m > max_step,
  *        scale dx and debar by max_step / m (damped Newton: keeps the
  *        linearisation honest and strands from jumping); x += dx,

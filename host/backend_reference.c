@@ -45,6 +45,8 @@ typedef struct ref_state {
     unsigned char *ract;
     double *y, *r, *p, *q, *b;
     double *cgq, *cdeb; /* curvature rows: second gradient vector, dC/debar */
+    double *pd, *z;     /* preconditioner diagonal, preconditioned residual (rows) */
+    double *po, *tw[5]; /* edge-row off-diagonal, tridiagonal work (nv) */
 } ref_state;
 
 static void ref_destroy(void *sp)
@@ -55,7 +57,8 @@ static void ref_destroy(void *sp)
     void *ptrs[] = {s->start, s->closed, s->comp, s->next, s->prev, s->ne, s->x, s->xs, s->ebar,
                     s->ebar_s, s->pj, s->pu, s->vcst, s->cst, s->pa, s->pb, s->adj_start, s->adj,
                     s->F, s->G, s->H, s->dx, s->debar, s->rC, s->rgrad, s->rs, s->rt, s->ract,
-                    s->y, s->r, s->p, s->q, s->b, s->cgq, s->cdeb};
+                    s->y, s->r, s->p, s->q, s->b, s->cgq, s->cdeb, s->pd, s->z, s->po,
+                    s->tw[0], s->tw[1], s->tw[2], s->tw[3], s->tw[4]};
     for (size_t i = 0; i < sizeof ptrs / sizeof ptrs[0]; i++)
         free(ptrs[i]);
     free(s);
@@ -235,7 +238,7 @@ static int ensure_rows(ref_state *s, tr_error *err)
     if (need <= s->rcap)
         return TR_OK;
     size_t nc = need + need / 2 + 64;
-    double **arrs[] = {&s->rC, &s->y, &s->r, &s->p, &s->q, &s->b};
+    double **arrs[] = {&s->rC, &s->y, &s->r, &s->p, &s->q, &s->b, &s->pd, &s->z};
     for (size_t i = 0; i < sizeof arrs / sizeof arrs[0]; i++) {
         double *n = realloc(*arrs[i], nc * sizeof *n);
         if (!n)
@@ -608,17 +611,126 @@ static double dot_rows(const double *a, const double *b, size_t n)
     return s;
 }
 
-/* Solves A y = b (rows, s->b) by CG from y = 0 as backend.h specifies;
- * returns the iterations taken. */
+static double proj_norm2(const ref_state *s, size_t v, const double *g, double c)
+{
+    double t[3] = {c * g[0], c * g[1], c * g[2]};
+    project_motion(s, v, t);
+    return v3_dot(t, t);
+}
+
+/* Thomas algorithm: sub a[1..n-1], diag b, sup c[0..n-2]; x may alias r. */
+static void tridiag_solve(const double *a, const double *b, const double *c, const double *r, double *x,
+                          double *w, size_t n)
+{
+    double bet = b[0];
+    x[0] = r[0] / bet;
+    for (size_t j = 1; j < n; j++) {
+        w[j] = c[j - 1] / bet;
+        bet = b[j] - a[j] * w[j];
+        x[j] = (r[j] - a[j] * x[j - 1]) / bet;
+    }
+    for (size_t j = n - 1; j-- > 0;)
+        x[j] -= w[j + 1] * x[j + 1];
+}
+
+/* Sets up the preconditioner for the rows as evaluated: s->pd = diagonal of A
+ * (every active row), s->po[a] = A entry between edge rows a and next(a). */
+static void precond_setup(ref_state *s, const tr_correct_params *prm)
+{
+    size_t nv = s->nv, nr = 2 * nv + s->np;
+    for (size_t r = 0; r < nr; r++)
+        s->pd[r] = 1.0;
+    for (size_t a = 0; a < nv; a++) {
+        if (!s->ract[a])
+            continue;
+        int k = s->comp[a];
+        const double *u = s->rgrad + 3 * a;
+        size_t nx = (size_t)s->next[a];
+        s->pd[a] = proj_norm2(s, a, u, 1.0) + proj_norm2(s, nx, u, 1.0) +
+                   1.0 / (prm->ebar_weight * (double)s->ne[k]) + prm->reg;
+        s->po[a] = 0.0;
+        if (s->next[nx] >= 0 && s->ract[nx]) {
+            double t[3] = {u[0], u[1], u[2]};
+            project_motion(s, nx, t);
+            s->po[a] = -v3_dot(t, s->rgrad + 3 * nx);
+        }
+    }
+    for (size_t i = 0; i < nv; i++) {
+        size_t r = nv + i;
+        if (!s->ract[r])
+            continue;
+        const double *ga = s->rgrad + 3 * r, *gb = s->cgq + 3 * i;
+        double gm[3] = {gb[0] - ga[0], gb[1] - ga[1], gb[2] - ga[2]};
+        int k = s->comp[i];
+        s->pd[r] = proj_norm2(s, (size_t)s->prev[i], ga, 1.0) + proj_norm2(s, i, gm, 1.0) +
+                   proj_norm2(s, (size_t)s->next[i], gb, 1.0) +
+                   s->cdeb[i] * s->cdeb[i] / (prm->ebar_weight * (double)s->ne[k]) + prm->reg;
+    }
+    for (size_t p = 0; p < s->np; p++) {
+        size_t r = 2 * nv + p;
+        if (!s->ract[r])
+            continue;
+        size_t a = s->pa[p], b = s->pb[p];
+        const double *n = s->rgrad + 3 * r;
+        s->pd[r] = proj_norm2(s, a, n, 1.0 - s->rs[p]) + proj_norm2(s, (size_t)s->next[a], n, s->rs[p]) +
+                   proj_norm2(s, b, n, 1.0 - s->rt[p]) + proj_norm2(s, (size_t)s->next[b], n, s->rt[p]) +
+                   prm->reg;
+    }
+}
+
+/* z = M^-1 r: per component the tridiagonal (cyclic for closed) block of
+ * the edge rows, solved exactly; every other row divided by its diagonal. */
+static void precond_apply(ref_state *s, const double *r, double *z)
+{
+    size_t nv = s->nv, nr = 2 * nv + s->np;
+    for (size_t q = nv; q < nr; q++)
+        z[q] = s->ract[q] ? r[q] / s->pd[q] : 0.0;
+    double *sub = s->tw[0], *sup = s->tw[1], *w = s->tw[2], *uu = s->tw[3], *bb = s->tw[4];
+    for (int k = 0; k < s->ncomp; k++) {
+        size_t st = s->start[k], n = s->ne[k];
+        const double *d = s->pd + st;
+        const double *rr = r + st;
+        double *x = z + st;
+        for (size_t j = 0; j < n; j++) {
+            sub[j] = j > 0 ? s->po[st + j - 1] : 0.0;
+            sup[j] = s->po[st + j];
+        }
+        if (!s->closed[k] || n < 3) {
+            tridiag_solve(sub, d, sup, rr, x, w, n);
+            continue;
+        }
+        /* cyclic: Sherman-Morrison on the corner entries (Numerical Recipes 2.7) */
+        double alpha = s->po[st + n - 1], beta = alpha;
+        double gamma = -d[0];
+        for (size_t j = 0; j < n; j++)
+            bb[j] = d[j];
+        bb[0] = d[0] - gamma;
+        bb[n - 1] = d[n - 1] - alpha * beta / gamma;
+        tridiag_solve(sub, bb, sup, rr, x, w, n);
+        for (size_t j = 0; j < n; j++)
+            uu[j] = 0.0;
+        uu[0] = gamma;
+        uu[n - 1] = alpha;
+        tridiag_solve(sub, bb, sup, uu, uu, w, n);
+        double fact = (x[0] + beta * x[n - 1] / gamma) / (1.0 + uu[0] + beta * uu[n - 1] / gamma);
+        for (size_t j = 0; j < n; j++)
+            x[j] -= fact * uu[j];
+    }
+}
+
+/* Solves A y = b (rows, s->b) by preconditioned CG from y = 0 as backend.h
+ * specifies; returns the iterations taken. */
 static int cg_solve(ref_state *s, const tr_correct_params *prm)
 {
     size_t nr = 2 * s->nv + s->np;
+    precond_setup(s, prm);
     for (size_t r = 0; r < nr; r++) {
         s->y[r] = 0.0;
         s->r[r] = s->b[r];
-        s->p[r] = s->b[r];
     }
-    double rr = dot_rows(s->r, s->r, nr), rr0 = rr;
+    precond_apply(s, s->r, s->z);
+    memcpy(s->p, s->z, nr * sizeof *s->p);
+    double rr0 = dot_rows(s->r, s->r, nr), rr = rr0, rz = dot_rows(s->r, s->z, nr);
     int k;
     for (k = 0; k < prm->max_cg; k++) {
         if (rr <= prm->cg_rtol * prm->cg_rtol * rr0)
@@ -626,16 +738,18 @@ static int cg_solve(ref_state *s, const tr_correct_params *prm)
         apply_JT(s, prm, s->p);
         apply_J(s, prm, s->p, s->q);
         double pq = dot_rows(s->p, s->q, nr);
-        double alpha = rr / pq;
+        double alpha = rz / pq;
         for (size_t r = 0; r < nr; r++) {
             s->y[r] += alpha * s->p[r];
             s->r[r] -= alpha * s->q[r];
         }
-        double rr1 = dot_rows(s->r, s->r, nr);
-        double beta = rr1 / rr;
+        rr = dot_rows(s->r, s->r, nr);
+        precond_apply(s, s->r, s->z);
+        double rz1 = dot_rows(s->r, s->z, nr);
+        double beta = rz1 / rz;
         for (size_t r = 0; r < nr; r++)
-            s->p[r] = s->r[r] + beta * s->p[r];
-        rr = rr1;
+            s->p[r] = s->z[r] + beta * s->p[r];
+        rz = rz1;
     }
     return k;
 }
@@ -921,9 +1035,13 @@ int tr_backend_reference_open(const char *spec, const tr_curve *c, tr_backend *o
     s->dx = malloc(3 * nv * sizeof *s->dx);
     s->cgq = malloc(3 * nv * sizeof *s->cgq);
     s->cdeb = malloc(nv * sizeof *s->cdeb);
+    s->po = calloc(nv, sizeof *s->po);
+    for (int k = 0; k < 5; k++)
+        s->tw[k] = calloc(nv, sizeof *s->tw[k]);
     if (!s->start || !s->closed || !s->ne || !s->comp || !s->next || !s->prev || !s->x || !s->xs ||
         !s->ebar || !s->ebar_s || !s->debar || !s->pj || !s->pu || !s->vcst || !s->cst ||
-        !s->adj_start || !s->F || !s->G || !s->H || !s->dx || !s->cgq || !s->cdeb) {
+        !s->adj_start || !s->F || !s->G || !s->H || !s->dx || !s->cgq || !s->cdeb || !s->po || !s->tw[0] ||
+        !s->tw[1] || !s->tw[2] || !s->tw[3] || !s->tw[4]) {
         ref_destroy(s);
         return tr_fail(err, TR_ENOMEM, "out of memory opening the reference backend (%zu vertices)", nv);
     }

@@ -41,7 +41,7 @@ static double now_s(void)
 void tr_engine_params_default(tr_engine_params *p)
 {
     memset(p, 0, sizeof *p);
-    p->skin = 0.3;
+    p->skin = 0.1;
     p->max_move = 0.03;
     p->guard_move = 0.06;
     p->smooth_passes = 8;

@@ -30,7 +30,7 @@ tr_engine_test(tighten_too_coarse 2 DIR ${_eng_dir}/coarse ONLY "c.vect"
 tr_engine_test(tighten_bad_device 2 DIR ${_eng_dir}/dev ONLY "s.vect"
   CMD sh -c "'${_tr}' make torus 2 3 --n 72 -o '${_eng_dir}/dev/s.vect' && exec '${_tr}' tighten '${_eng_dir}/dev/s.vect' -o '${_eng_dir}/dev/x.vect' --device no-such-device-xyz")
 tr_engine_test(tighten_trefoil_steps 0 DIR ${_eng_dir}/trefoil ONLY "s.vect;t.vect" OUT ${_eng_dir}/trefoil/t.vect
-  MATCH "^VECT\n# tightened by tightrope[^\n]*\n# command: tighten [^\n]*--steps 20[^\n]*\n# N 72\n# length [0-9.]+\n# MinRad [0-9.]+\n# dcsd [0-9.]+\n# thickness 1[.0-9]*\n# ropelength [0-9.]+\n# residual [^\n]+\n# steps 20\n# stop steps\n"
+  MATCH "^VECT\n# tightened by tightrope[^\n]*\n# command: tighten [^\n]*--steps 20[^\n]*\n# N 72\n# length [0-9.]+\n# MinRad [0-9.]+\n# dcsd [0-9.]+\n# thickness (1|0[.]99999999)[0-9.]*\n# ropelength [0-9.]+\n# residual [^\n]+\n# steps 20\n# stop steps\n"
   CMD sh -c "'${_tr}' make torus 2 3 --n 72 -o '${_eng_dir}/trefoil/s.vect' && exec '${_tr}' tighten '${_eng_dir}/trefoil/s.vect' -o '${_eng_dir}/trefoil/t.vect' --steps 20 --quiet")
 tr_engine_test(tighten_json_resume 0 DIR ${_eng_dir}/resume ONLY "s.vect;t.vect;u.vect;ck.txt;json.txt" OUT ${_eng_dir}/resume/json.txt
   MATCH "^{\n  \"output\": [^\n]*\n  \"device\": \"serial reference[^\n]*\n  \"stop\": \"steps\",\n  \"N\": 72,\n  \"steps\": 16,\n"
