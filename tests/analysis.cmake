@@ -1,8 +1,9 @@
 # tightrope analyze: the portrait of the tight trefoil, plots with and without
-# gnuplot, refused arguments (tests/scripts/analyze_cli.sh).
-foreach(_case trefoil no_gnuplot plots usage)
+# gnuplot, the paper's 9-cycles on a trefoil our engine tightened, refused arguments (tests/scripts/analyze_cli.sh).
+foreach(_case trefoil no_gnuplot plots cycles usage)
   add_test(NAME analyze_cli_${_case}
     COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/scripts/analyze_cli.sh ${_case} $<TARGET_FILE:tightrope>
-            ${CMAKE_SOURCE_DIR}/../shared ${CMAKE_CURRENT_BINARY_DIR}/analyze_${_case})
+            ${CMAKE_SOURCE_DIR}/../shared ${CMAKE_CURRENT_BINARY_DIR}/analyze_${_case}
+            ${CMAKE_SOURCE_DIR}/bench/data/trefoil_1600.vect)
   set_tests_properties(analyze_cli_${_case} PROPERTIES SKIP_RETURN_CODE 77 ENVIRONMENT "${TR_TEST_ENV}")
 endforeach()

@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # CLI checks of 'tightrope analyze'. Usage: analyze_cli.sh CASE TIGHTROPE SHARED_DIR WORK_DIR
-# Exit 0 pass, 1 fail, 77 skipped.
+# Exit 0 pass, 1 fail, 77 skipped. The 'cycles' case takes the knot file as a 5th argument.
 set -u
 case_=$1 tr=$2 shared=$3 work=$4
+set -- "$@" ''
 knot=$shared/data/tightknot/3_1.vect
 rm -rf "$work" && mkdir -p "$work"
 fail() { echo "FAIL: $*"; exit 1; }
@@ -32,6 +33,18 @@ plots)
     [ -s "$work/out/$f.png" ] || fail "missing $f.png"
     [ "$(head -c 4 "$work/out/$f.png" | od -An -c | tr -d ' ')" = '211PNG' ] || fail "$f.png is not a PNG"
   done
+  ;;
+cycles)
+  # A trefoil tightened by our engine (N = 1600, bench/data) against the paper's published
+  # structure: sigma-^9 has 18 fixed points forming two 9-cycles, one stable, and the stable
+  # cycle passes within 0.5 of the paper's C9- = 0.189 15.674 ... 21.455, in the same order.
+  "$tr" analyze "$5" --out "$work/out" -m 1 >"$work/stdout" 2>"$work/stderr" || fail "exit $?: $(cat "$work/stderr")"
+  grep -q '"fixed_points": 18,' "$work/out/summary.json" || fail "not 18 fixed points"
+  [ "$(grep -o '"period": 9, "stable": [01]' "$work/out/summary.json" | sort -u | wc -l)" = 2 ] || fail "not a stable and an unstable 9-cycle"
+  got=$(grep -o '"period": 9, "stable": 1, "members": \[[^]]*\]' "$work/out/summary.json" | sed 's/.*\[//; s/\]//; s/,//g')
+  want="0.189 15.674 32.370 11.103 26.588 10.541 22.018 4.759 21.455"
+  awk -v g="$got" -v w="$want" 'BEGIN { n = split(g, a, " "); split(w, b, " "); if (n != 9) exit 1;
+    for (i = 1; i <= 9; i++) { d = a[i] - b[i]; if (d < 0) d = -d; if (d > 0.5) exit 1 } }' || fail "stable cycle $got"
   ;;
 usage)
   "$tr" analyze "$knot" >/dev/null 2>&1; [ $? = 2 ] || fail "no --out accepted"
