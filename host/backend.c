@@ -1,5 +1,6 @@
 /* The backend registry: which backends exist and how a device spec picks one. */
 #include "backend.h"
+#include "backend_opencl.h"
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -13,6 +14,7 @@ typedef struct tr_backend_entry {
 /* Accelerated backends first, in the order "auto" tries them; the serial
  * reference last. Adding a backend = one line here (e.g. {"opencl", tr_backend_opencl_open}). */
 static const tr_backend_entry registry[] = {
+    {"opencl", tr_backend_opencl_open},
     {"reference", tr_backend_reference_open},
 };
 

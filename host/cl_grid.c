@@ -91,7 +91,7 @@ cleanup:
 }
 
 int tr_cl_grid_build(tr_cl_grid *g, const tr_cl_ctx *ctx, tr_cl_reduce *red,
-                     const tr_cl_topology *t, cl_mem x, int edges, double r, int K,
+                     const tr_cl_topology *t, cl_mem x, int edges, double r, cl_mem gap,
                      tr_error *err)
 {
     int rc = TR_OK;
@@ -203,7 +203,7 @@ int tr_cl_grid_build(tr_cl_grid *g, const tr_cl_ctx *ctx, tr_cl_reduce *red,
         ARG(g->pairs, 5, t->pos);
         ARG(g->pairs, 6, t->comp_n);
         ARG(g->pairs, 7, t->comp_closed);
-        ARG(g->pairs, 8, K);
+        ARG(g->pairs, 8, gap);
         ARG(g->pairs, 9, r);
         ARG(g->pairs, 10, g->keybuf);
         ARG(g->pairs, 11, g->cell_start);

@@ -1,7 +1,7 @@
 /* Device neighbour search (kernels/grid.cl): a uniform grid by cell sort.
  * For every item (vertex, or edge from vertex i to next[i]) the sorted list
  * of partner items closer than r that the arclength rule does not exclude
- * (index distance along the same component >= K). */
+ * (index distance along the same component >= gap[component], at least 2). */
 #ifndef TR_CL_GRID_H
 #define TR_CL_GRID_H
 
@@ -33,7 +33,7 @@ void tr_cl_grid_free(tr_cl_grid *g);
  * box scalars and one overflow flag; grows the lists and repeats when an item
  * has more than cap partners. */
 int tr_cl_grid_build(tr_cl_grid *g, const tr_cl_ctx *ctx, tr_cl_reduce *red,
-                     const tr_cl_topology *t, cl_mem x, int edges, double r, int K,
+                     const tr_cl_topology *t, cl_mem x, int edges, double r, cl_mem gap,
                      tr_error *err);
 
 #endif

@@ -6,7 +6,8 @@
 
 int tr_cl_build_all(const tr_cl_ctx *ctx, cl_program *prog, tr_error *err)
 {
-    static const char *const files[] = {"reduce.cl", "grid.cl"};
+    static const char *const files[] = {"reduce.cl",   "grid.cl",    "tension.cl",
+                                        "contacts.cl", "correct.cl", "measure.cl"};
     return tr_cl_build(ctx, files, (int)(sizeof files / sizeof files[0]), "", prog, err);
 }
 
@@ -21,6 +22,9 @@ int tr_cl_reduce_init(tr_cl_reduce *r, const tr_cl_ctx *ctx, cl_program prog, si
     TR_CL_CHECK((r->sum_final = clCreateKernel(prog, "sum_final", &e), e));
     TR_CL_CHECK((r->minmax_final = clCreateKernel(prog, "minmax_final", &e), e));
     TR_CL_CHECK((r->edge_lengths = clCreateKernel(prog, "edge_lengths", &e), e));
+    TR_CL_CHECK((r->sum_partial = clCreateKernel(prog, "sum_partial", &e), e));
+    TR_CL_CHECK((r->dot_partial = clCreateKernel(prog, "dot_partial", &e), e));
+    TR_CL_CHECK((r->isum_partial = clCreateKernel(prog, "isum_partial", &e), e));
     r->groups = tr_cl_global(n) / TR_CL_LOCAL;
     TR_CL_CHECK((r->pa = clCreateBuffer(ctx->context, CL_MEM_READ_WRITE, r->groups * sizeof(double),
                                         NULL, &e),
@@ -37,7 +41,7 @@ cleanup:
 void tr_cl_reduce_free(tr_cl_reduce *r)
 {
     cl_kernel *k[] = {&r->length_partial, &r->minmax_partial, &r->sum_final, &r->minmax_final,
-                      &r->edge_lengths};
+                      &r->edge_lengths, &r->sum_partial, &r->dot_partial, &r->isum_partial};
     for (size_t i = 0; i < sizeof k / sizeof k[0]; i++)
         if (*k[i])
             clReleaseKernel(*k[i]);
@@ -111,6 +115,81 @@ int tr_cl_edge_lengths(tr_cl_reduce *r, const tr_cl_ctx *ctx, cl_mem x, cl_mem n
     TR_CL_CHECK(clSetKernelArg(r->edge_lengths, 2, sizeof n, &n));
     TR_CL_CHECK(clSetKernelArg(r->edge_lengths, 3, sizeof len, &len));
     TR_CL_CHECK(clEnqueueNDRangeKernel(ctx->queue, r->edge_lengths, 1, NULL, &g, &l, 0, NULL, NULL));
+cleanup:
+    return rc;
+}
+
+int tr_cl_reduce_reserve(tr_cl_reduce *r, const tr_cl_ctx *ctx, size_t n, tr_error *err)
+{
+    int rc = TR_OK;
+    cl_int e = CL_SUCCESS;
+    size_t groups = tr_cl_global(n) / TR_CL_LOCAL;
+    if (groups <= r->groups)
+        return TR_OK;
+    groups += groups / 2;
+    cl_mem a = NULL, b = NULL;
+    TR_CL_CHECK((a = clCreateBuffer(ctx->context, CL_MEM_READ_WRITE, groups * sizeof(double), NULL, &e), e));
+    TR_CL_CHECK((b = clCreateBuffer(ctx->context, CL_MEM_READ_WRITE, groups * sizeof(double), NULL, &e), e));
+    clReleaseMemObject(r->pa);
+    clReleaseMemObject(r->pb);
+    r->pa = a;
+    r->pb = b;
+    r->groups = groups;
+    return TR_OK;
+cleanup:
+    if (a)
+        clReleaseMemObject(a);
+    return rc;
+}
+
+/* stage 1 kernel k over (args already set from index 0..nargs-1), then sum_final. */
+static int finish_sum(tr_cl_reduce *r, const tr_cl_ctx *ctx, cl_kernel k, int argn, int n,
+                      cl_mem out, int slot, tr_error *err)
+{
+    int rc = check_size(r, n, err);
+    if (rc != TR_OK)
+        return rc;
+    size_t g = tr_cl_global((size_t)n), l = TR_CL_LOCAL;
+    int m = (int)(g / l);
+    TR_CL_CHECK(clSetKernelArg(k, (cl_uint)argn, sizeof n, &n));
+    TR_CL_CHECK(clSetKernelArg(k, (cl_uint)argn + 1, sizeof r->pa, &r->pa));
+    TR_CL_CHECK(clEnqueueNDRangeKernel(ctx->queue, k, 1, NULL, &g, &l, 0, NULL, NULL));
+    TR_CL_CHECK(clSetKernelArg(r->sum_final, 0, sizeof r->pa, &r->pa));
+    TR_CL_CHECK(clSetKernelArg(r->sum_final, 1, sizeof m, &m));
+    TR_CL_CHECK(clSetKernelArg(r->sum_final, 2, sizeof out, &out));
+    TR_CL_CHECK(clSetKernelArg(r->sum_final, 3, sizeof slot, &slot));
+    TR_CL_CHECK(clEnqueueNDRangeKernel(ctx->queue, r->sum_final, 1, NULL, &l, &l, 0, NULL, NULL));
+cleanup:
+    return rc;
+}
+
+int tr_cl_reduce_sum(tr_cl_reduce *r, const tr_cl_ctx *ctx, cl_mem v, int n, cl_mem out, int slot,
+                     tr_error *err)
+{
+    int rc = TR_OK;
+    TR_CL_CHECK(clSetKernelArg(r->sum_partial, 0, sizeof v, &v));
+    rc = finish_sum(r, ctx, r->sum_partial, 1, n, out, slot, err);
+cleanup:
+    return rc;
+}
+
+int tr_cl_reduce_dot(tr_cl_reduce *r, const tr_cl_ctx *ctx, cl_mem a, cl_mem b, int n, cl_mem out,
+                     int slot, tr_error *err)
+{
+    int rc = TR_OK;
+    TR_CL_CHECK(clSetKernelArg(r->dot_partial, 0, sizeof a, &a));
+    TR_CL_CHECK(clSetKernelArg(r->dot_partial, 1, sizeof b, &b));
+    rc = finish_sum(r, ctx, r->dot_partial, 2, n, out, slot, err);
+cleanup:
+    return rc;
+}
+
+int tr_cl_reduce_count(tr_cl_reduce *r, const tr_cl_ctx *ctx, cl_mem v, int n, cl_mem out,
+                       int slot, tr_error *err)
+{
+    int rc = TR_OK;
+    TR_CL_CHECK(clSetKernelArg(r->isum_partial, 0, sizeof v, &v));
+    rc = finish_sum(r, ctx, r->isum_partial, 1, n, out, slot, err);
 cleanup:
     return rc;
 }

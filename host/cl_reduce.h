@@ -7,6 +7,7 @@
 
 typedef struct tr_cl_reduce {
     cl_kernel length_partial, minmax_partial, sum_final, minmax_final, edge_lengths;
+    cl_kernel sum_partial, dot_partial, isum_partial;
     cl_mem pa, pb;   /* per-work-group partials */
     size_t groups;   /* capacity of pa, pb */
 } tr_cl_reduce;
@@ -25,12 +26,26 @@ int tr_cl_reduce_length(tr_cl_reduce *r, const tr_cl_ctx *ctx, cl_mem x, cl_mem 
 int tr_cl_reduce_minmax(tr_cl_reduce *r, const tr_cl_ctx *ctx, cl_mem v, int n, cl_mem out,
                         int slot, tr_error *err);
 
+/* Grows the partial buffers for reductions over up to n items. */
+int tr_cl_reduce_reserve(tr_cl_reduce *r, const tr_cl_ctx *ctx, size_t n, tr_error *err);
+
+/* Queues out[slot] = sum of v[0..n) (pairwise within work-groups, then compensated). */
+int tr_cl_reduce_sum(tr_cl_reduce *r, const tr_cl_ctx *ctx, cl_mem v, int n, cl_mem out, int slot,
+                     tr_error *err);
+/* Queues out[slot] = a . b over n entries. */
+int tr_cl_reduce_dot(tr_cl_reduce *r, const tr_cl_ctx *ctx, cl_mem a, cl_mem b, int n, cl_mem out,
+                     int slot, tr_error *err);
+/* Queues out[slot] = sum of the ints v[0..n) (a count of flags), as a double. */
+int tr_cl_reduce_count(tr_cl_reduce *r, const tr_cl_ctx *ctx, cl_mem v, int n, cl_mem out,
+                       int slot, tr_error *err);
+
 /* Queues len[i] = |x[next[i]] - x[i]| (0 where no edge starts) for i < n. */
 int tr_cl_edge_lengths(tr_cl_reduce *r, const tr_cl_ctx *ctx, cl_mem x, cl_mem next, int n,
                        cl_mem len, tr_error *err);
 
 /* The one program every Tightrope kernel lives in (common.clh, then
- * reduce.cl, grid.cl, ...): built once per context, ~0.8 s cold on PoCL. */
+ * reduce.cl, grid.cl, tension.cl, contacts.cl, correct.cl,
+ * measure.cl): built once per context, ~0.8 s cold on PoCL. */
 int tr_cl_build_all(const tr_cl_ctx *ctx, cl_program *prog, tr_error *err);
 
 #endif

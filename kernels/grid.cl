@@ -93,32 +93,12 @@ __kernel void cell_bounds(__global const ulong *keys, const int npad, __global i
         cell_end[cell] = i + 1;
 }
 
-/* Closest distance between segments [p0,p1] and [q0,q1] (Lumelsky's clamped
- * parameters, as the serial oracle computes them). */
-inline real seg_seg_dist(real3 p0, real3 p1, real3 q0, real3 q1)
-{
-    real3 d1 = p1 - p0, d2 = q1 - q0, r = p0 - q0;
-    real a = dot(d1, d1), e = dot(d2, d2), f = dot(d2, r);
-    real s, t;
-    real c = dot(d1, r), b = dot(d1, d2), den = a * e - b * b;
-    s = den > 0.0 ? clamp((b * f - c * e) / den, 0.0, 1.0) : 0.0;
-    t = (b * s + f) / e;
-    if (t < 0.0) {
-        t = 0.0;
-        s = clamp(-c / a, 0.0, 1.0);
-    } else if (t > 1.0) {
-        t = 1.0;
-        s = clamp((b - c) / a, 0.0, 1.0);
-    }
-    real3 w = p0 + s * d1 - (q0 + t * d2);
-    return sqrt(dot(w, w));
-}
-
-/* Index distance of items i, j along their component (a closed one wraps);
- * items on different components are never excluded. */
+/* Index distance of items i, j along their component (a closed one wraps)
+ * below that component's gap (at least 2); different components are never
+ * excluded. */
 inline int grid_excluded(__global const int *comp, __global const int *pos,
                          __global const int *comp_n, __global const int *comp_closed, int i,
-                         int j, int K)
+                         int j, __global const int *gap)
 {
     int c = comp[i];
     if (comp[j] != c)
@@ -126,7 +106,7 @@ inline int grid_excluded(__global const int *comp, __global const int *pos,
     int g = abs(pos[i] - pos[j]);
     if (comp_closed[c])
         g = min(g, comp_n[c] - g);
-    return g < K;
+    return g < max(gap[c], 2);
 }
 
 /* For item i: partners j with distance < r (segment-segment for edges,
@@ -136,7 +116,7 @@ inline int grid_excluded(__global const int *comp, __global const int *pos,
 __kernel void grid_pairs(__global const real *x, __global const int *next, const int n,
                          const int edges, __global const int *comp, __global const int *pos,
                          __global const int *comp_n, __global const int *comp_closed,
-                         const int K, const real r, __global const ulong *keys,
+                         __global const int *gap, const real r, __global const ulong *keys,
                          __global const int *cell_start, __global const int *cell_end,
                          const real lox, const real loy, const real loz, const real inv_h,
                          const int nx, const int ny, const int nz, const int cap,
@@ -164,15 +144,15 @@ __kernel void grid_pairs(__global const real *x, __global const int *next, const
                 int cell = (q.z * ny + q.y) * nx + q.x;
                 for (int s = cell_start[cell]; s < cell_end[cell]; s++) {
                     int j = (int)(uint)(keys[s] & 0xffffffffUL);
-                    if (j == i || grid_excluded(comp, pos, comp_n, comp_closed, i, j, K))
+                    if (j == i || grid_excluded(comp, pos, comp_n, comp_closed, i, j, gap))
                         continue;
                     real3 b0 = vload3(j, x);
                     real d;
                     if (edges) {
-                        d = seg_seg_dist(a0, a1, b0, vload3(next[j], x));
+                        real ss, tt;
+                        d = tr_segment_distance(a0, a1, b0, vload3(next[j], x), &ss, &tt);
                     } else {
-                        real3 w = a0 - b0;
-                        d = sqrt(dot(w, w));
+                        d = tr_norm3(a0 - b0);
                     }
                     if (d < r) {
                         if (m < cap) {

@@ -105,3 +105,64 @@ __kernel void edge_lengths(__global const real *x, __global const int *next, con
     if (i < n)
         len[i] = edge_len(x, next, i);
 }
+
+/* Stage 1 of a plain sum of v[0..n) (then sum_final). */
+__kernel __attribute__((reqd_work_group_size(TR_LOCAL_SIZE, 1, 1)))
+void sum_partial(__global const real *v, const int n, __global real *partial)
+{
+    __local real s[TR_LOCAL_SIZE];
+    int i = get_global_id(0), l = get_local_id(0);
+    s[l] = i < n ? v[i] : 0.0;
+    barrier(CLK_LOCAL_MEM_FENCE);
+    TREE(tr_add, s, l)
+    if (l == 0)
+        partial[get_group_id(0)] = s[0];
+}
+
+/* Stage 1 of a dot product a . b over n entries (then sum_final). */
+__kernel __attribute__((reqd_work_group_size(TR_LOCAL_SIZE, 1, 1)))
+void dot_partial(__global const real *a, __global const real *b, const int n,
+                 __global real *partial)
+{
+    __local real s[TR_LOCAL_SIZE];
+    int i = get_global_id(0), l = get_local_id(0);
+    s[l] = i < n ? a[i] * b[i] : 0.0;
+    barrier(CLK_LOCAL_MEM_FENCE);
+    TREE(tr_add, s, l)
+    if (l == 0)
+        partial[get_group_id(0)] = s[0];
+}
+
+/* Stage 1 of a count: the sum of int flags (exact in double below 2^53). */
+__kernel __attribute__((reqd_work_group_size(TR_LOCAL_SIZE, 1, 1)))
+void isum_partial(__global const int *v, const int n, __global real *partial)
+{
+    __local real s[TR_LOCAL_SIZE];
+    int i = get_global_id(0), l = get_local_id(0);
+    s[l] = i < n ? (real)v[i] : 0.0;
+    barrier(CLK_LOCAL_MEM_FENCE);
+    TREE(tr_add, s, l)
+    if (l == 0)
+        partial[get_group_id(0)] = s[0];
+}
+
+/* Per-component sums: work-group k adds v[start[k] .. start[k+1]) into
+ * out[slot + k] (strided Neumaier sums, then the tree). */
+__kernel __attribute__((reqd_work_group_size(TR_LOCAL_SIZE, 1, 1)))
+void comp_sum(__global const real *v, __global const int *start, __global real *out,
+              const int slot)
+{
+    __local real s[TR_LOCAL_SIZE];
+    int k = get_group_id(0), l = get_local_id(0);
+    real sum = 0.0, c = 0.0;
+    for (int i = start[k] + l; i < start[k + 1]; i += TR_LOCAL_SIZE) {
+        real v1 = v[i], t = sum + v1;
+        c += fabs(sum) >= fabs(v1) ? (sum - t) + v1 : (v1 - t) + sum;
+        sum = t;
+    }
+    s[l] = sum + c;
+    barrier(CLK_LOCAL_MEM_FENCE);
+    TREE(tr_add, s, l)
+    if (l == 0)
+        out[slot + k] = s[0];
+}

@@ -1,0 +1,729 @@
+/* The OpenCL backend: every operation of backend.h as kernels over device
+ * buffers, following the reference's order of operations (see the kernels'
+ * comments). Per step the host reads back only the few scalars each op
+ * reports; coordinates cross the bus only in upload and download. */
+#include "backend_opencl.h"
+
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cl_error.h"
+#include "cl_grid.h"
+#include "cl_reduce.h"
+#include "cl_topology.h"
+#include "vec3.h"
+
+/* Kernels this file launches itself (the reduction and grid modules hold their own). */
+#define KERNELS(X)                                                                            \
+    X(tension_force) X(tension_smooth) X(tension_move) X(pairs_upper) X(scan_local)           \
+    X(scan_sums) X(scan_add) X(pairs_write) X(contacts_csr) X(pairs_dist) X(rows_chain)       \
+    X(rows_strut) X(cg_init) X(jt_vertex) X(jt_ebar) X(j_rows) X(cg_start) X(cg_top)          \
+    X(cg_alpha) X(cg_yr) X(cg_beta) X(cg_p) X(dx_norm) X(step_scale) X(apply_dx)              \
+    X(apply_debar) X(measure_edges) X(measure_minrad) X(measure_disp) X(comp_sum)
+#define ENUM(k) K_##k,
+#define NAME(k) #k,
+enum { KERNELS(ENUM) K_COUNT };
+static const char *const kernel_names[K_COUNT] = {KERNELS(NAME)};
+
+/* Slots of the scalar buffer (see kernels/correct.cl for 0..14). */
+enum {
+    SC_RR = 0, SC_PQ = 2, SC_RR1 = 4, SC_DONE = 6, SC_ITERS = 7, SC_TOL2 = 8, SC_VIOL = 9,
+    SC_MAXDX = 11, SC_NACT = 14,
+    SC_F2 = 16, SC_PRED = 17, SC_MOVE = 18, /* minmax: 18 min, 19 max */
+    SC_DEV = 20,                            /* 20, 21 */
+    SC_STRUT = 22,                          /* 22, 23 */
+    SC_MINRAD = 24,                         /* 24, 25 */
+    SC_DISP = 26,                           /* 26, 27 */
+    SC_COMP = 32,                           /* ncomp lengths from here */
+};
+
+typedef struct cl_state {
+    tr_cl_ctx ctx;
+    cl_program prog;
+    cl_kernel k[K_COUNT];
+    double prof_s[K_COUNT];
+    long prof_n[K_COUNT];
+    tr_cl_reduce red;
+    tr_cl_grid grid;
+    int grid_ready;
+    tr_cl_topology topo;
+    int nv, ncomp, saved;
+    int *h_start, *h_ne;
+    tr_curve shape; /* host copy of the topology and constraints (for upload's snap-free ebar) */
+    cl_mem start, ne, cst, gap;
+    cl_mem x, xs, ebar, ebar_s, debar;
+    cl_mem F, G, H, dx;
+    cl_mem t1, t2, t3; /* nv reals: per-vertex terms for reductions */
+    cl_mem sc;         /* scalars */
+    /* contacts */
+    int np, pcap, acap;
+    cl_mem up, first, off, sums, pa, pb, adj, adjn, pd;
+    /* rows */
+    int rcap;
+    cl_mem rC, rgrad, ract, rs, rt, rv, y, r, p, q, b;
+} cl_state;
+
+static void release(cl_mem *m)
+{
+    if (*m)
+        clReleaseMemObject(*m);
+    *m = NULL;
+}
+
+static void cl_destroy(void *sp)
+{
+    cl_state *s = sp;
+    if (!s)
+        return;
+    cl_mem *m[] = {&s->start, &s->ne,   &s->cst,  &s->gap,  &s->x,    &s->xs,   &s->ebar,
+                   &s->ebar_s, &s->debar, &s->F,  &s->G,    &s->H,    &s->dx,   &s->t1,
+                   &s->t2,    &s->t3,   &s->sc,   &s->up,   &s->first, &s->off, &s->sums,
+                   &s->pa,    &s->pb,   &s->adj,  &s->adjn, &s->pd,   &s->rC,   &s->rgrad,
+                   &s->ract,  &s->rs,   &s->rt,   &s->rv,   &s->y,    &s->r,    &s->p,
+                   &s->q,     &s->b};
+    for (size_t i = 0; i < sizeof m / sizeof m[0]; i++)
+        release(m[i]);
+    for (int i = 0; i < K_COUNT; i++)
+        if (s->k[i])
+            clReleaseKernel(s->k[i]);
+    if (s->grid_ready)
+        tr_cl_grid_free(&s->grid);
+    tr_cl_reduce_free(&s->red);
+    tr_cl_topology_free(&s->topo);
+    if (s->prog)
+        clReleaseProgram(s->prog);
+    tr_cl_ctx_close(&s->ctx);
+    tr_curve_free(&s->shape);
+    free(s->h_start);
+    free(s->h_ne);
+    free(s);
+}
+
+static int buffer(cl_state *s, cl_mem *m, size_t bytes, tr_error *err)
+{
+    int rc = TR_OK;
+    cl_int e = CL_SUCCESS;
+    release(m);
+    TR_CL_CHECK((*m = clCreateBuffer(s->ctx.context, CL_MEM_READ_WRITE, bytes ? bytes : 8, NULL, &e), e));
+cleanup:
+    return rc;
+}
+
+/* Sets the arguments (pairs of size, pointer, terminated by 0) and launches
+ * kernel id over n items (global padded to the fixed local size). With
+ * profiling on, waits for the launch and adds its device time. */
+static int run(cl_state *s, int id, size_t n, tr_error *err, ...)
+{
+    int rc = TR_OK;
+    cl_kernel k = s->k[id];
+    va_list ap;
+    va_start(ap, err);
+    cl_uint i = 0;
+    for (;;) {
+        size_t sz = va_arg(ap, size_t);
+        if (!sz)
+            break;
+        const void *v = va_arg(ap, const void *);
+        cl_int e = clSetKernelArg(k, i++, sz, v);
+        if (e != CL_SUCCESS) {
+            va_end(ap);
+            tr_cl_fail(err, e, "clSetKernelArg", __FILE__, __LINE__);
+            return tr_fail_wrap(err, TR_EOPENCL, "%s argument %u", kernel_names[id], i - 1);
+        }
+    }
+    va_end(ap);
+    size_t g = tr_cl_global(n), l = TR_CL_LOCAL;
+    cl_event ev = NULL;
+    TR_CL_CHECK(clEnqueueNDRangeKernel(s->ctx.queue, k, 1, NULL, &g, &l, 0, NULL,
+                                       s->ctx.profiling ? &ev : NULL));
+    if (ev) {
+        cl_ulong t0 = 0, t1 = 0;
+        TR_CL_CHECK(clWaitForEvents(1, &ev));
+        TR_CL_CHECK(clGetEventProfilingInfo(ev, CL_PROFILING_COMMAND_START, sizeof t0, &t0, NULL));
+        TR_CL_CHECK(clGetEventProfilingInfo(ev, CL_PROFILING_COMMAND_END, sizeof t1, &t1, NULL));
+        s->prof_s[id] += 1e-9 * (double)(t1 - t0);
+        s->prof_n[id]++;
+    }
+cleanup:
+    if (ev)
+        clReleaseEvent(ev);
+    if (rc != TR_OK)
+        tr_fail_wrap(err, rc, "%s", kernel_names[id]);
+    return rc;
+}
+
+/* Launches with explicit work-groups (one per component, or a single one). */
+static int run_groups(cl_state *s, int id, size_t groups, tr_error *err, ...)
+{
+    int rc = TR_OK;
+    cl_kernel k = s->k[id];
+    va_list ap;
+    va_start(ap, err);
+    cl_uint i = 0;
+    for (;;) {
+        size_t sz = va_arg(ap, size_t);
+        if (!sz)
+            break;
+        const void *v = va_arg(ap, const void *);
+        cl_int e = clSetKernelArg(k, i++, sz, v);
+        if (e != CL_SUCCESS) {
+            va_end(ap);
+            tr_cl_fail(err, e, "clSetKernelArg", __FILE__, __LINE__);
+            return tr_fail_wrap(err, TR_EOPENCL, "%s argument %u", kernel_names[id], i - 1);
+        }
+    }
+    va_end(ap);
+    size_t l = groups ? TR_CL_LOCAL : 1, g = groups ? groups * TR_CL_LOCAL : 1;
+    TR_CL_CHECK(clEnqueueNDRangeKernel(s->ctx.queue, k, 1, NULL, &g, &l, 0, NULL, NULL));
+cleanup:
+    if (rc != TR_OK)
+        tr_fail_wrap(err, rc, "%s", kernel_names[id]);
+    return rc;
+}
+
+#define A(v) sizeof(v), (const void *)&(v)
+#define END (size_t)0
+
+static int read_scalars(cl_state *s, int first, int count, double *out, tr_error *err)
+{
+    int rc = TR_OK;
+    TR_CL_CHECK(clEnqueueReadBuffer(s->ctx.queue, s->sc, CL_TRUE, (size_t)first * sizeof(double),
+                                    (size_t)count * sizeof(double), out, 0, NULL, NULL));
+cleanup:
+    return rc;
+}
+
+/* The reference's ebar: mean edge length per component, summed in order. */
+static void host_ebar(const tr_curve *c, const double *x, double *ebar)
+{
+    for (int k = 0; k < c->ncomp; k++) {
+        size_t s = c->start[k], e = c->start[k + 1], ne = 0;
+        double sum = 0.0;
+        for (size_t a = s; a < e; a++) {
+            size_t nx = a + 1 < e ? a + 1 : s;
+            if (a + 1 == e && !c->closed[k])
+                continue;
+            sum += sqrt(v3_dist2(x + 3 * a, x + 3 * nx));
+            ne++;
+        }
+        ebar[k] = ne ? sum / (double)ne : 0.0;
+    }
+}
+
+static int cl_upload(void *sp, const double *x, const double *ebar, tr_error *err)
+{
+    cl_state *s = sp;
+    int rc = TR_OK;
+    double *eb = NULL;
+    size_t nv = (size_t)s->nv, nc = (size_t)s->ncomp;
+    if (!ebar) {
+        eb = malloc(nc * sizeof *eb);
+        if (!eb)
+            return tr_fail(err, TR_ENOMEM, "out of memory uploading");
+        host_ebar(&s->shape, x, eb);
+        ebar = eb;
+    }
+    TR_CL_CHECK(clEnqueueWriteBuffer(s->ctx.queue, s->x, CL_TRUE, 0, 3 * nv * sizeof(double), x, 0,
+                                     NULL, NULL));
+    TR_CL_CHECK(clEnqueueWriteBuffer(s->ctx.queue, s->ebar, CL_TRUE, 0, nc * sizeof(double), ebar, 0,
+                                     NULL, NULL));
+    s->np = 0;
+    s->saved = 0;
+cleanup:
+    free(eb);
+    return rc;
+}
+
+static int cl_download(void *sp, double *x, double *ebar, tr_error *err)
+{
+    cl_state *s = sp;
+    int rc = TR_OK;
+    TR_CL_CHECK(clEnqueueReadBuffer(s->ctx.queue, s->x, CL_TRUE, 0, 3 * (size_t)s->nv * sizeof(double),
+                                    x, 0, NULL, NULL));
+    if (ebar)
+        TR_CL_CHECK(clEnqueueReadBuffer(s->ctx.queue, s->ebar, CL_TRUE, 0,
+                                        (size_t)s->ncomp * sizeof(double), ebar, 0, NULL, NULL));
+cleanup:
+    return rc;
+}
+
+static int cl_save(void *sp, tr_error *err)
+{
+    cl_state *s = sp;
+    int rc = TR_OK;
+    TR_CL_CHECK(clEnqueueCopyBuffer(s->ctx.queue, s->x, s->xs, 0, 0, 3 * (size_t)s->nv * sizeof(double),
+                                    0, NULL, NULL));
+    TR_CL_CHECK(clEnqueueCopyBuffer(s->ctx.queue, s->ebar, s->ebar_s, 0, 0,
+                                    (size_t)s->ncomp * sizeof(double), 0, NULL, NULL));
+    s->saved = 1;
+cleanup:
+    return rc;
+}
+
+static int cl_restore(void *sp, tr_error *err)
+{
+    cl_state *s = sp;
+    int rc = TR_OK;
+    if (!s->saved)
+        return tr_fail(err, TR_EINVAL, "restore without a saved state");
+    TR_CL_CHECK(clEnqueueCopyBuffer(s->ctx.queue, s->xs, s->x, 0, 0, 3 * (size_t)s->nv * sizeof(double),
+                                    0, NULL, NULL));
+    TR_CL_CHECK(clEnqueueCopyBuffer(s->ctx.queue, s->ebar_s, s->ebar, 0, 0,
+                                    (size_t)s->ncomp * sizeof(double), 0, NULL, NULL));
+cleanup:
+    return rc;
+}
+
+/* Row buffers for 2 nv + np rows. */
+static int ensure_rows(cl_state *s, tr_error *err)
+{
+    int rc = TR_OK;
+    int need = 2 * s->nv + s->np;
+    if (need <= s->rcap)
+        return TR_OK;
+    int cap = need + need / 2 + 64;
+    size_t n = (size_t)cap, d = sizeof(double);
+    TR_TRY(buffer(s, &s->rC, n * d, err));
+    TR_TRY(buffer(s, &s->rgrad, 3 * n * d, err));
+    TR_TRY(buffer(s, &s->ract, n * sizeof(int), err));
+    TR_TRY(buffer(s, &s->rv, n * d, err));
+    TR_TRY(buffer(s, &s->y, n * d, err));
+    TR_TRY(buffer(s, &s->r, n * d, err));
+    TR_TRY(buffer(s, &s->p, n * d, err));
+    TR_TRY(buffer(s, &s->q, n * d, err));
+    TR_TRY(buffer(s, &s->b, n * d, err));
+    TR_TRY(buffer(s, &s->rs, n * d, err));
+    TR_TRY(buffer(s, &s->rt, n * d, err));
+    TR_TRY(tr_cl_reduce_reserve(&s->red, &s->ctx, n, err));
+    s->rcap = cap;
+cleanup:
+    return rc;
+}
+
+/* ---- neighbour search ---- */
+
+static int cl_find_contacts(void *sp, const tr_contact_params *prm, tr_contact_stats *out,
+                            tr_error *err)
+{
+    cl_state *s = sp;
+    int rc = TR_OK;
+    int nv = s->nv;
+    s->np = 0;
+    TR_CL_CHECK(clEnqueueWriteBuffer(s->ctx.queue, s->gap, CL_FALSE, 0, (size_t)s->ncomp * sizeof(int),
+                                     prm->exclude_gap, 0, NULL, NULL));
+    TR_TRY(tr_cl_grid_build(&s->grid, &s->ctx, &s->red, &s->topo, s->x, 1, prm->cutoff, s->gap, err));
+    int cap = s->grid.cap;
+    TR_TRY(run(s, K_pairs_upper, (size_t)nv, err, A(s->grid.count), A(s->grid.list), A(cap),
+               A(s->topo.next), A(nv), A(s->up), A(s->first), END));
+    /* exclusive scan of up into off[0..nv] */
+    int groups = (int)(tr_cl_global((size_t)nv) / TR_CL_LOCAL);
+    TR_TRY(run(s, K_scan_local, (size_t)nv, err, A(s->up), A(nv), A(s->off), A(s->sums), END));
+    TR_TRY(run_groups(s, K_scan_sums, 1, err, A(s->sums), A(groups), A(s->off), A(nv), END));
+    TR_TRY(run(s, K_scan_add, (size_t)nv, err, A(s->off), A(nv), A(s->sums), END));
+    int np = 0;
+    TR_CL_CHECK(clEnqueueReadBuffer(s->ctx.queue, s->off, CL_TRUE, (size_t)nv * sizeof(int), sizeof np,
+                                    &np, 0, NULL, NULL));
+    if (np < 0 || np > (1 << 28)) {
+        rc = tr_fail(err, TR_EGEOMETRY, "%d contact candidates: far too many", np);
+        goto cleanup;
+    }
+    if (np > s->pcap) {
+        int pc = np + np / 2 + 64;
+        TR_TRY(buffer(s, &s->pa, (size_t)pc * sizeof(int), err));
+        TR_TRY(buffer(s, &s->pb, (size_t)pc * sizeof(int), err));
+        TR_TRY(buffer(s, &s->pd, (size_t)pc * sizeof(double), err));
+        s->pcap = pc;
+    }
+    if (2 * cap > s->acap) {
+        s->acap = 2 * cap;
+        TR_TRY(buffer(s, &s->adj, (size_t)nv * (size_t)s->acap * sizeof(int), err));
+    }
+    TR_TRY(run(s, K_pairs_write, (size_t)nv, err, A(s->grid.count), A(s->grid.list), A(cap),
+               A(s->first), A(s->off), A(nv), A(s->pa), A(s->pb), END));
+    TR_TRY(run(s, K_contacts_csr, (size_t)nv, err, A(s->grid.count), A(s->grid.list), A(cap),
+               A(s->first), A(s->off), A(s->topo.next), A(s->topo.prev), A(nv), A(s->acap),
+               A(s->adj), A(s->adjn), END));
+    s->np = np;
+    TR_TRY(ensure_rows(s, err));
+    double mind = INFINITY;
+    if (np > 0) {
+        TR_TRY(run(s, K_pairs_dist, (size_t)np, err, A(s->x), A(s->topo.next), A(s->pa), A(s->pb),
+                   A(np), A(s->pd), END));
+        TR_TRY(tr_cl_reduce_minmax(&s->red, &s->ctx, s->pd, np, s->sc, SC_STRUT, err));
+        TR_TRY(read_scalars(s, SC_STRUT, 1, &mind, err));
+    }
+    if (out) {
+        out->pairs = (size_t)np;
+        out->min_dist = mind;
+    }
+cleanup:
+    if (rc != TR_OK)
+        s->np = 0;
+    return rc;
+}
+
+/* ---- force evaluation ---- */
+
+static int cl_tension_step(void *sp, const tr_tension_params *prm, tr_tension_stats *out,
+                           tr_error *err)
+{
+    cl_state *s = sp;
+    int rc = TR_OK;
+    int nv = s->nv;
+    double h = prm->h, mm = prm->max_move, sc[4];
+    TR_TRY(run(s, K_tension_force, (size_t)nv, err, A(s->x), A(s->topo.next), A(s->topo.prev), A(nv),
+               A(s->F), END));
+    cl_mem G = s->G, H = s->H;
+    TR_CL_CHECK(clEnqueueCopyBuffer(s->ctx.queue, s->F, G, 0, 0, 3 * (size_t)nv * sizeof(double), 0,
+                                    NULL, NULL));
+    for (int pass = 0; pass < prm->smooth_passes; pass++) {
+        TR_TRY(run(s, K_tension_smooth, (size_t)nv, err, A(G), A(s->topo.next), A(s->topo.prev),
+                   A(nv), A(H), END));
+        cl_mem t = G;
+        G = H;
+        H = t;
+    }
+    TR_TRY(run(s, K_tension_move, (size_t)nv, err, A(s->x), A(s->F), A(G), A(s->cst), A(nv), A(h),
+               A(mm), A(s->t1), A(s->t2), A(s->t3), END));
+    TR_TRY(tr_cl_reduce_sum(&s->red, &s->ctx, s->t1, nv, s->sc, SC_F2, err));
+    TR_TRY(tr_cl_reduce_sum(&s->red, &s->ctx, s->t2, nv, s->sc, SC_PRED, err));
+    TR_TRY(tr_cl_reduce_minmax(&s->red, &s->ctx, s->t3, nv, s->sc, SC_MOVE, err));
+    TR_TRY(read_scalars(s, SC_F2, 4, sc, err));
+    if (out) {
+        out->force2 = sc[0];
+        out->predicted = sc[1];
+        out->max_move = sc[3];
+    }
+cleanup:
+    return rc;
+}
+
+/* ---- coupled constraint correction ---- */
+
+static int eval_rows(cl_state *s, const tr_correct_params *prm, tr_error *err)
+{
+    int rc = TR_OK;
+    int nv = s->nv, np = s->np, nr = 2 * nv + np;
+    double minrad = prm->minrad, ac = prm->active_curv, sd = prm->strut_dist, as = prm->active_strut;
+    TR_TRY(run(s, K_rows_chain, (size_t)nv, err, A(s->x), A(s->topo.next), A(s->topo.prev),
+               A(s->topo.comp), A(s->ebar), A(nv), A(minrad), A(ac), A(s->rC), A(s->rgrad),
+               A(s->ract), A(s->rv), END));
+    if (np > 0)
+        TR_TRY(run(s, K_rows_strut, (size_t)np, err, A(s->x), A(s->topo.next), A(s->pa), A(s->pb),
+                   A(nv), A(np), A(sd), A(as), A(s->rC), A(s->rgrad), A(s->ract), A(s->rs),
+                   A(s->rt), A(s->rv), END));
+    TR_TRY(tr_cl_reduce_minmax(&s->red, &s->ctx, s->rv, nr, s->sc, SC_VIOL, err));
+cleanup:
+    return rc;
+}
+
+/* dx, debar from the row vector y (the J^T half of the operator). */
+static int apply_JT(cl_state *s, const tr_correct_params *prm, cl_mem y, tr_error *err)
+{
+    int rc = TR_OK;
+    int nv = s->nv;
+    double minrad = prm->minrad, w = prm->ebar_weight;
+    TR_TRY(run(s, K_jt_vertex, (size_t)nv, err, A(y), A(s->rgrad), A(s->ract), A(s->topo.next),
+               A(s->topo.prev), A(s->adj), A(s->adjn), A(s->acap), A(s->rs), A(s->rt), A(s->cst),
+               A(nv), A(s->dx), END));
+    TR_TRY(run_groups(s, K_jt_ebar, (size_t)s->ncomp, err, A(y), A(s->ract), A(s->start), A(s->ne),
+                      A(s->ebar), A(nv), A(minrad), A(w), A(s->debar), END));
+cleanup:
+    return rc;
+}
+
+static int cl_correct(void *sp, const tr_correct_params *prm, tr_correct_stats *out, tr_error *err)
+{
+    cl_state *s = sp;
+    int rc = TR_OK;
+    TR_TRY(ensure_rows(s, err));
+    int nv = s->nv, np = s->np, nr = 2 * nv + np;
+    double minrad = prm->minrad, reg = prm->reg, ms = prm->max_step;
+    double tol2 = prm->cg_rtol * prm->cg_rtol;
+    TR_CL_CHECK(clEnqueueWriteBuffer(s->ctx.queue, s->sc, CL_FALSE, SC_TOL2 * sizeof(double),
+                                     sizeof tol2, &tol2, 0, NULL, NULL));
+    tr_correct_stats st = {0};
+    int it;
+    double v[2];
+    for (it = 0; it < prm->max_newton; it++) {
+        TR_TRY(eval_rows(s, prm, err));
+        TR_TRY(read_scalars(s, SC_VIOL, 2, v, err));
+        double viol = v[1] > 0.0 ? v[1] : 0.0;
+        if (it == 0)
+            st.viol_before = viol;
+        if (viol <= prm->viol_tol)
+            break;
+        TR_TRY(run(s, K_cg_init, (size_t)nr, err, A(s->rC), A(s->ract), A(nv), A(nr), A(s->b), A(s->y),
+                   A(s->r), A(s->p), END));
+        TR_TRY(tr_cl_reduce_count(&s->red, &s->ctx, s->ract, nr, s->sc, SC_NACT, err));
+        TR_TRY(tr_cl_reduce_dot(&s->red, &s->ctx, s->r, s->r, nr, s->sc, SC_RR, err));
+        TR_TRY(run_groups(s, K_cg_start, 0, err, A(s->sc), END));
+        for (int k = 0; k < prm->max_cg; k++) {
+            TR_TRY(run_groups(s, K_cg_top, 0, err, A(s->sc), END));
+            /* Every few iterations look whether CG has converged; in between,
+             * the device turns the remaining updates into no-ops itself. */
+            if (k > 0 && k % 4 == 0) {
+                double done;
+                TR_TRY(read_scalars(s, SC_DONE, 1, &done, err));
+                if (done != 0.0)
+                    break;
+            }
+            TR_TRY(apply_JT(s, prm, s->p, err));
+            TR_TRY(run(s, K_j_rows, (size_t)nr, err, A(s->dx), A(s->debar), A(s->ebar), A(s->rgrad),
+                       A(s->ract), A(s->topo.next), A(s->topo.prev), A(s->topo.comp), A(s->pa),
+                       A(s->pb), A(s->rs), A(s->rt), A(s->p), A(nv), A(np), A(minrad), A(reg),
+                       A(s->q), END));
+            TR_TRY(tr_cl_reduce_dot(&s->red, &s->ctx, s->p, s->q, nr, s->sc, SC_PQ, err));
+            TR_TRY(run_groups(s, K_cg_alpha, 0, err, A(s->sc), END));
+            TR_TRY(run(s, K_cg_yr, (size_t)nr, err, A(s->y), A(s->r), A(s->p), A(s->q), A(s->sc), A(nr),
+                       END));
+            TR_TRY(tr_cl_reduce_dot(&s->red, &s->ctx, s->r, s->r, nr, s->sc, SC_RR1, err));
+            TR_TRY(run_groups(s, K_cg_beta, 0, err, A(s->sc), END));
+            TR_TRY(run(s, K_cg_p, (size_t)nr, err, A(s->p), A(s->r), A(s->sc), A(nr), END));
+        }
+        TR_TRY(apply_JT(s, prm, s->y, err));
+        TR_TRY(run(s, K_dx_norm, (size_t)nv, err, A(s->dx), A(nv), A(s->t1), END));
+        TR_TRY(tr_cl_reduce_minmax(&s->red, &s->ctx, s->t1, nv, s->sc, SC_MAXDX, err));
+        TR_TRY(run_groups(s, K_step_scale, 0, err, A(s->sc), A(ms), END));
+        TR_TRY(run(s, K_apply_dx, (size_t)nv, err, A(s->x), A(s->dx), A(s->cst), A(s->sc), A(nv), END));
+        TR_TRY(run(s, K_apply_debar, (size_t)s->ncomp, err, A(s->ebar), A(s->debar), A(s->sc),
+                   A(s->ncomp), END));
+        double cnt[8];
+        TR_TRY(read_scalars(s, SC_ITERS, 8, cnt, err)); /* iters (7) .. nact (14) */
+        st.cg_iters += (int)cnt[0];
+        st.active_rows = (size_t)cnt[SC_NACT - SC_ITERS];
+    }
+    st.newton_iters = it;
+    TR_TRY(eval_rows(s, prm, err));
+    TR_TRY(read_scalars(s, SC_VIOL, 2, v, err));
+    st.viol_after = v[1] > 0.0 ? v[1] : 0.0;
+    if (out)
+        *out = st;
+cleanup:
+    return rc;
+}
+
+/* ---- reductions ---- */
+
+static int cl_measure(void *sp, tr_measure *out, double *comp_length, double *comp_ebar,
+                      tr_error *err)
+{
+    cl_state *s = sp;
+    int rc = TR_OK;
+    int nv = s->nv, np = s->np, slot = SC_COMP;
+    double *cl = NULL;
+    tr_measure m = {0};
+    m.min_strut = INFINITY;
+    TR_TRY(run(s, K_measure_edges, (size_t)nv, err, A(s->x), A(s->topo.next), A(s->topo.comp),
+               A(s->ebar), A(nv), A(s->t1), A(s->t2), END));
+    TR_TRY(run_groups(s, K_comp_sum, (size_t)s->ncomp, err, A(s->t1), A(s->start), A(s->sc), A(slot),
+                      END));
+    TR_TRY(tr_cl_reduce_minmax(&s->red, &s->ctx, s->t2, nv, s->sc, SC_DEV, err));
+    TR_TRY(run(s, K_measure_minrad, (size_t)nv, err, A(s->x), A(s->topo.next), A(s->topo.prev), A(nv),
+               A(s->t3), END));
+    TR_TRY(tr_cl_reduce_minmax(&s->red, &s->ctx, s->t3, nv, s->sc, SC_MINRAD, err));
+    if (np > 0) {
+        TR_TRY(run(s, K_pairs_dist, (size_t)np, err, A(s->x), A(s->topo.next), A(s->pa), A(s->pb),
+                   A(np), A(s->pd), END));
+        TR_TRY(tr_cl_reduce_minmax(&s->red, &s->ctx, s->pd, np, s->sc, SC_STRUT, err));
+    }
+    if (s->saved) {
+        TR_TRY(run(s, K_measure_disp, (size_t)nv, err, A(s->x), A(s->xs), A(nv), A(s->t1), END));
+        TR_TRY(tr_cl_reduce_minmax(&s->red, &s->ctx, s->t1, nv, s->sc, SC_DISP, err));
+    }
+    cl = malloc((size_t)(SC_COMP + s->ncomp) * sizeof *cl);
+    if (!cl) {
+        rc = tr_fail(err, TR_ENOMEM, "out of memory measuring");
+        goto cleanup;
+    }
+    TR_TRY(read_scalars(s, 0, SC_COMP + s->ncomp, cl, err));
+    for (int k = 0; k < s->ncomp; k++) {
+        m.length += cl[SC_COMP + k];
+        if (comp_length)
+            comp_length[k] = cl[SC_COMP + k];
+    }
+    m.edge_dev = cl[SC_DEV + 1] > 0.0 ? cl[SC_DEV + 1] : 0.0;
+    m.min_minrad = cl[SC_MINRAD];
+    if (np > 0)
+        m.min_strut = cl[SC_STRUT];
+    if (s->saved)
+        m.max_disp = cl[SC_DISP + 1];
+    if (comp_ebar)
+        TR_CL_CHECK(clEnqueueReadBuffer(s->ctx.queue, s->ebar, CL_TRUE, 0,
+                                        (size_t)s->ncomp * sizeof(double), comp_ebar, 0, NULL, NULL));
+    *out = m;
+cleanup:
+    free(cl);
+    return rc;
+}
+
+static const tr_backend_ops opencl_ops = {
+    .name = "opencl",
+    .destroy = cl_destroy,
+    .upload = cl_upload,
+    .download = cl_download,
+    .save = cl_save,
+    .restore = cl_restore,
+    .find_contacts = cl_find_contacts,
+    .tension_step = cl_tension_step,
+    .correct = cl_correct,
+    .measure = cl_measure,
+};
+
+static int open_on(const tr_device_choice *dev, const tr_curve *c, int profiling, tr_backend *out,
+                   tr_error *err)
+{
+    int rc = TR_OK;
+    cl_int e = CL_SUCCESS;
+    double *x = NULL, *eb = NULL, *cst = NULL;
+    if (c->nv == 0 || c->ncomp <= 0)
+        return tr_fail(err, TR_EINVAL, "empty curve");
+    if (c->nv >= (size_t)1 << 28)
+        return tr_fail(err, TR_EINVAL, "%zu vertices: the opencl backend takes fewer than 2^28", c->nv);
+    for (int k = 0; k < c->ncomp; k++)
+        if (tr_comp_nv(c, k) < (c->closed[k] ? 3u : 2u))
+            return tr_fail(err, TR_EGEOMETRY, "component %d has only %zu vertices", k + 1,
+                           tr_comp_nv(c, k));
+    cl_state *s = calloc(1, sizeof *s);
+    if (!s)
+        return tr_fail(err, TR_ENOMEM, "out of memory opening the opencl backend");
+    s->nv = (int)c->nv;
+    s->ncomp = c->ncomp;
+    size_t nv = c->nv, nc = (size_t)c->ncomp, d = sizeof(double);
+    TR_TRY(tr_curve_copy(&s->shape, c, err));
+    TR_TRY(tr_cl_ctx_open(&s->ctx, &dev->cl, profiling, err));
+    TR_TRY(tr_cl_build_all(&s->ctx, &s->prog, err));
+    for (int i = 0; i < K_COUNT; i++)
+        TR_CL_CHECK((s->k[i] = clCreateKernel(s->prog, kernel_names[i], &e), e));
+    TR_TRY(tr_cl_reduce_init(&s->red, &s->ctx, s->prog, 2 * nv + 64, err));
+    TR_TRY(tr_cl_grid_init(&s->grid, &s->ctx, s->prog, (int)nv, 16, err));
+    s->grid_ready = 1;
+    TR_TRY(tr_cl_topology_upload(&s->ctx, c, &s->topo, err));
+
+    s->h_start = malloc((nc + 1) * sizeof(int));
+    s->h_ne = malloc(nc * sizeof(int));
+    x = malloc(3 * nv * d);
+    eb = malloc(nc * d);
+    cst = calloc(8 * nv, d);
+    if (!s->h_start || !s->h_ne || !x || !eb || !cst) {
+        rc = tr_fail(err, TR_ENOMEM, "out of memory opening the opencl backend");
+        goto cleanup;
+    }
+    for (size_t k = 0; k <= nc; k++)
+        s->h_start[k] = (int)c->start[k];
+    for (size_t k = 0; k < nc; k++)
+        s->h_ne[k] = (int)tr_comp_ne(c, (int)k);
+    /* as the reference: snap constrained vertices, then ebar from the snapped positions */
+    memcpy(x, c->x, 3 * nv * d);
+    for (size_t i = 0; i < nv; i++) {
+        int ci = c->vcst && c->ncst > 0 ? c->vcst[i] : -1;
+        if (ci < 0 || ci >= c->ncst)
+            continue;
+        const tr_constraint *k = &c->cst[ci];
+        tr_constraint_project(k, x + 3 * i);
+        double *r = cst + 8 * i;
+        memcpy(r, k->u, 3 * d);
+        memcpy(r + 3, k->p, 3 * d);
+        r[6] = k->d;
+        r[7] = k->kind == TR_CST_PLANE ? 1 : k->kind == TR_CST_LINE ? 2 : 3;
+    }
+    host_ebar(c, x, eb);
+
+    TR_TRY(buffer(s, &s->start, (nc + 1) * sizeof(int), err));
+    TR_TRY(buffer(s, &s->ne, nc * sizeof(int), err));
+    TR_TRY(buffer(s, &s->gap, nc * sizeof(int), err));
+    TR_TRY(buffer(s, &s->cst, 8 * nv * d, err));
+    TR_TRY(buffer(s, &s->x, 3 * nv * d, err));
+    TR_TRY(buffer(s, &s->xs, 3 * nv * d, err));
+    TR_TRY(buffer(s, &s->ebar, nc * d, err));
+    TR_TRY(buffer(s, &s->ebar_s, nc * d, err));
+    TR_TRY(buffer(s, &s->debar, nc * d, err));
+    TR_TRY(buffer(s, &s->F, 3 * nv * d, err));
+    TR_TRY(buffer(s, &s->G, 3 * nv * d, err));
+    TR_TRY(buffer(s, &s->H, 3 * nv * d, err));
+    TR_TRY(buffer(s, &s->dx, 3 * nv * d, err));
+    TR_TRY(buffer(s, &s->t1, nv * d, err));
+    TR_TRY(buffer(s, &s->t2, nv * d, err));
+    TR_TRY(buffer(s, &s->t3, nv * d, err));
+    TR_TRY(buffer(s, &s->sc, (SC_COMP + nc) * d, err));
+    TR_TRY(buffer(s, &s->up, nv * sizeof(int), err));
+    TR_TRY(buffer(s, &s->first, nv * sizeof(int), err));
+    TR_TRY(buffer(s, &s->off, (nv + 1) * sizeof(int), err));
+    TR_TRY(buffer(s, &s->sums, (tr_cl_global(nv) / TR_CL_LOCAL) * sizeof(int), err));
+    TR_TRY(buffer(s, &s->adjn, nv * sizeof(int), err));
+    s->acap = 32;
+    TR_TRY(buffer(s, &s->adj, nv * (size_t)s->acap * sizeof(int), err));
+    s->pcap = 64;
+    TR_TRY(buffer(s, &s->pa, (size_t)s->pcap * sizeof(int), err));
+    TR_TRY(buffer(s, &s->pb, (size_t)s->pcap * sizeof(int), err));
+    TR_TRY(buffer(s, &s->pd, (size_t)s->pcap * d, err));
+    TR_TRY(ensure_rows(s, err));
+
+    cl_command_queue q = s->ctx.queue;
+    TR_CL_CHECK(clEnqueueWriteBuffer(q, s->start, CL_TRUE, 0, (nc + 1) * sizeof(int), s->h_start, 0,
+                                     NULL, NULL));
+    TR_CL_CHECK(clEnqueueWriteBuffer(q, s->ne, CL_TRUE, 0, nc * sizeof(int), s->h_ne, 0, NULL, NULL));
+    TR_CL_CHECK(clEnqueueWriteBuffer(q, s->cst, CL_TRUE, 0, 8 * nv * d, cst, 0, NULL, NULL));
+    double zero[SC_COMP] = {0};
+    TR_CL_CHECK(clEnqueueWriteBuffer(q, s->sc, CL_TRUE, 0, sizeof zero, zero, 0, NULL, NULL));
+    TR_TRY(cl_upload(s, x, eb, err));
+
+    out->ops = &opencl_ops;
+    out->state = s;
+    snprintf(out->description, sizeof out->description, "OpenCL %d:%d: %.100s (%.80s)",
+             dev->cl.platform, dev->cl.device, dev->cl.name, dev->cl.platform_name);
+    s = NULL;
+cleanup:
+    cl_destroy(s);
+    free(x);
+    free(eb);
+    free(cst);
+    return rc;
+}
+
+static int open_spec(const char *spec, const tr_curve *c, int profiling, tr_backend *out,
+                     tr_error *err)
+{
+    if (!spec || !*spec)
+        spec = "auto";
+    if (!strcmp(spec, "reference") || !strcmp(spec, "serial"))
+        return tr_fail(err, TR_EUNSUPPORTED, "'%s' is not an opencl device", spec);
+    tr_device_choice dev;
+    int rc = tr_device_select(spec, &dev, err);
+    if (rc != TR_OK)
+        return rc;
+    if (dev.kind != TR_DEVICE_OPENCL)
+        return tr_fail(err, TR_EUNSUPPORTED, "%s", dev.warning[0] ? dev.warning : "no opencl device");
+    memset(out, 0, sizeof *out);
+    return open_on(&dev, c, profiling, out, err);
+}
+
+int tr_backend_opencl_open(const char *spec, const tr_curve *c, tr_backend *out, tr_error *err)
+{
+    return open_spec(spec, c, 0, out, err);
+}
+
+int tr_backend_opencl_open_profiled(const char *spec, const tr_curve *c, tr_backend *out,
+                                    tr_error *err)
+{
+    return open_spec(spec, c, 1, out, err);
+}
+
+int tr_backend_opencl_kernel_times(const tr_backend *b, tr_kernel_time *out, int max)
+{
+    if (!b || b->ops != &opencl_ops)
+        return 0;
+    const cl_state *s = b->state;
+    int n = 0;
+    for (int i = 0; i < K_COUNT && n < max; i++)
+        if (s->prof_n[i]) {
+            out[n].kernel = kernel_names[i];
+            out[n].launches = s->prof_n[i];
+            out[n].seconds = s->prof_s[i];
+            n++;
+        }
+    return n;
+}

@@ -1,0 +1,281 @@
+/* Distance-constraint projection and curvature moments (backend.h correct):
+ * Gauss-Newton on the active rows (edges, curvature chords, struts), each
+ * step solved by CG on J M^-1 J^T. Rows: [0, nv) edge rows, [nv, 2 nv)
+ * curvature rows, [2 nv, 2 nv + np) strut rows. J^T y is a per-vertex gather
+ * (chain neighbours, then the vertex's contact adjacency in list order);
+ * J dx is per row. The CG scalars live in a small device array `sc` so the
+ * host reads nothing inside the CG loop. */
+
+/* sc[] slots */
+#define SC_RR 0
+#define SC_RR0 1
+#define SC_PQ 2
+#define SC_ALPHA 3
+#define SC_RR1 4
+#define SC_BETA 5
+#define SC_DONE 6
+#define SC_ITERS 7
+#define SC_TOL2 8
+#define SC_VIOL 9 /* and 10: minmax writes (min, max) - the max is at 10 */
+#define SC_MAXDX 12 /* minmax: min at 11, max at 12 */
+#define SC_SCALE 13
+#define SC_NACT 14
+
+inline real chord_min(real e, real r) { return 2.0 * e / sqrt(1.0 + e * e / (4.0 * r * r)); }
+inline real chord_min_deriv(real e, real r)
+{
+    real q = 1.0 + e * e / (4.0 * r * r);
+    return 2.0 / (q * sqrt(q));
+}
+
+/* Edge row i and curvature row nv + i; rv holds each row's violation (>= 0). */
+__kernel void rows_chain(__global const real *x, __global const int *next,
+                         __global const int *prev, __global const int *comp,
+                         __global const real *ebar, const int nv, const real minrad,
+                         const real active_curv, __global real *rC, __global real *rgrad,
+                         __global int *ract, __global real *rv)
+{
+    int i = get_global_id(0);
+    if (i >= nv)
+        return;
+    int nx = next[i], pv = prev[i];
+    ract[i] = 0;
+    rv[i] = 0.0;
+    if (nx >= 0) {
+        real3 u = vload3(nx, x) - vload3(i, x);
+        real l = tr_norm3(u);
+        u = u * (1.0 / l);
+        vstore3(u, i, rgrad);
+        real C = l - ebar[comp[i]];
+        rC[i] = C;
+        ract[i] = 1;
+        rv[i] = fabs(C);
+    }
+    int r = nv + i;
+    ract[r] = 0;
+    rv[r] = 0.0;
+    if (pv >= 0 && nx >= 0) {
+        real3 w = vload3(nx, x) - vload3(pv, x);
+        real l = tr_norm3(w);
+        w = w * (1.0 / l);
+        vstore3(w, r, rgrad);
+        real C = l - chord_min(ebar[comp[i]], minrad);
+        rC[r] = C;
+        ract[r] = C < active_curv;
+        rv[r] = -C > 0.0 ? -C : 0.0;
+    }
+}
+
+__kernel void rows_strut(__global const real *x, __global const int *next,
+                         __global const int *pa, __global const int *pb, const int nv,
+                         const int np, const real strut_dist, const real active_strut,
+                         __global real *rC, __global real *rgrad, __global int *ract,
+                         __global real *rs, __global real *rt, __global real *rv)
+{
+    int p = get_global_id(0);
+    if (p >= np)
+        return;
+    int r = 2 * nv + p, a = pa[p], b = pb[p];
+    real3 p0 = vload3(a, x), p1 = vload3(next[a], x), q0 = vload3(b, x), q1 = vload3(next[b], x);
+    real ss, tt;
+    real d = tr_segment_distance(p0, p1, q0, q1, &ss, &tt);
+    real3 n = ((p0 + ss * (p1 - p0)) - (q0 + tt * (q1 - q0))) / d;
+    vstore3(n, r, rgrad);
+    rs[p] = ss;
+    rt[p] = tt;
+    real C = d - strut_dist;
+    rC[r] = C;
+    ract[r] = C < active_strut;
+    rv[r] = -C > 0.0 ? -C : 0.0;
+}
+
+/* b, and the CG start y = 0, r = p = b. */
+__kernel void cg_init(__global const real *rC, __global const int *ract, const int nv,
+                      const int nr, __global real *b, __global real *y, __global real *r,
+                      __global real *p)
+{
+    int k = get_global_id(0);
+    if (k >= nr)
+        return;
+    real v = !ract[k] ? 0.0 : (k < nv ? -rC[k] : -fmin(rC[k], 0.0));
+    b[k] = v;
+    y[k] = 0.0;
+    r[k] = v;
+    p[k] = v;
+}
+
+/* dx_i = P_i (sum over rows y_r dC_r/dx_i), in the order backend.h fixes. */
+__kernel void jt_vertex(__global const real *y, __global const real *rgrad,
+                        __global const int *ract, __global const int *next,
+                        __global const int *prev, __global const int *adj,
+                        __global const int *adjn, const int acap, __global const real *rs,
+                        __global const real *rt, __global const real *cst, const int nv,
+                        __global real *dx)
+{
+    int i = get_global_id(0);
+    if (i >= nv)
+        return;
+    real3 g = (real3)(0.0);
+    int pv = prev[i], nx = next[i];
+    if (pv >= 0)
+        g = g + y[pv] * vload3(pv, rgrad);
+    if (nx >= 0)
+        g = g + (-y[i]) * vload3(i, rgrad);
+    if (pv >= 0 && ract[nv + pv])
+        g = g + y[nv + pv] * vload3(nv + pv, rgrad);
+    if (nx >= 0 && ract[nv + nx])
+        g = g + (-y[nv + nx]) * vload3(nv + nx, rgrad);
+    __global const int *row = adj + (size_t)i * (size_t)acap;
+    for (int m = 0; m < adjn[i]; m++) {
+        int p = row[m] >> 2, slot = row[m] & 3, r = 2 * nv + p;
+        if (!ract[r])
+            continue;
+        real c = slot == 0 ? 1.0 - rs[p] : slot == 1 ? rs[p] : slot == 2 ? -(1.0 - rt[p]) : -rt[p];
+        g = g + (c * y[r]) * vload3(r, rgrad);
+    }
+    vstore3(tr_project_motion(cst, i, g), i, dx);
+}
+
+/* debar_k = (sum over rows of component k of y_r dC_r/debar_k) / (w ne_k);
+ * work-group k (strided partial sums, then a tree). */
+__kernel __attribute__((reqd_work_group_size(TR_LOCAL_SIZE, 1, 1)))
+void jt_ebar(__global const real *y, __global const int *ract, __global const int *start,
+             __global const int *ne, __global const real *ebar, const int nv, const real minrad,
+             const real ebar_weight, __global real *debar)
+{
+    __local real s[TR_LOCAL_SIZE];
+    int k = get_group_id(0), l = get_local_id(0);
+    real cp = chord_min_deriv(ebar[k], minrad);
+    real sum = 0.0;
+    for (int a = start[k] + l; a < start[k + 1]; a += TR_LOCAL_SIZE) {
+        if (ract[a])
+            sum += -y[a];
+        if (ract[nv + a])
+            sum += -cp * y[nv + a];
+    }
+    s[l] = sum;
+    barrier(CLK_LOCAL_MEM_FENCE);
+    for (int w = TR_LOCAL_SIZE / 2; w > 0; w >>= 1) {
+        if (l < w)
+            s[l] += s[l + w];
+        barrier(CLK_LOCAL_MEM_FENCE);
+    }
+    if (l == 0)
+        debar[k] = ne[k] ? s[0] / (ebar_weight * (real)ne[k]) : 0.0;
+}
+
+/* out_r = dC_r/dx . dx + dC_r/debar . debar + reg y_r on active rows, else 0. */
+__kernel void j_rows(__global const real *dx, __global const real *debar,
+                     __global const real *ebar, __global const real *rgrad,
+                     __global const int *ract, __global const int *next,
+                     __global const int *prev, __global const int *comp,
+                     __global const int *pa, __global const int *pb, __global const real *rs,
+                     __global const real *rt, __global const real *y, const int nv, const int np,
+                     const real minrad, const real reg, __global real *out)
+{
+    int r = get_global_id(0);
+    if (r >= 2 * nv + np)
+        return;
+    if (!ract[r]) {
+        out[r] = 0.0;
+        return;
+    }
+    if (r < nv) {
+        real3 d = vload3(next[r], dx) - vload3(r, dx);
+        out[r] = tr_dot3(vload3(r, rgrad), d) - debar[comp[r]] + reg * y[r];
+    } else if (r < 2 * nv) {
+        int i = r - nv, k = comp[i];
+        real3 d = vload3(next[i], dx) - vload3(prev[i], dx);
+        out[r] = tr_dot3(vload3(r, rgrad), d) - chord_min_deriv(ebar[k], minrad) * debar[k] +
+                 reg * y[r];
+    } else {
+        int p = r - 2 * nv, a = pa[p], b = pb[p];
+        real ss = rs[p], tt = rt[p];
+        real3 d = (1.0 - ss) * vload3(a, dx) + ss * vload3(next[a], dx) -
+                  (1.0 - tt) * vload3(b, dx) - tt * vload3(next[b], dx);
+        out[r] = tr_dot3(vload3(r, rgrad), d) + reg * y[r];
+    }
+}
+
+/* CG scalar updates: one item each. `done` turns the rest into no-ops. */
+__kernel void cg_start(__global real *sc)
+{
+    sc[SC_RR0] = sc[SC_RR];
+    sc[SC_DONE] = 0.0;
+    sc[SC_ITERS] = 0.0;
+}
+
+__kernel void cg_top(__global real *sc)
+{
+    if (sc[SC_DONE] == 0.0 && sc[SC_RR] <= sc[SC_TOL2] * sc[SC_RR0])
+        sc[SC_DONE] = 1.0;
+}
+
+__kernel void cg_alpha(__global real *sc)
+{
+    sc[SC_ALPHA] = sc[SC_DONE] != 0.0 ? 0.0 : sc[SC_RR] / sc[SC_PQ];
+}
+
+__kernel void cg_yr(__global real *y, __global real *r, __global const real *p,
+                    __global const real *q, __global const real *sc, const int nr)
+{
+    int k = get_global_id(0);
+    if (k >= nr || sc[SC_DONE] != 0.0)
+        return;
+    real alpha = sc[SC_ALPHA];
+    y[k] += alpha * p[k];
+    r[k] -= alpha * q[k];
+}
+
+__kernel void cg_beta(__global real *sc)
+{
+    if (sc[SC_DONE] != 0.0)
+        return;
+    sc[SC_BETA] = sc[SC_RR1] / sc[SC_RR];
+    sc[SC_RR] = sc[SC_RR1];
+    sc[SC_ITERS] += 1.0;
+}
+
+__kernel void cg_p(__global real *p, __global const real *r, __global const real *sc,
+                   const int nr)
+{
+    int k = get_global_id(0);
+    if (k >= nr || sc[SC_DONE] != 0.0)
+        return;
+    p[k] = r[k] + sc[SC_BETA] * p[k];
+}
+
+/* |dx_i| for the damping cap. */
+__kernel void dx_norm(__global const real *dx, const int nv, __global real *m)
+{
+    int i = get_global_id(0);
+    if (i < nv)
+        m[i] = tr_norm3(vload3(i, dx));
+}
+
+__kernel void step_scale(__global real *sc, const real max_step)
+{
+    real m = sc[SC_MAXDX];
+    sc[SC_SCALE] = m > max_step ? max_step / m : 1.0;
+}
+
+__kernel void apply_dx(__global real *x, __global const real *dx, __global const real *cst,
+                       __global const real *sc, const int nv)
+{
+    int i = get_global_id(0);
+    if (i >= nv)
+        return;
+    real scale = sc[SC_SCALE];
+    real3 d = vload3(i, dx);
+    if (scale != 1.0)
+        d = scale * d;
+    vstore3(tr_snap(cst, i, vload3(i, x) + d), i, x);
+}
+
+__kernel void apply_debar(__global real *ebar, __global const real *debar,
+                          __global const real *sc, const int ncomp)
+{
+    int k = get_global_id(0);
+    if (k < ncomp)
+        ebar[k] += sc[SC_SCALE] * debar[k];
+}
