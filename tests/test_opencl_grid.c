@@ -113,7 +113,10 @@ static void run_case(const tr_cl_ctx *ctx, cl_program prog, int kind, size_t n, 
     cl_int e;
     cl_mem x = clCreateBuffer(ctx->context, CL_MEM_READ_WRITE | CL_MEM_COPY_HOST_PTR,
                               3 * c.nv * sizeof(double), c.x, &e);
-    int rc = tr_cl_grid_build(&grid, ctx, &red, &topo, x, edges, r, K, &err);
+    int gaps[2] = {K, K};
+    cl_mem gap = clCreateBuffer(ctx->context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof gaps,
+                                gaps, &e);
+    int rc = tr_cl_grid_build(&grid, ctx, &red, &topo, x, edges, r, gap, &err);
     CHECK_OK(rc);
     if (rc != TR_OK)
         fprintf(stderr, "%s\n", err.msg);
@@ -170,6 +173,7 @@ static void run_case(const tr_cl_ctx *ctx, cl_program prog, int kind, size_t n, 
     free(want), free(cnt), free(list);
     free(next), free(prev), free(comp), free(pos);
     clReleaseMemObject(x);
+    clReleaseMemObject(gap);
     tr_cl_grid_free(&grid);
     tr_cl_reduce_free(&red);
     tr_cl_topology_free(&topo);
