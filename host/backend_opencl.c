@@ -22,7 +22,9 @@
     X(scan_sums) X(scan_add) X(pairs_write) X(contacts_csr) X(pairs_dist) X(rows_chain)       \
     X(rows_strut) X(cg_init) X(jt_vertex) X(jt_ebar) X(j_rows) X(cg_start) X(cg_top)          \
     X(cg_alpha) X(cg_yr) X(cg_beta) X(cg_p) X(dx_norm) X(step_scale) X(apply_dx)              \
-    X(apply_debar) X(measure_edges) X(measure_minrad) X(measure_disp) X(comp_sum)
+    X(apply_debar) X(measure_edges) X(measure_minrad) X(measure_disp) X(comp_sum)            \
+    X(cg_reset) X(release_pulling) X(project_field) X(tangent_finish) X(ebar_velocity)        \
+    X(tension_smooth2)
 #define ENUM(k) K_##k,
 #define NAME(k) #k,
 enum { KERNELS(ENUM) K_COUNT };
@@ -33,6 +35,7 @@ enum {
     SC_RR = 0, SC_PQ = 2, SC_RR1 = 4, SC_DONE = 6, SC_ITERS = 7, SC_TOL2 = 8, SC_VIOL = 9,
     SC_MAXDX = 11, SC_NACT = 14,
     SC_F2 = 16, SC_PRED = 17, SC_MOVE = 18, /* minmax: 18 min, 19 max */
+    SC_SMOOTH2 = 28, SC_FREE2 = 29,
     SC_DEV = 20,                            /* 20, 21 */
     SC_STRUT = 22,                          /* 22, 23 */
     SC_MINRAD = 24,                         /* 24, 25 */
@@ -64,6 +67,7 @@ typedef struct cl_state {
     /* rows */
     int rcap;
     cl_mem rC, rgrad, ract, rs, rt, rv, y, r, p, q, b;
+    cl_mem cgq, cdeb, chg; /* curvature rows' second gradient and ebar derivative; a flag */
 } cl_state;
 
 static void release(cl_mem *m)
@@ -83,7 +87,7 @@ static void cl_destroy(void *sp)
                    &s->t2,    &s->t3,   &s->sc,   &s->up,   &s->first, &s->off, &s->sums,
                    &s->pa,    &s->pb,   &s->adj,  &s->adjn, &s->pd,   &s->rC,   &s->rgrad,
                    &s->ract,  &s->rs,   &s->rt,   &s->rv,   &s->y,    &s->r,    &s->p,
-                   &s->q,     &s->b};
+                   &s->q,     &s->b,    &s->cgq,  &s->cdeb, &s->chg};
     for (size_t i = 0; i < sizeof m / sizeof m[0]; i++)
         release(m[i]);
     for (int i = 0; i < K_COUNT; i++)
@@ -365,42 +369,6 @@ cleanup:
     return rc;
 }
 
-/* ---- force evaluation ---- */
-
-static int cl_tension_step(void *sp, const tr_tension_params *prm, tr_tension_stats *out,
-                           tr_error *err)
-{
-    cl_state *s = sp;
-    int rc = TR_OK;
-    int nv = s->nv;
-    double h = prm->h, mm = prm->max_move, sc[4];
-    TR_TRY(run(s, K_tension_force, (size_t)nv, err, A(s->x), A(s->topo.next), A(s->topo.prev), A(nv),
-               A(s->F), END));
-    cl_mem G = s->G, H = s->H;
-    TR_CL_CHECK(clEnqueueCopyBuffer(s->ctx.queue, s->F, G, 0, 0, 3 * (size_t)nv * sizeof(double), 0,
-                                    NULL, NULL));
-    for (int pass = 0; pass < prm->smooth_passes; pass++) {
-        TR_TRY(run(s, K_tension_smooth, (size_t)nv, err, A(G), A(s->topo.next), A(s->topo.prev),
-                   A(nv), A(H), END));
-        cl_mem t = G;
-        G = H;
-        H = t;
-    }
-    TR_TRY(run(s, K_tension_move, (size_t)nv, err, A(s->x), A(s->F), A(G), A(s->cst), A(nv), A(h),
-               A(mm), A(s->t1), A(s->t2), A(s->t3), END));
-    TR_TRY(tr_cl_reduce_sum(&s->red, &s->ctx, s->t1, nv, s->sc, SC_F2, err));
-    TR_TRY(tr_cl_reduce_sum(&s->red, &s->ctx, s->t2, nv, s->sc, SC_PRED, err));
-    TR_TRY(tr_cl_reduce_minmax(&s->red, &s->ctx, s->t3, nv, s->sc, SC_MOVE, err));
-    TR_TRY(read_scalars(s, SC_F2, 4, sc, err));
-    if (out) {
-        out->force2 = sc[0];
-        out->predicted = sc[1];
-        out->max_move = sc[3];
-    }
-cleanup:
-    return rc;
-}
-
 /* ---- coupled constraint correction ---- */
 
 static int eval_rows(cl_state *s, const tr_correct_params *prm, tr_error *err)
@@ -410,9 +378,10 @@ static int eval_rows(cl_state *s, const tr_correct_params *prm, tr_error *err)
     double minrad = prm->minrad, ac = prm->active_curv, sd = prm->strut_dist, as = prm->active_strut;
     TR_TRY(run(s, K_rows_chain, (size_t)nv, err, A(s->x), A(s->topo.next), A(s->topo.prev),
                A(s->topo.comp), A(s->ebar), A(nv), A(minrad), A(ac), A(s->rC), A(s->rgrad),
-               A(s->ract), A(s->rv), END));
+               A(s->ract), A(s->rv), A(s->cgq), A(s->cdeb), END));
     if (np > 0)
-        TR_TRY(run(s, K_rows_strut, (size_t)np, err, A(s->x), A(s->topo.next), A(s->pa), A(s->pb),
+        TR_TRY(run(s, K_rows_strut, (size_t)np, err, A(s->x), A(s->topo.next), A(s->topo.prev),
+                   A(s->pa), A(s->pb),
                    A(nv), A(np), A(sd), A(as), A(s->rC), A(s->rgrad), A(s->ract), A(s->rs),
                    A(s->rt), A(s->rv), END));
     TR_TRY(tr_cl_reduce_minmax(&s->red, &s->ctx, s->rv, nr, s->sc, SC_VIOL, err));
@@ -425,12 +394,51 @@ static int apply_JT(cl_state *s, const tr_correct_params *prm, cl_mem y, tr_erro
 {
     int rc = TR_OK;
     int nv = s->nv;
-    double minrad = prm->minrad, w = prm->ebar_weight;
-    TR_TRY(run(s, K_jt_vertex, (size_t)nv, err, A(y), A(s->rgrad), A(s->ract), A(s->topo.next),
+    double w = prm->ebar_weight;
+    TR_TRY(run(s, K_jt_vertex, (size_t)nv, err, A(y), A(s->rgrad), A(s->cgq), A(s->ract), A(s->topo.next),
                A(s->topo.prev), A(s->adj), A(s->adjn), A(s->acap), A(s->rs), A(s->rt), A(s->cst),
                A(nv), A(s->dx), END));
     TR_TRY(run_groups(s, K_jt_ebar, (size_t)s->ncomp, err, A(y), A(s->ract), A(s->start), A(s->ne),
-                      A(s->ebar), A(nv), A(minrad), A(w), A(s->debar), END));
+                      A(s->cdeb), A(nv), A(w), A(s->debar), END));
+cleanup:
+    return rc;
+}
+
+/* CG on A y = b from y = 0, r = p = b (already in place), as backend.h (c):
+ * the device keeps the scalars and turns iterations after convergence into
+ * no-ops; the host looks at the flag every fourth iteration. */
+static int cg_iterate(cl_state *s, const tr_correct_params *prm, int *iters, tr_error *err)
+{
+    int rc = TR_OK;
+    int nv = s->nv, np = s->np, nr = 2 * nv + np;
+    double reg = prm->reg, tol2 = prm->cg_rtol * prm->cg_rtol, it;
+    TR_CL_CHECK(clEnqueueWriteBuffer(s->ctx.queue, s->sc, CL_FALSE, SC_TOL2 * sizeof(double),
+                                     sizeof tol2, &tol2, 0, NULL, NULL));
+    TR_TRY(tr_cl_reduce_dot(&s->red, &s->ctx, s->r, s->r, nr, s->sc, SC_RR, err));
+    TR_TRY(run_groups(s, K_cg_start, 0, err, A(s->sc), END));
+    for (int k = 0; k < prm->max_cg; k++) {
+        TR_TRY(run_groups(s, K_cg_top, 0, err, A(s->sc), END));
+        if (k > 0 && k % 4 == 0) {
+            double done;
+            TR_TRY(read_scalars(s, SC_DONE, 1, &done, err));
+            if (done != 0.0)
+                break;
+        }
+        TR_TRY(apply_JT(s, prm, s->p, err));
+        TR_TRY(run(s, K_j_rows, (size_t)nr, err, A(s->dx), A(s->debar), A(s->cdeb), A(s->rgrad),
+                   A(s->cgq), A(s->ract), A(s->topo.next), A(s->topo.prev), A(s->topo.comp),
+                   A(s->pa), A(s->pb), A(s->rs), A(s->rt), A(s->p), A(nv), A(np), A(reg), A(s->q),
+                   END));
+        TR_TRY(tr_cl_reduce_dot(&s->red, &s->ctx, s->p, s->q, nr, s->sc, SC_PQ, err));
+        TR_TRY(run_groups(s, K_cg_alpha, 0, err, A(s->sc), END));
+        TR_TRY(run(s, K_cg_yr, (size_t)nr, err, A(s->y), A(s->r), A(s->p), A(s->q), A(s->sc), A(nr),
+                   END));
+        TR_TRY(tr_cl_reduce_dot(&s->red, &s->ctx, s->r, s->r, nr, s->sc, SC_RR1, err));
+        TR_TRY(run_groups(s, K_cg_beta, 0, err, A(s->sc), END));
+        TR_TRY(run(s, K_cg_p, (size_t)nr, err, A(s->p), A(s->r), A(s->sc), A(nr), END));
+    }
+    TR_TRY(read_scalars(s, SC_ITERS, 1, &it, err));
+    *iters = (int)it;
 cleanup:
     return rc;
 }
@@ -441,10 +449,7 @@ static int cl_correct(void *sp, const tr_correct_params *prm, tr_correct_stats *
     int rc = TR_OK;
     TR_TRY(ensure_rows(s, err));
     int nv = s->nv, np = s->np, nr = 2 * nv + np;
-    double minrad = prm->minrad, reg = prm->reg, ms = prm->max_step;
-    double tol2 = prm->cg_rtol * prm->cg_rtol;
-    TR_CL_CHECK(clEnqueueWriteBuffer(s->ctx.queue, s->sc, CL_FALSE, SC_TOL2 * sizeof(double),
-                                     sizeof tol2, &tol2, 0, NULL, NULL));
+    double ms = prm->max_step;
     tr_correct_stats st = {0};
     int it;
     double v[2];
@@ -459,31 +464,9 @@ static int cl_correct(void *sp, const tr_correct_params *prm, tr_correct_stats *
         TR_TRY(run(s, K_cg_init, (size_t)nr, err, A(s->rC), A(s->ract), A(nv), A(nr), A(s->b), A(s->y),
                    A(s->r), A(s->p), END));
         TR_TRY(tr_cl_reduce_count(&s->red, &s->ctx, s->ract, nr, s->sc, SC_NACT, err));
-        TR_TRY(tr_cl_reduce_dot(&s->red, &s->ctx, s->r, s->r, nr, s->sc, SC_RR, err));
-        TR_TRY(run_groups(s, K_cg_start, 0, err, A(s->sc), END));
-        for (int k = 0; k < prm->max_cg; k++) {
-            TR_TRY(run_groups(s, K_cg_top, 0, err, A(s->sc), END));
-            /* Every few iterations look whether CG has converged; in between,
-             * the device turns the remaining updates into no-ops itself. */
-            if (k > 0 && k % 4 == 0) {
-                double done;
-                TR_TRY(read_scalars(s, SC_DONE, 1, &done, err));
-                if (done != 0.0)
-                    break;
-            }
-            TR_TRY(apply_JT(s, prm, s->p, err));
-            TR_TRY(run(s, K_j_rows, (size_t)nr, err, A(s->dx), A(s->debar), A(s->ebar), A(s->rgrad),
-                       A(s->ract), A(s->topo.next), A(s->topo.prev), A(s->topo.comp), A(s->pa),
-                       A(s->pb), A(s->rs), A(s->rt), A(s->p), A(nv), A(np), A(minrad), A(reg),
-                       A(s->q), END));
-            TR_TRY(tr_cl_reduce_dot(&s->red, &s->ctx, s->p, s->q, nr, s->sc, SC_PQ, err));
-            TR_TRY(run_groups(s, K_cg_alpha, 0, err, A(s->sc), END));
-            TR_TRY(run(s, K_cg_yr, (size_t)nr, err, A(s->y), A(s->r), A(s->p), A(s->q), A(s->sc), A(nr),
-                       END));
-            TR_TRY(tr_cl_reduce_dot(&s->red, &s->ctx, s->r, s->r, nr, s->sc, SC_RR1, err));
-            TR_TRY(run_groups(s, K_cg_beta, 0, err, A(s->sc), END));
-            TR_TRY(run(s, K_cg_p, (size_t)nr, err, A(s->p), A(s->r), A(s->sc), A(nr), END));
-        }
+        int iters = 0;
+        TR_TRY(cg_iterate(s, prm, &iters, err));
+        st.cg_iters += iters;
         TR_TRY(apply_JT(s, prm, s->y, err));
         TR_TRY(run(s, K_dx_norm, (size_t)nv, err, A(s->dx), A(nv), A(s->t1), END));
         TR_TRY(tr_cl_reduce_minmax(&s->red, &s->ctx, s->t1, nv, s->sc, SC_MAXDX, err));
@@ -491,10 +474,9 @@ static int cl_correct(void *sp, const tr_correct_params *prm, tr_correct_stats *
         TR_TRY(run(s, K_apply_dx, (size_t)nv, err, A(s->x), A(s->dx), A(s->cst), A(s->sc), A(nv), END));
         TR_TRY(run(s, K_apply_debar, (size_t)s->ncomp, err, A(s->ebar), A(s->debar), A(s->sc),
                    A(s->ncomp), END));
-        double cnt[8];
-        TR_TRY(read_scalars(s, SC_ITERS, 8, cnt, err)); /* iters (7) .. nact (14) */
-        st.cg_iters += (int)cnt[0];
-        st.active_rows = (size_t)cnt[SC_NACT - SC_ITERS];
+        double nact;
+        TR_TRY(read_scalars(s, SC_NACT, 1, &nact, err));
+        st.active_rows = (size_t)nact;
     }
     st.newton_iters = it;
     TR_TRY(eval_rows(s, prm, err));
@@ -502,6 +484,100 @@ static int cl_correct(void *sp, const tr_correct_params *prm, tr_correct_stats *
     st.viol_after = v[1] > 0.0 ? v[1] : 0.0;
     if (out)
         *out = st;
+cleanup:
+    return rc;
+}
+
+/* ---- force evaluation ---- */
+
+/* backend.h tension_step 2b: G <- P G, then its component tangent to the
+ * active rows (releasing pulling inequality rows between passes); leaves the
+ * ebar velocity's negative in debar. */
+static int project_tangent(cl_state *s, const tr_correct_params *q, cl_mem G, tr_error *err)
+{
+    int rc = TR_OK;
+    int nv = s->nv, np = s->np, nr = 2 * nv + np, n3 = 3 * nv;
+    double reg0 = 0.0, zero = 0.0;
+    int izero = 0;
+    TR_TRY(eval_rows(s, q, err));
+    TR_TRY(run(s, K_project_field, (size_t)nv, err, A(G), A(s->cst), A(nv), END));
+    for (int pass = 0; pass < q->max_newton; pass++) {
+        TR_CL_CHECK(clEnqueueCopyBuffer(s->ctx.queue, G, s->dx, 0, 0, (size_t)n3 * sizeof(double), 0,
+                                        NULL, NULL));
+        TR_CL_CHECK(clEnqueueFillBuffer(s->ctx.queue, s->debar, &zero, sizeof zero, 0,
+                                        (size_t)s->ncomp * sizeof(double), 0, NULL, NULL));
+        TR_CL_CHECK(clEnqueueFillBuffer(s->ctx.queue, s->y, &zero, sizeof zero, 0,
+                                        (size_t)nr * sizeof(double), 0, NULL, NULL));
+        /* b = J (G, debar = 0), no regularisation term (y = 0) */
+        TR_TRY(run(s, K_j_rows, (size_t)nr, err, A(s->dx), A(s->debar), A(s->cdeb), A(s->rgrad),
+                   A(s->cgq), A(s->ract), A(s->topo.next), A(s->topo.prev), A(s->topo.comp),
+                   A(s->pa), A(s->pb), A(s->rs), A(s->rt), A(s->y), A(nv), A(np), A(reg0), A(s->b),
+                   END));
+        TR_TRY(run(s, K_cg_reset, (size_t)nr, err, A(s->b), A(s->y), A(s->r), A(s->p), A(nr), END));
+        int iters = 0;
+        TR_TRY(cg_iterate(s, q, &iters, err));
+        if (pass + 1 < q->max_newton && nr > nv) {
+            int changed = 0;
+            TR_CL_CHECK(clEnqueueWriteBuffer(s->ctx.queue, s->chg, CL_FALSE, 0, sizeof izero, &izero, 0,
+                                             NULL, NULL));
+            TR_TRY(run(s, K_release_pulling, (size_t)(nr - nv), err, A(s->ract), A(s->y), A(nv), A(nr),
+                       A(s->chg), END));
+            TR_CL_CHECK(clEnqueueReadBuffer(s->ctx.queue, s->chg, CL_TRUE, 0, sizeof changed, &changed,
+                                            0, NULL, NULL));
+            if (changed)
+                continue;
+        }
+        break;
+    }
+    TR_TRY(apply_JT(s, q, s->y, err));
+    TR_TRY(run(s, K_tangent_finish, (size_t)n3, err, A(G), A(s->dx), A(n3), END));
+cleanup:
+    return rc;
+}
+
+static int cl_tension_step(void *sp, const tr_tension_params *prm, tr_tension_stats *out,
+                           tr_error *err)
+{
+    cl_state *s = sp;
+    int rc = TR_OK;
+    int nv = s->nv;
+    double h = prm->h, mm = prm->max_move;
+    TR_TRY(run(s, K_tension_force, (size_t)nv, err, A(s->x), A(s->topo.next), A(s->topo.prev), A(nv),
+               A(s->F), END));
+    cl_mem G = s->G, H = s->H;
+    TR_CL_CHECK(clEnqueueCopyBuffer(s->ctx.queue, s->F, G, 0, 0, 3 * (size_t)nv * sizeof(double), 0,
+                                    NULL, NULL));
+    for (int pass = 0; pass < prm->smooth_passes; pass++) {
+        TR_TRY(run(s, K_tension_smooth, (size_t)nv, err, A(G), A(s->topo.next), A(s->topo.prev),
+                   A(nv), A(H), END));
+        cl_mem t = G;
+        G = H;
+        H = t;
+    }
+    TR_TRY(run(s, K_tension_smooth2, (size_t)nv, err, A(G), A(s->cst), A(nv), A(s->t1), END));
+    TR_TRY(tr_cl_reduce_sum(&s->red, &s->ctx, s->t1, nv, s->sc, SC_SMOOTH2, err));
+    if (prm->project) {
+        TR_TRY(ensure_rows(s, err));
+        TR_TRY(project_tangent(s, prm->project, G, err));
+        TR_TRY(tr_cl_reduce_dot(&s->red, &s->ctx, G, G, 3 * nv, s->sc, SC_FREE2, err));
+    }
+    TR_TRY(run(s, K_tension_move, (size_t)nv, err, A(s->x), A(s->F), A(G), A(s->cst), A(nv), A(h),
+               A(mm), A(s->t1), A(s->t2), A(s->t3), END));
+    if (prm->project)
+        TR_TRY(run(s, K_ebar_velocity, (size_t)s->ncomp, err, A(s->ebar), A(s->debar), A(h),
+                   A(s->ncomp), END));
+    TR_TRY(tr_cl_reduce_sum(&s->red, &s->ctx, s->t1, nv, s->sc, SC_F2, err));
+    TR_TRY(tr_cl_reduce_sum(&s->red, &s->ctx, s->t2, nv, s->sc, SC_PRED, err));
+    TR_TRY(tr_cl_reduce_minmax(&s->red, &s->ctx, s->t3, nv, s->sc, SC_MOVE, err));
+    double v[14];
+    TR_TRY(read_scalars(s, SC_F2, 14, v, err)); /* slots 16 .. 29 */
+    if (out) {
+        out->force2 = v[0];
+        out->predicted = v[1];
+        out->max_move = v[3];
+        out->smooth2 = v[SC_SMOOTH2 - SC_F2];
+        out->free2 = prm->project ? v[SC_FREE2 - SC_F2] : v[SC_SMOOTH2 - SC_F2];
+    }
 cleanup:
     return rc;
 }
@@ -596,9 +672,15 @@ static int open_on(const tr_device_choice *dev, const tr_curve *c, int profiling
     TR_TRY(tr_curve_copy(&s->shape, c, err));
     TR_TRY(tr_cl_ctx_open(&s->ctx, &dev->cl, profiling, err));
     TR_TRY(tr_cl_build_all(&s->ctx, &s->prog, err));
-    for (int i = 0; i < K_COUNT; i++)
-        TR_CL_CHECK((s->k[i] = clCreateKernel(s->prog, kernel_names[i], &e), e));
-    TR_TRY(tr_cl_reduce_init(&s->red, &s->ctx, s->prog, 2 * nv + 64, err));
+    for (int i = 0; i < K_COUNT; i++) {
+        s->k[i] = clCreateKernel(s->prog, kernel_names[i], &e);
+        if (e != CL_SUCCESS) {
+            tr_cl_fail(err, e, "clCreateKernel", __FILE__, __LINE__);
+            rc = tr_fail_wrap(err, TR_EOPENCL, "kernel %s", kernel_names[i]);
+            goto cleanup;
+        }
+    }
+    TR_TRY(tr_cl_reduce_init(&s->red, &s->ctx, s->prog, 3 * nv + 64, err));
     TR_TRY(tr_cl_grid_init(&s->grid, &s->ctx, s->prog, (int)nv, 16, err));
     s->grid_ready = 1;
     TR_TRY(tr_cl_topology_upload(&s->ctx, c, &s->topo, err));
@@ -645,6 +727,9 @@ static int open_on(const tr_device_choice *dev, const tr_curve *c, int profiling
     TR_TRY(buffer(s, &s->G, 3 * nv * d, err));
     TR_TRY(buffer(s, &s->H, 3 * nv * d, err));
     TR_TRY(buffer(s, &s->dx, 3 * nv * d, err));
+    TR_TRY(buffer(s, &s->cgq, 3 * nv * d, err));
+    TR_TRY(buffer(s, &s->cdeb, nv * d, err));
+    TR_TRY(buffer(s, &s->chg, sizeof(int), err));
     TR_TRY(buffer(s, &s->t1, nv * d, err));
     TR_TRY(buffer(s, &s->t2, nv * d, err));
     TR_TRY(buffer(s, &s->t3, nv * d, err));

@@ -21,19 +21,17 @@
 #define SC_SCALE 13
 #define SC_NACT 14
 
-inline real chord_min(real e, real r) { return 2.0 * e / sqrt(1.0 + e * e / (4.0 * r * r)); }
-inline real chord_min_deriv(real e, real r)
-{
-    real q = 1.0 + e * e / (4.0 * r * r);
-    return 2.0 / (q * sqrt(q));
-}
-
-/* Edge row i and curvature row nv + i; rv holds each row's violation (>= 0). */
+/* Edge row i and curvature row nv + i; rv holds each row's violation (>= 0).
+ * The curvature row is the turning-angle form of MinRad >= minrad:
+ * C = ebar (theta_max - theta), theta = atan2(|p x q|, p.q) for the edges p,
+ * q at vertex i; its gradient is ga (stored with the row) on the incoming
+ * edge and gb (cgq) on the outgoing one, cdeb its ebar derivative. */
 __kernel void rows_chain(__global const real *x, __global const int *next,
                          __global const int *prev, __global const int *comp,
                          __global const real *ebar, const int nv, const real minrad,
                          const real active_curv, __global real *rC, __global real *rgrad,
-                         __global int *ract, __global real *rv)
+                         __global int *ract, __global real *rv, __global real *cgq,
+                         __global real *cdeb)
 {
     int i = get_global_id(0);
     if (i >= nv)
@@ -55,22 +53,67 @@ __kernel void rows_chain(__global const real *x, __global const int *next,
     ract[r] = 0;
     rv[r] = 0.0;
     if (pv >= 0 && nx >= 0) {
-        real3 w = vload3(nx, x) - vload3(pv, x);
-        real l = tr_norm3(w);
-        w = w * (1.0 / l);
-        vstore3(w, r, rgrad);
-        real C = l - chord_min(ebar[comp[i]], minrad);
+        real3 xi = vload3(i, x);
+        real3 pe = xi - vload3(pv, x), qe = vload3(nx, x) - xi;
+        real3 cr = tr_cross3(pe, qe);
+        real lp = tr_norm3(pe), lq = tr_norm3(qe), sn = tr_norm3(cr), cs = tr_dot3(pe, qe);
+        real theta = atan2(sn, cs);
+        real eb = ebar[comp[i]], rr = minrad;
+        real tmax = 2.0 * atan(eb / (2.0 * rr));
+        real C = eb * (tmax - theta);
         rC[r] = C;
-        ract[r] = C < active_curv;
+        cdeb[i] = (tmax - theta) + eb * (1.0 / rr) / (1.0 + eb * eb / (4.0 * rr * rr));
+        real3 ga = (real3)(0.0), gb = (real3)(0.0);
+        if (!(sn < 1e-12 * lp * lq)) {
+            real c = cs / (lp * lq), sinv = lp * lq / sn;
+            real3 ph = pe / lp, qh = qe / lq;
+            ga = eb * (c * ph - qh) / lp * sinv;
+            gb = eb * (c * qh - ph) / lq * sinv;
+            ract[r] = C < active_curv;
+        }
+        vstore3(ga, r, rgrad);
+        vstore3(gb, i, cgq);
         rv[r] = -C > 0.0 ? -C : 0.0;
     }
 }
 
+inline real pair_distance(__global const real *x, __global const int *next, int a, int b)
+{
+    real ss, tt;
+    return tr_segment_distance(vload3(a, x), vload3(next[a], x), vload3(b, x), vload3(next[b], x),
+                               &ss, &tt);
+}
+
+/* The pair is a local minimum of the distance along both strands (backend.h):
+ * no neighbouring edge pair, sharing no vertex, is strictly closer. */
+inline int strut_local_min(__global const real *x, __global const int *next,
+                           __global const int *prev, int a, int b, real d)
+{
+    for (int side = 0; side < 2; side++) {
+        int me = side == 0 ? a : b, other = side == 0 ? b : a;
+        for (int k = 0; k < 2; k++) {
+            int nb = k == 0 ? prev[me] : next[me];
+            if (nb < 0 || next[nb] < 0 || nb == other)
+                continue;
+            if (next[nb] == other || next[other] == nb)
+                continue;
+            real dn = side == 0 ? pair_distance(x, next, nb, other) : pair_distance(x, next, other, nb);
+            if (dn < d)
+                return 0;
+        }
+    }
+    return 1;
+}
+
+/* Strut row 2 nv + p for candidate pair p = (a, b): C = d - strut_dist,
+ * gradient n split over the four vertices by the closest-point parameters;
+ * active in the band and only at local distance minima. */
 __kernel void rows_strut(__global const real *x, __global const int *next,
-                         __global const int *pa, __global const int *pb, const int nv,
-                         const int np, const real strut_dist, const real active_strut,
-                         __global real *rC, __global real *rgrad, __global int *ract,
-                         __global real *rs, __global real *rt, __global real *rv)
+                         __global const int *prev, __global const int *pa,
+                         __global const int *pb, const int nv, const int np,
+                         const real strut_dist, const real active_strut, __global real *rC,
+                         __global real *rgrad, __global int *ract, __global real *rs,
+                         __global real *rt, __global real *rv)
 {
     int p = get_global_id(0);
     if (p >= np)
@@ -85,7 +128,7 @@ __kernel void rows_strut(__global const real *x, __global const int *next,
     rt[p] = tt;
     real C = d - strut_dist;
     rC[r] = C;
-    ract[r] = C < active_strut;
+    ract[r] = C < active_strut && strut_local_min(x, next, prev, a, b, d);
     rv[r] = -C > 0.0 ? -C : 0.0;
 }
 
@@ -106,7 +149,7 @@ __kernel void cg_init(__global const real *rC, __global const int *ract, const i
 
 /* dx_i = P_i (sum over rows y_r dC_r/dx_i), in the order backend.h fixes. */
 __kernel void jt_vertex(__global const real *y, __global const real *rgrad,
-                        __global const int *ract, __global const int *next,
+                        __global const real *cgq, __global const int *ract, __global const int *next,
                         __global const int *prev, __global const int *adj,
                         __global const int *adjn, const int acap, __global const real *rs,
                         __global const real *rt, __global const real *cst, const int nv,
@@ -122,9 +165,13 @@ __kernel void jt_vertex(__global const real *y, __global const real *rgrad,
     if (nx >= 0)
         g = g + (-y[i]) * vload3(i, rgrad);
     if (pv >= 0 && ract[nv + pv])
-        g = g + y[nv + pv] * vload3(nv + pv, rgrad);
+        g = g + (-y[nv + pv]) * vload3(pv, cgq);
+    if (ract[nv + i]) {
+        g = g + y[nv + i] * vload3(i, cgq);
+        g = g + (-y[nv + i]) * vload3(nv + i, rgrad);
+    }
     if (nx >= 0 && ract[nv + nx])
-        g = g + (-y[nv + nx]) * vload3(nv + nx, rgrad);
+        g = g + y[nv + nx] * vload3(nv + nx, rgrad);
     __global const int *row = adj + (size_t)i * (size_t)acap;
     for (int m = 0; m < adjn[i]; m++) {
         int p = row[m] >> 2, slot = row[m] & 3, r = 2 * nv + p;
@@ -140,18 +187,17 @@ __kernel void jt_vertex(__global const real *y, __global const real *rgrad,
  * work-group k (strided partial sums, then a tree). */
 __kernel __attribute__((reqd_work_group_size(TR_LOCAL_SIZE, 1, 1)))
 void jt_ebar(__global const real *y, __global const int *ract, __global const int *start,
-             __global const int *ne, __global const real *ebar, const int nv, const real minrad,
+             __global const int *ne, __global const real *cdeb, const int nv,
              const real ebar_weight, __global real *debar)
 {
     __local real s[TR_LOCAL_SIZE];
     int k = get_group_id(0), l = get_local_id(0);
-    real cp = chord_min_deriv(ebar[k], minrad);
     real sum = 0.0;
     for (int a = start[k] + l; a < start[k + 1]; a += TR_LOCAL_SIZE) {
         if (ract[a])
             sum += -y[a];
         if (ract[nv + a])
-            sum += -cp * y[nv + a];
+            sum += cdeb[a] * y[nv + a];
     }
     s[l] = sum;
     barrier(CLK_LOCAL_MEM_FENCE);
@@ -166,12 +212,13 @@ void jt_ebar(__global const real *y, __global const int *ract, __global const in
 
 /* out_r = dC_r/dx . dx + dC_r/debar . debar + reg y_r on active rows, else 0. */
 __kernel void j_rows(__global const real *dx, __global const real *debar,
-                     __global const real *ebar, __global const real *rgrad,
+                     __global const real *cdeb, __global const real *rgrad,
+                     __global const real *cgq,
                      __global const int *ract, __global const int *next,
                      __global const int *prev, __global const int *comp,
                      __global const int *pa, __global const int *pb, __global const real *rs,
                      __global const real *rt, __global const real *y, const int nv, const int np,
-                     const real minrad, const real reg, __global real *out)
+                     const real reg, __global real *out)
 {
     int r = get_global_id(0);
     if (r >= 2 * nv + np)
@@ -184,10 +231,15 @@ __kernel void j_rows(__global const real *dx, __global const real *debar,
         real3 d = vload3(next[r], dx) - vload3(r, dx);
         out[r] = tr_dot3(vload3(r, rgrad), d) - debar[comp[r]] + reg * y[r];
     } else if (r < 2 * nv) {
-        int i = r - nv, k = comp[i];
-        real3 d = vload3(next[i], dx) - vload3(prev[i], dx);
-        out[r] = tr_dot3(vload3(r, rgrad), d) - chord_min_deriv(ebar[k], minrad) * debar[k] +
-                 reg * y[r];
+        int i = r - nv;
+        real3 ga = vload3(r, rgrad), gb = vload3(i, cgq);
+        real3 dp = vload3(prev[i], dx), di = vload3(i, dx), dn = vload3(next[i], dx);
+        real3 t = ga * dp + (gb - ga) * di - gb * dn;
+        real v = 0.0;
+        v += t.x;
+        v += t.y;
+        v += t.z;
+        out[r] = v + cdeb[i] * debar[comp[i]] + reg * y[r];
     } else {
         int p = r - 2 * nv, a = pa[p], b = pb[p];
         real ss = rs[p], tt = rt[p];
@@ -278,4 +330,54 @@ __kernel void apply_debar(__global real *ebar, __global const real *debar,
     int k = get_global_id(0);
     if (k < ncomp)
         ebar[k] += sc[SC_SCALE] * debar[k];
+}
+
+/* CG start from a given right-hand side: y = 0, r = p = b. */
+__kernel void cg_reset(__global const real *b, __global real *y, __global real *r,
+                       __global real *p, const int nr)
+{
+    int k = get_global_id(0);
+    if (k >= nr)
+        return;
+    y[k] = 0.0;
+    r[k] = b[k];
+    p[k] = b[k];
+}
+
+/* Tangent projection: release the inequality rows whose multiplier pulls
+ * (y_r > 0: the force would separate them); *changed = 1 if any. */
+__kernel void release_pulling(__global int *ract, __global const real *y, const int nv,
+                              const int nr, __global int *changed)
+{
+    int r = get_global_id(0) + nv;
+    if (r >= nr)
+        return;
+    if (ract[r] && y[r] > 0.0) {
+        ract[r] = 0;
+        changed[0] = 1;
+    }
+}
+
+/* G_i <- P_i G_i (before the tangent projection). */
+__kernel void project_field(__global real *G, __global const real *cst, const int nv)
+{
+    int i = get_global_id(0);
+    if (i < nv)
+        vstore3(tr_project_motion(cst, i, vload3(i, G)), i, G);
+}
+
+/* G -= dx (flat), and debar <- -debar (the ebar velocity). */
+__kernel void tangent_finish(__global real *G, __global const real *dx, const int n3)
+{
+    int k = get_global_id(0);
+    if (k < n3)
+        G[k] -= dx[k];
+}
+
+__kernel void ebar_velocity(__global real *ebar, __global real *debar, const real h,
+                            const int ncomp)
+{
+    int k = get_global_id(0);
+    if (k < ncomp)
+        ebar[k] += h * (-debar[k]);
 }

@@ -65,3 +65,14 @@ __kernel void tension_move(__global real *x, __global const real *F, __global co
     pred[i] = tr_dot3(Fi, d);
     vstore3(tr_snap(cst, i, vload3(i, x) + d), i, x);
 }
+
+/* s2[i] = |P_i G_i|^2 (the smoothed force's share of the KKT residual). */
+__kernel void tension_smooth2(__global const real *G, __global const real *cst, const int n,
+                              __global real *s2)
+{
+    int i = get_global_id(0);
+    if (i >= n)
+        return;
+    real3 g = tr_project_motion(cst, i, vload3(i, G));
+    s2[i] = tr_dot3(g, g);
+}
