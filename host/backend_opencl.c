@@ -24,7 +24,7 @@
     X(cg_alpha) X(cg_yr) X(cg_beta) X(cg_p) X(dx_norm) X(step_scale) X(apply_dx)              \
     X(apply_debar) X(measure_edges) X(measure_minrad) X(measure_disp) X(comp_sum)            \
     X(cg_reset) X(release_pulling) X(project_field) X(tangent_finish) X(ebar_velocity)        \
-    X(tension_smooth2)
+    X(tension_smooth2) X(precond_setup) X(precond_diag) X(precond_edges) X(copy_rows)
 #define ENUM(k) K_##k,
 #define NAME(k) #k,
 enum { KERNELS(ENUM) K_COUNT };
@@ -33,7 +33,7 @@ static const char *const kernel_names[K_COUNT] = {KERNELS(NAME)};
 /* Slots of the scalar buffer (see kernels/correct.cl for 0..14). */
 enum {
     SC_RR = 0, SC_PQ = 2, SC_RR1 = 4, SC_DONE = 6, SC_ITERS = 7, SC_TOL2 = 8, SC_VIOL = 9,
-    SC_MAXDX = 11, SC_NACT = 14,
+    SC_MAXDX = 11, SC_NACT = 14, SC_RZ = 15,
     SC_F2 = 16, SC_PRED = 17, SC_MOVE = 18, /* minmax: 18 min, 19 max */
     SC_SMOOTH2 = 28, SC_FREE2 = 29,
     SC_DEV = 20,                            /* 20, 21 */
@@ -68,6 +68,7 @@ typedef struct cl_state {
     int rcap;
     cl_mem rC, rgrad, ract, rs, rt, rv, y, r, p, q, b;
     cl_mem cgq, cdeb, chg; /* curvature rows' second gradient and ebar derivative; a flag */
+    cl_mem pdiag, z, po, tw, closed; /* preconditioner: diagonal, M^-1 r, edge off-diagonal, work */
 } cl_state;
 
 static void release(cl_mem *m)
@@ -87,7 +88,8 @@ static void cl_destroy(void *sp)
                    &s->t2,    &s->t3,   &s->sc,   &s->up,   &s->first, &s->off, &s->sums,
                    &s->pa,    &s->pb,   &s->adj,  &s->adjn, &s->pd,   &s->rC,   &s->rgrad,
                    &s->ract,  &s->rs,   &s->rt,   &s->rv,   &s->y,    &s->r,    &s->p,
-                   &s->q,     &s->b,    &s->cgq,  &s->cdeb, &s->chg};
+                   &s->q,     &s->b,    &s->cgq,  &s->cdeb, &s->chg,
+                   &s->pdiag, &s->z,    &s->po,   &s->tw,   &s->closed};
     for (size_t i = 0; i < sizeof m / sizeof m[0]; i++)
         release(m[i]);
     for (int i = 0; i < K_COUNT; i++)
@@ -234,6 +236,10 @@ static int cl_upload(void *sp, const double *x, const double *ebar, tr_error *er
                                      NULL, NULL));
     TR_CL_CHECK(clEnqueueWriteBuffer(s->ctx.queue, s->ebar, CL_TRUE, 0, nc * sizeof(double), ebar, 0,
                                      NULL, NULL));
+    /* the contact list is emptied: no vertex has adjacent pairs */
+    int izero = 0;
+    TR_CL_CHECK(clEnqueueFillBuffer(s->ctx.queue, s->adjn, &izero, sizeof izero, 0,
+                                    (size_t)s->nv * sizeof(int), 0, NULL, NULL));
     s->np = 0;
     s->saved = 0;
 cleanup:
@@ -301,6 +307,8 @@ static int ensure_rows(cl_state *s, tr_error *err)
     TR_TRY(buffer(s, &s->b, n * d, err));
     TR_TRY(buffer(s, &s->rs, n * d, err));
     TR_TRY(buffer(s, &s->rt, n * d, err));
+    TR_TRY(buffer(s, &s->pdiag, n * d, err));
+    TR_TRY(buffer(s, &s->z, n * d, err));
     TR_TRY(tr_cl_reduce_reserve(&s->red, &s->ctx, n, err));
     s->rcap = cap;
 cleanup:
@@ -404,17 +412,36 @@ cleanup:
     return rc;
 }
 
-/* CG on A y = b from y = 0, r = p = b (already in place), as backend.h (c):
- * the device keeps the scalars and turns iterations after convergence into
- * no-ops; the host looks at the flag every fourth iteration. */
+/* z = M^-1 r (backend.h correct (c)). */
+static int precond_apply(cl_state *s, cl_mem r, tr_error *err)
+{
+    int rc = TR_OK;
+    int nv = s->nv, nr = 2 * nv + s->np;
+    TR_TRY(run(s, K_precond_diag, (size_t)(nr - nv), err, A(r), A(s->pdiag), A(s->ract), A(nv), A(nr),
+               A(s->z), END));
+    TR_TRY(run(s, K_precond_edges, (size_t)s->ncomp, err, A(r), A(s->pdiag), A(s->po), A(s->start),
+               A(s->ne), A(s->closed), A(s->ncomp), A(nv), A(s->tw), A(s->z), END));
+cleanup:
+    return rc;
+}
+
+/* Preconditioned CG on A y = b from y = 0, r = b (already in place), as
+ * backend.h (c): the device keeps the scalars and turns iterations after
+ * convergence into no-ops; the host looks at the flag every fourth iteration. */
 static int cg_iterate(cl_state *s, const tr_correct_params *prm, int *iters, tr_error *err)
 {
     int rc = TR_OK;
     int nv = s->nv, np = s->np, nr = 2 * nv + np;
-    double reg = prm->reg, tol2 = prm->cg_rtol * prm->cg_rtol, it;
+    double reg = prm->reg, w = prm->ebar_weight, tol2 = prm->cg_rtol * prm->cg_rtol, it;
     TR_CL_CHECK(clEnqueueWriteBuffer(s->ctx.queue, s->sc, CL_FALSE, SC_TOL2 * sizeof(double),
                                      sizeof tol2, &tol2, 0, NULL, NULL));
+    TR_TRY(run(s, K_precond_setup, (size_t)nr, err, A(s->rgrad), A(s->cgq), A(s->cdeb), A(s->ract),
+               A(s->topo.next), A(s->topo.prev), A(s->topo.comp), A(s->ne), A(s->pa), A(s->pb),
+               A(s->rs), A(s->rt), A(s->cst), A(nv), A(np), A(w), A(reg), A(s->pdiag), A(s->po), END));
+    TR_TRY(precond_apply(s, s->r, err));
+    TR_TRY(run(s, K_copy_rows, (size_t)nr, err, A(s->z), A(s->p), A(nr), END));
     TR_TRY(tr_cl_reduce_dot(&s->red, &s->ctx, s->r, s->r, nr, s->sc, SC_RR, err));
+    TR_TRY(tr_cl_reduce_dot(&s->red, &s->ctx, s->r, s->z, nr, s->sc, SC_RZ, err));
     TR_TRY(run_groups(s, K_cg_start, 0, err, A(s->sc), END));
     for (int k = 0; k < prm->max_cg; k++) {
         TR_TRY(run_groups(s, K_cg_top, 0, err, A(s->sc), END));
@@ -433,9 +460,11 @@ static int cg_iterate(cl_state *s, const tr_correct_params *prm, int *iters, tr_
         TR_TRY(run_groups(s, K_cg_alpha, 0, err, A(s->sc), END));
         TR_TRY(run(s, K_cg_yr, (size_t)nr, err, A(s->y), A(s->r), A(s->p), A(s->q), A(s->sc), A(nr),
                    END));
-        TR_TRY(tr_cl_reduce_dot(&s->red, &s->ctx, s->r, s->r, nr, s->sc, SC_RR1, err));
+        TR_TRY(tr_cl_reduce_dot(&s->red, &s->ctx, s->r, s->r, nr, s->sc, SC_RR, err));
+        TR_TRY(precond_apply(s, s->r, err));
+        TR_TRY(tr_cl_reduce_dot(&s->red, &s->ctx, s->r, s->z, nr, s->sc, SC_RR1, err));
         TR_TRY(run_groups(s, K_cg_beta, 0, err, A(s->sc), END));
-        TR_TRY(run(s, K_cg_p, (size_t)nr, err, A(s->p), A(s->r), A(s->sc), A(nr), END));
+        TR_TRY(run(s, K_cg_p, (size_t)nr, err, A(s->p), A(s->z), A(s->sc), A(nr), END));
     }
     TR_TRY(read_scalars(s, SC_ITERS, 1, &it, err));
     *iters = (int)it;
@@ -730,6 +759,9 @@ static int open_on(const tr_device_choice *dev, const tr_curve *c, int profiling
     TR_TRY(buffer(s, &s->cgq, 3 * nv * d, err));
     TR_TRY(buffer(s, &s->cdeb, nv * d, err));
     TR_TRY(buffer(s, &s->chg, sizeof(int), err));
+    TR_TRY(buffer(s, &s->po, nv * d, err));
+    TR_TRY(buffer(s, &s->tw, 3 * nv * d, err));
+    TR_TRY(buffer(s, &s->closed, nc * sizeof(int), err));
     TR_TRY(buffer(s, &s->t1, nv * d, err));
     TR_TRY(buffer(s, &s->t2, nv * d, err));
     TR_TRY(buffer(s, &s->t3, nv * d, err));
@@ -751,6 +783,20 @@ static int open_on(const tr_device_choice *dev, const tr_curve *c, int profiling
     TR_CL_CHECK(clEnqueueWriteBuffer(q, s->start, CL_TRUE, 0, (nc + 1) * sizeof(int), s->h_start, 0,
                                      NULL, NULL));
     TR_CL_CHECK(clEnqueueWriteBuffer(q, s->ne, CL_TRUE, 0, nc * sizeof(int), s->h_ne, 0, NULL, NULL));
+    {
+        int *cl = malloc(nc * sizeof *cl);
+        if (!cl) {
+            rc = tr_fail(err, TR_ENOMEM, "out of memory opening the opencl backend");
+            goto cleanup;
+        }
+        for (size_t k = 0; k < nc; k++)
+            cl[k] = c->closed[k] ? 1 : 0;
+        e = clEnqueueWriteBuffer(q, s->closed, CL_TRUE, 0, nc * sizeof(int), cl, 0, NULL, NULL);
+        free(cl);
+        TR_CL_CHECK(e);
+    }
+    double zeros = 0.0;
+    TR_CL_CHECK(clEnqueueFillBuffer(q, s->po, &zeros, sizeof zeros, 0, nv * d, 0, NULL, NULL));
     TR_CL_CHECK(clEnqueueWriteBuffer(q, s->cst, CL_TRUE, 0, 8 * nv * d, cst, 0, NULL, NULL));
     double zero[SC_COMP] = {0};
     TR_CL_CHECK(clEnqueueWriteBuffer(q, s->sc, CL_TRUE, 0, sizeof zero, zero, 0, NULL, NULL));

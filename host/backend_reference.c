@@ -685,6 +685,11 @@ static void precond_apply(ref_state *s, const double *r, double *z)
     size_t nv = s->nv, nr = 2 * nv + s->np;
     for (size_t q = nv; q < nr; q++)
         z[q] = s->ract[q] ? r[q] / s->pd[q] : 0.0;
+    /* the row of an open rope's last vertex has no edge and no block entry:
+     * zero, or realloc'd garbage (possibly NaN) reaches p and the dot products */
+    for (size_t q = 0; q < nv; q++)
+        if (!s->ract[q])
+            z[q] = 0.0;
     double *sub = s->tw[0], *sup = s->tw[1], *w = s->tw[2], *uu = s->tw[3], *bb = s->tw[4];
     for (int k = 0; k < s->ncomp; k++) {
         size_t st = s->start[k], n = s->ne[k];

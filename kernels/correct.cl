@@ -20,6 +20,7 @@
 #define SC_MAXDX 12 /* minmax: min at 11, max at 12 */
 #define SC_SCALE 13
 #define SC_NACT 14
+#define SC_RZ 15
 
 /* Edge row i and curvature row nv + i; rv holds each row's violation (>= 0).
  * The curvature row is the turning-angle form of MinRad >= minrad:
@@ -265,7 +266,7 @@ __kernel void cg_top(__global real *sc)
 
 __kernel void cg_alpha(__global real *sc)
 {
-    sc[SC_ALPHA] = sc[SC_DONE] != 0.0 ? 0.0 : sc[SC_RR] / sc[SC_PQ];
+    sc[SC_ALPHA] = sc[SC_DONE] != 0.0 ? 0.0 : sc[SC_RZ] / sc[SC_PQ];
 }
 
 __kernel void cg_yr(__global real *y, __global real *r, __global const real *p,
@@ -279,22 +280,23 @@ __kernel void cg_yr(__global real *y, __global real *r, __global const real *p,
     r[k] -= alpha * q[k];
 }
 
+/* rr (slot RR) was refreshed by the reduction; RR1 holds r.z of the new z. */
 __kernel void cg_beta(__global real *sc)
 {
     if (sc[SC_DONE] != 0.0)
         return;
-    sc[SC_BETA] = sc[SC_RR1] / sc[SC_RR];
-    sc[SC_RR] = sc[SC_RR1];
+    sc[SC_BETA] = sc[SC_RR1] / sc[SC_RZ];
+    sc[SC_RZ] = sc[SC_RR1];
     sc[SC_ITERS] += 1.0;
 }
 
-__kernel void cg_p(__global real *p, __global const real *r, __global const real *sc,
+__kernel void cg_p(__global real *p, __global const real *z, __global const real *sc,
                    const int nr)
 {
     int k = get_global_id(0);
     if (k >= nr || sc[SC_DONE] != 0.0)
         return;
-    p[k] = r[k] + sc[SC_BETA] * p[k];
+    p[k] = z[k] + sc[SC_BETA] * p[k];
 }
 
 /* |dx_i| for the damping cap. */
@@ -380,4 +382,129 @@ __kernel void ebar_velocity(__global real *ebar, __global real *debar, const rea
     int k = get_global_id(0);
     if (k < ncomp)
         ebar[k] += h * (-debar[k]);
+}
+
+/* ---- preconditioner (backend.h correct (c)) ---- */
+
+inline real proj_norm2(__global const real *cst, int v, real3 g, real c)
+{
+    real3 t = tr_project_motion(cst, v, c * g);
+    return tr_dot3(t, t);
+}
+
+/* pd[r]: diagonal of A on every active row (1 elsewhere); po[a]: the entry
+ * between edge rows a and next(a). One item per row. */
+__kernel void precond_setup(__global const real *rgrad, __global const real *cgq,
+                            __global const real *cdeb, __global const int *ract,
+                            __global const int *next, __global const int *prev,
+                            __global const int *comp, __global const int *ne,
+                            __global const int *pa, __global const int *pb,
+                            __global const real *rs, __global const real *rt,
+                            __global const real *cst, const int nv, const int np,
+                            const real ebar_weight, const real reg, __global real *pd,
+                            __global real *po)
+{
+    int r = get_global_id(0);
+    if (r >= 2 * nv + np)
+        return;
+    pd[r] = 1.0;
+    if (!ract[r])
+        return;
+    if (r < nv) {
+        int a = r, k = comp[a], nx = next[a];
+        real3 u = vload3(a, rgrad);
+        pd[r] = proj_norm2(cst, a, u, 1.0) + proj_norm2(cst, nx, u, 1.0) +
+                1.0 / (ebar_weight * (real)ne[k]) + reg;
+        real o = 0.0;
+        if (next[nx] >= 0 && ract[nx]) {
+            real3 t = tr_project_motion(cst, nx, u);
+            o = -tr_dot3(t, vload3(nx, rgrad));
+        }
+        po[a] = o;
+    } else if (r < 2 * nv) {
+        int i = r - nv, k = comp[i];
+        real3 ga = vload3(r, rgrad), gb = vload3(i, cgq);
+        real3 gm = gb - ga;
+        pd[r] = proj_norm2(cst, prev[i], ga, 1.0) + proj_norm2(cst, i, gm, 1.0) +
+                proj_norm2(cst, next[i], gb, 1.0) +
+                cdeb[i] * cdeb[i] / (ebar_weight * (real)ne[k]) + reg;
+    } else {
+        int p = r - 2 * nv, a = pa[p], b = pb[p];
+        real3 n = vload3(r, rgrad);
+        pd[r] = proj_norm2(cst, a, n, 1.0 - rs[p]) + proj_norm2(cst, next[a], n, rs[p]) +
+                proj_norm2(cst, b, n, 1.0 - rt[p]) + proj_norm2(cst, next[b], n, rt[p]) + reg;
+    }
+}
+
+/* z = r / pd on curvature and strut rows (0 when inactive). */
+__kernel void precond_diag(__global const real *r, __global const real *pd,
+                           __global const int *ract, const int nv, const int nr,
+                           __global real *z)
+{
+    int q = get_global_id(0) + nv;
+    if (q < nr)
+        z[q] = ract[q] ? r[q] / pd[q] : 0.0;
+}
+
+/* Thomas algorithm over rows st .. st+n-1 (sub from po[j-1], sup po[j]),
+ * exactly the reference's tridiag_solve; x may alias rr. */
+inline void thomas(__global const real *po, __global const real *b, int st, int n,
+                   __global const real *rr, __global real *x, __global real *w)
+{
+    real bet = b[0];
+    x[0] = rr[0] / bet;
+    for (int j = 1; j < n; j++) {
+        w[j] = po[st + j - 1] / bet;
+        bet = b[j] - po[st + j - 1] * w[j];
+        x[j] = (rr[j] - po[st + j - 1] * x[j - 1]) / bet;
+    }
+    for (int j = n - 1; j-- > 0;)
+        x[j] -= w[j + 1] * x[j + 1];
+}
+
+/* Edge block of component k (one item per component: the exact tridiagonal
+ * solve is sequential, as in the reference; cyclic ones by Sherman-Morrison,
+ * Numerical Recipes 2.7). tw holds 3 nv reals of work. */
+__kernel void precond_edges(__global const real *r, __global const real *pd,
+                            __global const real *po, __global const int *start,
+                            __global const int *ne, __global const int *closed, const int ncomp,
+                            const int nv, __global real *tw, __global real *z)
+{
+    int k = get_global_id(0);
+    if (k >= ncomp)
+        return;
+    int st = start[k], n = ne[k];
+    __global real *w = tw + st, *uu = tw + nv + st, *bb = tw + 2 * nv + st;
+    __global const real *d = pd + st, *rr = r + st;
+    __global real *x = z + st;
+    /* the row of an open rope's last vertex has no edge: keep it out of the dot products */
+    for (int j = n; j < start[k + 1] - st; j++)
+        x[j] = 0.0;
+    if (!closed[k] || n < 3) {
+        thomas(po, d, st, n, rr, x, w);
+        return;
+    }
+    real alpha = po[st + n - 1], beta = alpha;
+    real gamma = -d[0];
+    for (int j = 0; j < n; j++)
+        bb[j] = d[j];
+    bb[0] = d[0] - gamma;
+    bb[n - 1] = d[n - 1] - alpha * beta / gamma;
+    thomas(po, bb, st, n, rr, x, w);
+    for (int j = 0; j < n; j++)
+        uu[j] = 0.0;
+    uu[0] = gamma;
+    uu[n - 1] = alpha;
+    thomas(po, bb, st, n, uu, uu, w);
+    real fact = (x[0] + beta * x[n - 1] / gamma) / (1.0 + uu[0] + beta * uu[n - 1] / gamma);
+    for (int j = 0; j < n; j++)
+        x[j] -= fact * uu[j];
+}
+
+/* p = z */
+__kernel void copy_rows(__global const real *z, __global real *p, const int nr)
+{
+    int k = get_global_id(0);
+    if (k < nr)
+        p[k] = z[k];
 }

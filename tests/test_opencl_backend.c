@@ -191,19 +191,18 @@ static void ops_case(const char *name, const tr_curve *c, double cutoff, int cg_
         close_pair(&p);
         return;
     }
-    /* (2) Ten CG iterations: the reordered dot products now pass through the
-     * CG recurrence, which amplifies a relative perturbation by up to
-     * cond(J M^-1 J^T) (~1e8 for the curvature rows of a 1000-gon, whose
-     * operator is a fourth difference) when CG is far from converged, as in
-     * the 1000-vertex trefoil here (its violation grows 100-fold in this
-     * step): observed 5e-7 of the applied correction there, 1e-12 elsewhere
-     * (summing the ebar rows in the reference's order changed nothing, so
-     * the dot products are the cause). Bound: 1e-5 of the applied correction
-     * (itself <= max_step) plus 1e-13 of the coordinates; (1) above and the
-     * whole runs below pin the arithmetic far tighter. */
+    /* (2) Two CG iterations: the reordered dot products now pass through the
+     * CG recurrence (including the preconditioner's second application).
+     * Beyond that the comparison measures CG's own rounding sensitivity, not
+     * the port: on the 1021-vertex trefoil (far from converged, losing
+     * orthogonality) the backends differ by 1e-16, 4e-16, 9e-16, 4e-13, 2e-9,
+     * 3e-7 after 1..6 iterations; on the 1020-vertex Hopf link, converged to
+     * 4e-15 after one iteration, the noise-driven second and third iterations
+     * differ by 5e-13 and 6e-10 and agree again (3e-15) from the fourth. Two
+     * iterations: 1e-11 of the coordinates. */
     CHECK_OK(R->restore(rs, &err));
     CHECK_OK(D->restore(ds, &err));
-    one.max_cg = 10;
+    one.max_cg = 2;
     CHECK_OK(R->correct(rs, &one, &crr, &err));
     CHECK_OK(D->correct(ds, &one, &crd, &err));
     {
@@ -215,12 +214,13 @@ static void ops_case(const char *name, const tr_curve *c, double cutoff, int cg_
         double scale = 0;
         for (size_t i = 0; i < 3 * p.nv; i++)
             scale = fmax(scale, fabs(p.xr[i]));
-        snprintf(w, sizeof w, "%s n=%zu correct (10 cg)", name, c->nv);
-        compare(w, p.xd, p.xr, 3 * p.nv, 0.0, 1e-5 * mr.max_disp + 1e-13 * scale);
-        compare(w, ed, er, (size_t)p.ncomp, 0.0, 1e-5 * mr.max_disp + 1e-13 * er[0]);
+        (void)mr;
+        snprintf(w, sizeof w, "%s n=%zu correct (2 cg)", name, c->nv);
+        compare(w, p.xd, p.xr, 3 * p.nv, 0.0, 1e-11 * scale);
+        compare(w, ed, er, (size_t)p.ncomp, 0.0, 1e-11 * scale); /* ebar moves with dx */
     }
     CHECK(crr.active_rows == crd.active_rows);
-    compare1(w, crd.viol_after, crr.viol_after, 1e-4);
+    compare(w, &crd.viol_after, &crr.viol_after, 1, 1e-6, 1e-10); /* as the positions: 1e-11 of |x| ~ 5, twice */
     printf("%s: pairs %zu, correct cg %d/%d viol %.2g -> %.2g / %.2g\n", w, csr.pairs,
            crr.cg_iters, crd.cg_iters, crr.viol_before, crr.viol_after, crd.viol_after);
 
@@ -251,10 +251,10 @@ static void ops_case(const char *name, const tr_curve *c, double cutoff, int cg_
     compare_x(&p, w, 1e-12);
     compare1(w, tsd.smooth2, tsr.smooth2, 2.5e-13);
     compare1(w, tsd.free2, tsr.free2, 1e-12);
-    /* (b) twenty CG iterations per pass: as for correct (10 cg) above */
+    /* (b) two CG iterations per pass: as for correct (2 cg) above */
     CHECK_OK(R->restore(rs, &err));
     CHECK_OK(D->restore(ds, &err));
-    proj.max_cg = 20;
+    proj.max_cg = 2;
     CHECK_OK(R->tension_step(rs, &tp, &tsr, &err));
     CHECK_OK(D->tension_step(ds, &tp, &tsd, &err));
     {
@@ -266,10 +266,14 @@ static void ops_case(const char *name, const tr_curve *c, double cutoff, int cg_
         double scale = 0;
         for (size_t i = 0; i < 3 * p.nv; i++)
             scale = fmax(scale, fabs(p.xr[i]));
-        snprintf(w, sizeof w, "%s n=%zu tension projected (20 cg)", name, c->nv);
-        compare(w, p.xd, p.xr, 3 * p.nv, 0.0, 1e-5 * step + 1e-13 * scale);
-        compare(w, ed, er, (size_t)p.ncomp, 0.0, 1e-5 * step + 1e-13 * er[0]);
-        compare(w, &tsd.free2, &tsr.free2, 1, 1e-6, 1e-10 * tsr.smooth2);
+        snprintf(w, sizeof w, "%s n=%zu tension projected (2 cg)", name, c->nv);
+        /* the projection cancels most of G (the Hopf link's edges take up
+         * nearly all of the force), so the comparison is against the
+         * coordinates, 1e-10 (observed 2e-10 of |x| ~ 5 at worst) */
+        (void)step;
+        compare(w, p.xd, p.xr, 3 * p.nv, 0.0, 1e-10 * scale);
+        compare(w, ed, er, (size_t)p.ncomp, 0.0, 1e-10 * scale);
+        compare(w, &tsd.free2, &tsr.free2, 1, 1e-9, 1e-10 * tsr.smooth2);
     }
     close_pair(&p);
 }
