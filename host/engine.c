@@ -642,7 +642,7 @@ int tr_engine_run(tr_engine *e, const tr_engine_limits *lim, tr_stop_reason *why
             double coarse_res = lim->coarse_residual > 0 ? lim->coarse_residual : 1e-3;
             if (e->jammed || (e->steps > 0 && e->residual < coarse_res))
                 level_done = 1;
-            if (lim->time_limit > 0 && now_s() - level_t0 > 0.3 * time_left_at_level)
+            if (lim->time_limit > 0 && now_s() - level_t0 > 0.5 * time_left_at_level)
                 level_done = 1;
         }
         if (lim->progress && (stop != TR_STOP_NONE || now_s() - t_last_prog >= lim->progress_every)) {
