@@ -37,13 +37,21 @@
  *   edge row a (every existing edge, always active):
  *       C = |e_a| - ebar_k
  *       dC/dx[a] = -u_a, dC/dx[next a] = +u_a, dC/debar_k = -1
- *   curvature row i ("curvature beam", every vertex with prev and next; the
- *   chord form of MinRad >= r for equal edges, REFERENCE.md 1.2(c)):
- *       w = x[next i] - x[prev i], c(e) = 2 e / sqrt(1 + e^2 / (4 r^2))
- *       C = |w| - c(ebar_k)
- *       dC/dx[next i] = +w/|w|, dC/dx[prev i] = -w/|w|,
- *       dC/debar_k = -c'(ebar_k) = -2 / (1 + e^2/(4 r^2))^(3/2)
- *       active iff C < active_curv.
+ *   curvature row i ("curvature beam", every vertex with prev and next):
+ *   MinRad >= r for equal edges, in turning-angle form (REFERENCE.md 1.2(c):
+ *   tan(theta/2) <= e/(2r)), scaled by ebar so its gradient is O(1) and
+ *   orthogonal to the two edge rows at i (the chord form is nearly their
+ *   sum, which made the CG crawl):
+ *       p = x[i] - x[prev i], q = x[next i] - x[i],
+ *       theta = atan2(|p x q|, p . q), tmax = 2 atan(ebar_k / (2 r))
+ *       C = ebar_k (tmax - theta)
+ *       A = (cos(theta) p^ - q^) / (|p| sin theta),  B = (cos(theta) q^ - p^) / (|q| sin theta)
+ *       (computed as c = p.q/(|p||q|), 1/sin = |p||q|/|p x q|, p^ = p/|p|, q^ = q/|q|)
+ *       ga = ebar_k A, gb = ebar_k B:
+ *       dC/dx[prev i] = ga, dC/dx[i] = gb - ga, dC/dx[next i] = -gb,
+ *       dC/debar_k = (tmax - theta) + ebar_k (1/r) / (1 + ebar_k^2 / (4 r^2))
+ *       active iff C < active_curv and |p x q| >= 1e-12 |p| |q| (else ga =
+ *       gb = 0 and the row is inactive: a straight vertex is far from the bound).
  *   strut row p (every candidate pair p = (a, b), a < b, in list order):
  *       d, s, t = tr_segment_distance(x[a], x[next a], x[b], x[next b])
  *       (host/segdist.h, the exact algorithm), n = (P(s) - Q(t)) / d
@@ -112,10 +120,11 @@
  *          dx_i    = P_i g_i
  *          debar_k = (sum_{rows r of comp k} y_r dC_r/debar_k) / (ebar_weight ne_k)
  *          (A y)_r = dC_r/dx . dx + dC_r/debar . debar + reg * y_r   (active r)
- *        Gather order for g_i: edge row prev(i) (+u), edge row i (-u),
- *        curvature row prev(i) (+w^, i is its next), curvature row next(i)
- *        (-w^, i is its prev), then strut rows in list order (CSR above);
- *        each term only if the row exists and is active.
+ *        Gather order for g_i: edge row prev(i) (+u_prev), edge row i (-u_i),
+ *        curvature row prev(i) (-gb_prev: i is its next), curvature row i
+ *        (+gb_i, then -ga_i), curvature row next(i) (+ga_next: i is its
+ *        prev), then strut rows in list order (CSR above); each term only if
+ *        the row exists and is active.
  *        Row vector order (for dot products and debar sums): edge rows by
  *        a, curvature rows by i, strut rows by list index.
  *     c. Solve A y = b by preconditioned CG from y = 0, where b_r = -C_r on
