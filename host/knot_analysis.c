@@ -237,12 +237,17 @@ int tr_analyze_component(const double *x, size_t n, const tr_contact_pair *pairs
             emax = fmax(emax, fabs(tr_wrap_signed(b - l, L)));
         }
         out->sigma_inverse_err = emax;
-        /* Rotation number: mean advance of the lift over many turns. */
+        /* Rotation number: mean advance of the lift over many turns, after a
+         * transient (on a mode-locked map the orbit first has to reach its
+         * cycle; then the estimate is exact to rounding). */
         double y = 0.0;
-        const int turns = 2000;
+        for (int k = 0; k < 1000; k++)
+            y = tr_contact_fn_lift(&out->sigma_minus, y);
+        double y0 = y;
+        const int turns = 9 * 1000;
         for (int k = 0; k < turns; k++)
             y = tr_contact_fn_lift(&out->sigma_minus, y);
-        out->rotation_number = y / ((double)turns * L);
+        out->rotation_number = (y - y0) / ((double)turns * L);
         out->gap_min = INFINITY, out->gap_max = -INFINITY;
         for (int k = 0; k < 4000; k++) {
             double l = (k + 0.5) * L / 4000.0, z = l;
