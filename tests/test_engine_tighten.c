@@ -5,6 +5,7 @@
  * stay on their planes; a run resumed from a checkpoint is bitwise the
  * uninterrupted run; impossible starts are refused. */
 #include <math.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -258,6 +259,43 @@ static void checkpoint_resume(void)
     tr_curve_free(&c);
 }
 
+/* The run loop: a raised stop flag (what SIGINT/SIGTERM set) ends the run
+ * at once with a checkpoint; a step limit ends a multi-level run at the
+ * level reached; refinement levels double N up to refine_to. */
+static void run_loop(void)
+{
+    tr_error err;
+    tr_curve c;
+    CHECK_OK(tr_make_torus(&c, 2, 3, 72, &err));
+    char path[512];
+    snprintf(path, sizeof path, "%s/engine_signal.ckpt", TR_BINARY_DIR);
+    remove(path);
+    tr_engine *e;
+    CHECK_OK(tr_engine_create(&e, &c, "reference", NULL, &err));
+    volatile sig_atomic_t flag = 1;
+    tr_engine_limits lim = {.stop = &flag, .checkpoint_path = path};
+    tr_stop_reason why;
+    CHECK_OK(tr_engine_run(e, &lim, &why, &err));
+    CHECK(why == TR_STOP_SIGNAL);
+    tr_engine *r = NULL;
+    CHECK_OK(tr_engine_resume(&r, path, "reference", NULL, &err));
+    tr_engine_destroy(r);
+    remove(path);
+    /* levels: 72 -> 144, the coarse level until jammed or its
+     * residual falls below coarse_residual, then the step limit */
+    tr_engine_limits lv = {.refine_to = 144, .max_steps = 60, .coarse_residual = 0.95};
+    CHECK_OK(tr_engine_run(e, &lv, &why, &err));
+    tr_engine_progress p;
+    tr_engine_get_progress(e, &p);
+    printf("levels: stop %s at N %zu after %ld steps, length %.6f\n", tr_stop_reason_name(why), p.n, p.steps,
+           p.length);
+    CHECK(p.n == 144);
+    CHECK(why == TR_STOP_STEPS || why == TR_STOP_JAMMED || why == TR_STOP_RESIDUAL);
+    CHECK(p.edge_dev < 1e-9);
+    tr_engine_destroy(e);
+    tr_curve_free(&c);
+}
+
 static void refused(void)
 {
     tr_error err;
@@ -290,6 +328,7 @@ int main(void)
     hopf_run();
     clasp_run();
     checkpoint_resume();
+    run_loop();
     refused();
     return tr_test_finish("test_engine_tighten");
 }
