@@ -4,6 +4,17 @@
 
 #include "cl_error.h"
 
+/* Stage-1 work-groups at most (see kernels/reduce.cl): enough to keep a
+ * GPU's compute units busy, few enough that a CPU device is not dominated by
+ * work-group scheduling. The count depends only on n, so results do too. */
+#define TR_RED_GROUPS 64
+
+static size_t stage1_global(size_t n)
+{
+    size_t g = tr_cl_global(n);
+    return g < (size_t)TR_RED_GROUPS * TR_CL_LOCAL ? g : (size_t)TR_RED_GROUPS * TR_CL_LOCAL;
+}
+
 int tr_cl_build_all(const tr_cl_ctx *ctx, cl_program *prog, tr_error *err)
 {
     static const char *const files[] = {"reduce.cl",   "grid.cl",    "tension.cl",
@@ -66,7 +77,7 @@ int tr_cl_reduce_length(tr_cl_reduce *r, const tr_cl_ctx *ctx, cl_mem x, cl_mem 
     int rc = check_size(r, n, err);
     if (rc != TR_OK)
         return rc;
-    size_t g = tr_cl_global((size_t)n), l = TR_CL_LOCAL;
+    size_t g = stage1_global((size_t)n), l = TR_CL_LOCAL;
     int m = (int)(g / l);
     TR_CL_CHECK(clSetKernelArg(r->length_partial, 0, sizeof x, &x));
     TR_CL_CHECK(clSetKernelArg(r->length_partial, 1, sizeof next, &next));
@@ -88,7 +99,7 @@ int tr_cl_reduce_minmax(tr_cl_reduce *r, const tr_cl_ctx *ctx, cl_mem v, int n, 
     int rc = check_size(r, n, err);
     if (rc != TR_OK)
         return rc;
-    size_t g = tr_cl_global((size_t)n), l = TR_CL_LOCAL;
+    size_t g = stage1_global((size_t)n), l = TR_CL_LOCAL;
     int m = (int)(g / l);
     TR_CL_CHECK(clSetKernelArg(r->minmax_partial, 0, sizeof v, &v));
     TR_CL_CHECK(clSetKernelArg(r->minmax_partial, 1, sizeof n, &n));
@@ -149,7 +160,7 @@ static int finish_sum(tr_cl_reduce *r, const tr_cl_ctx *ctx, cl_kernel k, int ar
     int rc = check_size(r, n, err);
     if (rc != TR_OK)
         return rc;
-    size_t g = tr_cl_global((size_t)n), l = TR_CL_LOCAL;
+    size_t g = stage1_global((size_t)n), l = TR_CL_LOCAL;
     int m = (int)(g / l);
     TR_CL_CHECK(clSetKernelArg(k, (cl_uint)argn, sizeof n, &n));
     TR_CL_CHECK(clSetKernelArg(k, (cl_uint)argn + 1, sizeof r->pa, &r->pa));

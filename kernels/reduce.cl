@@ -1,9 +1,20 @@
-/* Reductions the driver reads back each step: polygon length (pairwise
- * sums), largest and smallest values. Two stages, both deterministic for a
- * given N: stage 1 reduces each work-group of TR_LOCAL_SIZE items by a fixed
- * tree in local memory; stage 2 (one work-group) folds the partials with
- * strided Neumaier sums and the same tree. No atomics, so the same input
- * always gives the same bits. */
+/* Reductions the driver reads back each step: polygon length, sums and dot
+ * products, largest and smallest values. Two stages, both deterministic for
+ * a given N: in stage 1 each item folds a strided slice of the input
+ * (compensated, Neumaier) and each work-group of TR_LOCAL_SIZE items folds
+ * those by a fixed tree in local memory; stage 2 (one work-group) folds the
+ * partials the same way. The host launches at most TR_RED_GROUPS groups for
+ * stage 1: few groups with long slices, because on a CPU device every
+ * work-group with barriers costs far more than the arithmetic. No atomics,
+ * so the same input always gives the same bits. */
+
+/* Neumaier: s + c carries the sum of everything added so far. */
+#define KAHAN_ADD(s, c, v)                                                      \
+    do {                                                                        \
+        real v_ = (v), t_ = (s) + v_;                                           \
+        (c) += fabs(s) >= fabs(v_) ? ((s) - t_) + v_ : (v_ - t_) + (s);         \
+        (s) = t_;                                                               \
+    } while (0)
 
 #define TREE(op, s, l)                                                          \
     for (int w_ = TR_LOCAL_SIZE / 2; w_ > 0; w_ >>= 1) {                       \
@@ -29,8 +40,11 @@ void length_partial(__global const real *x, __global const int *next, const int 
                     __global real *partial)
 {
     __local real s[TR_LOCAL_SIZE];
-    int i = get_global_id(0), l = get_local_id(0);
-    s[l] = i < n ? edge_len(x, next, i) : 0.0;
+    int l = get_local_id(0), gs = get_global_size(0);
+    real sum = 0.0, c = 0.0;
+    for (int i = get_global_id(0); i < n; i += gs)
+        KAHAN_ADD(sum, c, edge_len(x, next, i));
+    s[l] = sum + c;
     barrier(CLK_LOCAL_MEM_FENCE);
     TREE(tr_add, s, l)
     if (l == 0)
@@ -42,10 +56,14 @@ __kernel __attribute__((reqd_work_group_size(TR_LOCAL_SIZE, 1, 1)))
 void minmax_partial(__global const real *v, const int n, __global real *pmin, __global real *pmax)
 {
     __local real lo[TR_LOCAL_SIZE], hi[TR_LOCAL_SIZE];
-    int i = get_global_id(0), l = get_local_id(0);
-    real a = v[i < n ? i : 0];
+    int l = get_local_id(0), gs = get_global_size(0);
+    real a = v[0], b = v[0];
+    for (int i = get_global_id(0); i < n; i += gs) {
+        a = fmin(a, v[i]);
+        b = fmax(b, v[i]);
+    }
     lo[l] = a;
-    hi[l] = a;
+    hi[l] = b;
     barrier(CLK_LOCAL_MEM_FENCE);
     TREE(fmin, lo, l)
     TREE(fmax, hi, l)
@@ -111,8 +129,11 @@ __kernel __attribute__((reqd_work_group_size(TR_LOCAL_SIZE, 1, 1)))
 void sum_partial(__global const real *v, const int n, __global real *partial)
 {
     __local real s[TR_LOCAL_SIZE];
-    int i = get_global_id(0), l = get_local_id(0);
-    s[l] = i < n ? v[i] : 0.0;
+    int l = get_local_id(0), gs = get_global_size(0);
+    real sum = 0.0, c = 0.0;
+    for (int i = get_global_id(0); i < n; i += gs)
+        KAHAN_ADD(sum, c, v[i]);
+    s[l] = sum + c;
     barrier(CLK_LOCAL_MEM_FENCE);
     TREE(tr_add, s, l)
     if (l == 0)
@@ -125,8 +146,11 @@ void dot_partial(__global const real *a, __global const real *b, const int n,
                  __global real *partial)
 {
     __local real s[TR_LOCAL_SIZE];
-    int i = get_global_id(0), l = get_local_id(0);
-    s[l] = i < n ? a[i] * b[i] : 0.0;
+    int l = get_local_id(0), gs = get_global_size(0);
+    real sum = 0.0, c = 0.0;
+    for (int i = get_global_id(0); i < n; i += gs)
+        KAHAN_ADD(sum, c, a[i] * b[i]);
+    s[l] = sum + c;
     barrier(CLK_LOCAL_MEM_FENCE);
     TREE(tr_add, s, l)
     if (l == 0)
@@ -138,8 +162,11 @@ __kernel __attribute__((reqd_work_group_size(TR_LOCAL_SIZE, 1, 1)))
 void isum_partial(__global const int *v, const int n, __global real *partial)
 {
     __local real s[TR_LOCAL_SIZE];
-    int i = get_global_id(0), l = get_local_id(0);
-    s[l] = i < n ? (real)v[i] : 0.0;
+    int l = get_local_id(0), gs = get_global_size(0);
+    real sum = 0.0;
+    for (int i = get_global_id(0); i < n; i += gs)
+        sum += (real)v[i];
+    s[l] = sum;
     barrier(CLK_LOCAL_MEM_FENCE);
     TREE(tr_add, s, l)
     if (l == 0)

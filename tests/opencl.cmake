@@ -1,0 +1,22 @@
+# tightrope devices and tightrope bench from the command line. Without an
+# OpenCL device both still work (the reference is always listed and timed).
+set(_tr $<TARGET_FILE:tightrope>)
+add_test(NAME cli_devices COMMAND ${_tr} devices)
+set_tests_properties(cli_devices PROPERTIES ENVIRONMENT "${TR_TEST_ENV}"
+  PASS_REGULAR_EXPRESSION "reference +serial reference.*fp64 yes.*selected by")
+add_test(NAME cli_devices_json COMMAND ${_tr} devices --json)
+set_tests_properties(cli_devices_json PROPERTIES ENVIRONMENT "${TR_TEST_ENV}"
+  PASS_REGULAR_EXPRESSION "\"devices\": \\[\n  {\"id\": \"reference\"")
+add_test(NAME cli_devices_bad_option COMMAND ${_tr} devices --bogus)
+set_tests_properties(cli_devices_bad_option PROPERTIES WILL_FAIL TRUE)
+add_test(NAME cli_device_unknown COMMAND ${_tr} devices)
+set_tests_properties(cli_device_unknown PROPERTIES
+  ENVIRONMENT "${TR_TEST_ENV};TIGHTROPE_DEVICE=no-such-device-anywhere"
+  PASS_REGULAR_EXPRESSION "selection 'no-such-device-anywhere': no device matches")
+# every device validated against the reference before it is timed; a small N
+add_test(NAME cli_bench_small COMMAND ${_tr} bench --n 300 --steps 2 --no-kernels --json)
+set_tests_properties(cli_bench_small PROPERTIES ENVIRONMENT "${TR_TEST_ENV}"
+  PASS_REGULAR_EXPRESSION "\"valid\": true, \"validation_diff\": [^,]+, \"steps\": 2"
+  FAIL_REGULAR_EXPRESSION "\"valid\": false|\"error\"")
+add_test(NAME cli_bench_bad_n COMMAND ${_tr} bench --n 12,abc)
+set_tests_properties(cli_bench_bad_n PROPERTIES WILL_FAIL TRUE)
