@@ -826,8 +826,13 @@ static int open_spec(const char *spec, const tr_curve *c, int profiling, tr_back
     int rc = tr_device_select(spec, &dev, err);
     if (rc != TR_OK)
         return rc;
-    if (dev.kind != TR_DEVICE_OPENCL)
-        return tr_fail(err, TR_EUNSUPPORTED, "%s", dev.warning[0] ? dev.warning : "no opencl device");
+    if (dev.kind != TR_DEVICE_OPENCL) {
+        const char *w = dev.warning[0] ? dev.warning : "no opencl device";
+        const char *prefix = "using the serial reference: ";
+        if (!strncmp(w, prefix, strlen(prefix)))
+            w += strlen(prefix);
+        return tr_fail(err, TR_EUNSUPPORTED, "%s", w);
+    }
     memset(out, 0, sizeof *out);
     return open_on(&dev, c, profiling, out, err);
 }

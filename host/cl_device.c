@@ -243,9 +243,20 @@ int tr_device_select(const char *spec, tr_device_choice *out, tr_error *err)
         for (int i = 0; i < l.n; i++)
             if (l.dev[i].usable && (best < 0 || l.dev[i].score > l.dev[best].score))
                 best = i;
-        if (best >= 0) {
+        /* "auto" means the fastest: an OpenCL driver running on this host's
+         * own CPU (PoCL) was measured slower than the serial reference on the
+         * whole step (bench/RESULTS.md), so auto takes only GPUs and
+         * accelerators; "opencl" or P:D still selects a CPU driver. */
+        int cpu_only = best >= 0 && !(l.dev[best].type & (CL_DEVICE_TYPE_GPU | CL_DEVICE_TYPE_ACCELERATOR));
+        if (best >= 0 && !(cpu_only && !strcmp(spec, "auto"))) {
             out->kind = TR_DEVICE_OPENCL;
             out->cl = l.dev[best];
+        } else if (best >= 0) {
+            out->kind = TR_DEVICE_REFERENCE;
+            snprintf(out->warning, sizeof out->warning,
+                     "using the serial reference: the only opencl devices run on this cpu (%d:%d "
+                     "%.100s), slower than the reference here; --device opencl selects them",
+                     l.dev[best].platform, l.dev[best].device, l.dev[best].name);
         } else if (!strcmp(spec, "opencl")) {
             rc = tr_fail(err, TR_EUNSUPPORTED, "no usable opencl device (%s)",
                          l.n ? "none has fp64" : l.none_reason);

@@ -57,9 +57,11 @@ const char *tr_device_spec_default(void);
 
 /* Resolves spec (NULL: tr_device_spec_default()). "reference" (or "serial",
  * "cpu-reference") -> the serial reference; "auto" -> the highest-scoring usable
- * device, or the reference with a warning when there is none; "P:D" -> that
+ * GPU/accelerator, or the reference with a warning when there is none; "P:D" -> that
  * device; anything else -> the single usable device whose platform or device
- * name contains it (case-insensitive). An explicit choice of an unusable or
+ * name contains it (case-insensitive). "auto" skips OpenCL drivers that run
+ * on the host CPU (slower than the reference, bench/RESULTS.md); "opencl" is
+ * the best usable device of any type. An explicit choice of an unusable or
  * missing device is an error, never a silent fallback. */
 int tr_device_select(const char *spec, tr_device_choice *out, tr_error *err);
 

@@ -124,7 +124,13 @@ static void test_selection(int have_device)
     CHECK(strstr(err.msg, "97:3") != NULL);
     CHECK(tr_device_select("no-such-device-name", &ch, &err) == TR_EINVAL);
     CHECK_OK(tr_device_select("auto", &ch, &err));
+    tr_device_choice any;
     if (have_device) {
+        /* auto takes GPUs and accelerators only; "opencl" any usable device */
+        CHECK_OK(tr_device_select("opencl", &any, &err));
+        int gpu = (any.cl.type & (CL_DEVICE_TYPE_GPU | CL_DEVICE_TYPE_ACCELERATOR)) != 0;
+        CHECK(gpu ? ch.kind == TR_DEVICE_OPENCL : (ch.kind == TR_DEVICE_REFERENCE && ch.warning[0]));
+        ch = any;
         CHECK(ch.kind == TR_DEVICE_OPENCL && ch.cl.usable && ch.cl.fp64);
         char pd[32];
         snprintf(pd, sizeof pd, "%d:%d", ch.cl.platform, ch.cl.device);
@@ -133,6 +139,7 @@ static void test_selection(int have_device)
         CHECK(again.kind == TR_DEVICE_OPENCL && again.cl.did == ch.cl.did);
     } else {
         CHECK(ch.kind == TR_DEVICE_REFERENCE && ch.warning[0] != '\0');
+        CHECK(tr_device_select("opencl", &any, &err) != TR_OK || any.kind != TR_DEVICE_OPENCL);
     }
 }
 
@@ -271,7 +278,7 @@ int main(void)
     CHECK(!strncmp(err.msg, "clFinish: CL_INVALID_COMMAND_QUEUE (-36)", 40));
 
     tr_device_choice ch;
-    int have = tr_device_select("auto", &ch, &err) == TR_OK && ch.kind == TR_DEVICE_OPENCL;
+    int have = tr_device_select("opencl", &ch, &err) == TR_OK && ch.kind == TR_DEVICE_OPENCL;
     test_selection(have);
     if (!have) {
         printf("no usable opencl device: device tests skipped (%s)\n", ch.warning);

@@ -184,7 +184,7 @@ int main(void)
 {
     tr_error err;
     tr_device_choice ch;
-    if (tr_device_select("auto", &ch, &err) != TR_OK || ch.kind != TR_DEVICE_OPENCL) {
+    if (tr_device_select("opencl", &ch, &err) != TR_OK || ch.kind != TR_DEVICE_OPENCL) {
         printf("no usable opencl device: skipped\n");
         return TR_SKIP;
     }
