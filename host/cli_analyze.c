@@ -73,7 +73,11 @@ static int parse_double(const char *s, double *v)
 static int write_text(const char *dir, const char *name, char *text, tr_error *err)
 {
     char path[4096];
-    snprintf(path, sizeof path, "%s/%s", dir, name);
+    int len = snprintf(path, sizeof path, "%s/%s", dir, name);
+    if (len < 0 || (size_t)len >= sizeof path) {
+        free(text);
+        return tr_fail(err, TR_EINVAL, "%s: output path too long", dir);
+    }
     if (!text)
         return tr_fail(err, TR_ENOMEM, "out of memory writing %s", path);
     int rc = tr_write_file_atomic(path, text, strlen(text), err);
