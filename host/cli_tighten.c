@@ -318,7 +318,7 @@ int tr_cmd_tighten(int argc, char **argv)
 
     tr_engine_progress p;
     tr_engine_get_progress(e, &p);
-    tr_curve fin;
+    tr_curve fin = {0};
     tr_thickness th;
     rc = tr_engine_get_curve(e, &fin, &err);
     if (rc == TR_OK)

@@ -1,6 +1,7 @@
 #include "curve.h"
 
 #include <math.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -13,8 +14,13 @@ int tr_curve_alloc(tr_curve *c, int ncomp, const size_t *nv, const unsigned char
     if (ncomp <= 0)
         return tr_fail(err, TR_EINVAL, "a curve needs at least one component");
     size_t total = 0;
-    for (int k = 0; k < ncomp; k++)
+    for (int k = 0; k < ncomp; k++) {
+        /* 3 doubles per vertex must fit in size_t: refuse before any wrap */
+        if (nv[k] > SIZE_MAX / (3 * sizeof(double)) - total)
+            return tr_fail(err, TR_EINVAL, "curve of more than %zu vertices is too large",
+                           SIZE_MAX / (3 * sizeof(double)));
         total += nv[k];
+    }
     c->ncomp = ncomp;
     c->nv = total;
     c->start = malloc((size_t)(ncomp + 1) * sizeof *c->start);
@@ -46,6 +52,7 @@ void tr_curve_free(tr_curve *c)
 
 int tr_curve_copy(tr_curve *dst, const tr_curve *src, tr_error *err)
 {
+    memset(dst, 0, sizeof *dst); /* a failed copy leaves a curve that tr_curve_free accepts */
     size_t *nv = malloc((size_t)src->ncomp * sizeof *nv);
     if (!nv)
         return tr_fail(err, TR_ENOMEM, "out of memory copying a curve");

@@ -458,6 +458,14 @@ static char *read_all(const char *path, tr_error *err)
     return s;
 }
 
+/* A whole token that is a finite number (strtod alone accepts "zzz" as 0). */
+static int parse_finite(const char *tok, double *v)
+{
+    char *endp;
+    *v = strtod(tok, &endp);
+    return endp != tok && *endp == '\0' && isfinite(*v);
+}
+
 int tr_engine_resume(tr_engine **out, const char *path, const char *device,
                      const tr_engine_params *p, tr_error *err)
 {
@@ -465,6 +473,9 @@ int tr_engine_resume(tr_engine **out, const char *path, const char *device,
     char *text = read_all(path, err);
     if (!text)
         return TR_EIO;
+    /* every vertex needs a line of at least "0 0 0\n": bounds the counts
+     * before anything is allocated from them (taken before strtok cuts the text) */
+    const size_t max_vertices = strlen(text) / 6;
     tr_engine *e = engine_new(device, p);
     size_t *nv = NULL;
     unsigned char *closed = NULL;
@@ -502,14 +513,21 @@ int tr_engine_resume(tr_engine **out, const char *path, const char *device,
         rc = tr_fail(err, TR_ENOMEM, "out of memory");
         goto fail;
     }
+    size_t total = 0;
     for (int k = 0; k < ncomp; k++) {
         NEXT();
         int cl;
         char eb[64];
         if (sscanf(ln, "comp %zu %d %63s %d", &nv[k], &cl, eb, &gap[k]) != 4 || nv[k] < 2)
             BAD("expected 'comp NV CLOSED EBAR GAP'");
+        if (nv[k] > max_vertices - total)
+            BAD("more vertices than the checkpoint holds");
+        total += nv[k];
+        if (gap[k] < 2 || (cl != 0 && cl != 1) || (cl && nv[k] < 3))
+            BAD("bad component closure or exclusion gap");
         closed[k] = (unsigned char)(cl != 0);
-        ebar[k] = strtod(eb, NULL);
+        if (!parse_finite(eb, &ebar[k]) || !(ebar[k] > 0))
+            BAD("edge length must be a positive finite number");
     }
     NEXT();
     {
@@ -517,11 +535,10 @@ int tr_engine_resume(tr_engine **out, const char *path, const char *device,
         if (sscanf(ln, "state %ld %ld %63s %63s %63s %63s %63s %d", &e->steps, &e->rejected, h, da, el, rs,
                    le, &e->jammed) != 8)
             BAD("expected the 'state' line");
-        e->h = strtod(h, NULL);
-        e->disp_acc = strtod(da, NULL);
-        e->elapsed_base = strtod(el, NULL);
-        e->residual = strtod(rs, NULL);
-        e->length = strtod(le, NULL);
+        if (!parse_finite(h, &e->h) || !parse_finite(da, &e->disp_acc) ||
+            !parse_finite(el, &e->elapsed_base) || !parse_finite(rs, &e->residual) ||
+            !parse_finite(le, &e->length) || !(e->h > 0) || e->steps < 0 || e->rejected < 0)
+            BAD("bad number in the 'state' line");
     }
     if ((rc = tr_curve_alloc(&e->curve, ncomp, nv, closed, err)))
         goto fail;
@@ -537,12 +554,14 @@ int tr_engine_resume(tr_engine **out, const char *path, const char *device,
         if (sscanf(ln, "cst %d %d %63s %63s %63s %63s %63s %63s %63s", &kind, &k.id, f[0], f[1], f[2], f[3],
                    f[4], f[5], f[6]) != 9)
             BAD("expected a 'cst' line");
+        if (kind < TR_CST_FIXED || kind > TR_CST_PLANE)
+            BAD("unknown constraint kind");
         k.kind = (tr_cst_kind)kind;
-        for (int a = 0; a < 3; a++) {
-            k.p[a] = strtod(f[a], NULL);
-            k.u[a] = strtod(f[3 + a], NULL);
-        }
-        k.d = strtod(f[6], NULL);
+        int ok = 1;
+        for (int a = 0; a < 3; a++)
+            ok = ok && parse_finite(f[a], &k.p[a]) && parse_finite(f[3 + a], &k.u[a]);
+        if (!ok || !parse_finite(f[6], &k.d))
+            BAD("bad number in a 'cst' line");
         if ((rc = tr_curve_add_constraint(&e->curve, &k, err)) < 0)
             goto fail;
         rc = TR_OK;
@@ -564,10 +583,14 @@ int tr_engine_resume(tr_engine **out, const char *path, const char *device,
         for (int a = 0; a < 3; a++) {
             char *endp;
             e->curve.x[3 * i + a] = strtod(q, &endp);
-            if (endp == q)
-                BAD("expected three coordinates");
+            if (endp == q || !isfinite(e->curve.x[3 * i + a]))
+                BAD("expected three finite coordinates");
             q = endp;
         }
+        while (*q == ' ' || *q == '\t' || *q == '\r')
+            q++;
+        if (*q)
+            BAD("unexpected text after the coordinates");
     }
     NEXT();
     if (strcmp(ln, "end") != 0)
@@ -589,6 +612,17 @@ int tr_engine_resume(tr_engine **out, const char *path, const char *device,
         tr_measure m;
         if ((rc = measure(e, &m, err)))
             goto fail;
+        /* a checkpoint is input like any other: never continue from a state
+         * that is not a valid rope (overlap, a kink, a wrong edge length) */
+        if (!(m.min_strut >= e->prm.correct.strut_dist - 100.0 * e->prm.accept_viol) ||
+            !(m.min_minrad >= e->prm.correct.minrad * (1.0 - 2.0 * e->prm.minrad_tol)) ||
+            !(m.edge_dev <= 1e-6)) {
+            rc = tr_fail(err, TR_EGEOMETRY,
+                         "%s: checkpoint is not a valid rope state (closest non-local distance %.6g, "
+                         "MinRad %.6g, edge deviation %.3g)",
+                         path, m.min_strut, m.min_minrad, m.edge_dev);
+            goto fail;
+        }
         double len = e->length;
         fill_state(e, &m);
         e->length = len;

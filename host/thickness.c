@@ -331,9 +331,14 @@ static void component_lengths(const tr_curve *c, int k, comp_lengths *out)
         double tj = 0.5 * fmin(normin, normout);
         if (closed)
             nm_add(&arcs, tj * arc_factor(atan2(crn, dot)));
-        if (crn <= STRAIGHT_SIN * normin * normout)
-            continue;
-        double rad = (normin * normout + dot) / (2 * crn);
+        double rad;
+        if (crn <= STRAIGHT_SIN * normin * normout) {
+            if (dot >= 0)
+                continue; /* straight: no bend, infinite radius */
+            rad = 0.0;    /* a hairpin (the rope folds back on itself): MinRad 0, not straight */
+        } else {
+            rad = (normin * normout + dot) / (2 * crn);
+        }
         double mrminus = normin * rad, mrplus = normout * rad;
         double mr = mrminus < mrplus ? mrminus : mrplus;
         if (mr < out->minrad) {

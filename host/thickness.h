@@ -16,7 +16,9 @@
  * Deliberate differences, none of which shows on the 249 TightKnot knots:
  *  - a vertex is straight (skipped in MinRad) when |a x b| <= 1e-12 |a||b|;
  *    octrope's absolute |a x b| < 1e-12 skips every vertex once edges are
- *    ~1e-5 long and loses MinRad at N ~ 10^6;
+ *    ~1e-5 long and loses MinRad at N ~ 10^6; a vertex where the edges are
+ *    antiparallel (a hairpin, a.b < 0) is not straight but a cusp: MinRad 0,
+ *    so thickness 0 (octrope would skip it and call the fold infinitely thick);
  *  - exactly parallel edges (|d1 x d2|^2 < 1e-20 |d1|^2 |d2|^2, computed as a
  *    cross product in long double) get the middle of their overlap as closest
  *    pair; octrope takes s = 0, lands on a vertex and misses the strut between

@@ -208,6 +208,58 @@ static void run_steps(tr_engine *e, int n)
     }
 }
 
+/* Rewrites the checkpoint at `path` with its 'comp' line replaced by
+ * `comp_line` and expects resume to fail with `want`. */
+static void resume_with_comp_line(const char *path, const char *comp_line, int want)
+{
+    FILE *f = fopen(path, "rb");
+    CHECK(f != NULL);
+    if (!f)
+        return;
+    static char text[1 << 20];
+    size_t n = fread(text, 1, sizeof text - 1, f);
+    fclose(f);
+    text[n] = '\0';
+    char *c = strstr(text, "\ncomp ");
+    CHECK(c != NULL);
+    if (!c)
+        return;
+    char *eol = strchr(c + 1, '\n');
+    char bad[512];
+    snprintf(bad, sizeof bad, "%s/engine_corrupt.ckpt", TR_BINARY_DIR);
+    FILE *g = fopen(bad, "wb");
+    CHECK(g != NULL);
+    if (!g)
+        return;
+    fwrite(text, 1, (size_t)(c + 1 - text), g);
+    fputs(comp_line, g);
+    fputs(eol, g);
+    fclose(g);
+    tr_engine *r = NULL;
+    tr_error err;
+    int rc = tr_engine_resume(&r, bad, "reference", NULL, &err);
+    CHECK(rc == want);
+    if (rc == TR_OK)
+        tr_engine_destroy(r);
+    else
+        printf("'%s': %s\n", comp_line, err.msg);
+    remove(bad);
+}
+
+static void corrupt_checkpoints(const char *path)
+{
+    /* the torus start has 72 vertices, closed, gap >= 2 */
+    resume_with_comp_line(path, "comp 72 1 zzz 3", TR_EPARSE);          /* edge length not a number */
+    resume_with_comp_line(path, "comp 72 1 nan 3", TR_EPARSE);          /* not finite */
+    resume_with_comp_line(path, "comp 72 1 -1 3", TR_EPARSE);           /* not positive */
+    resume_with_comp_line(path, "comp 4000000000000 1 1 3", TR_EPARSE); /* more vertices than the file */
+    resume_with_comp_line(path, "comp 72 7 1 3", TR_EPARSE);            /* closure flag */
+    resume_with_comp_line(path, "comp 72 1 1 0", TR_EPARSE);            /* exclusion gap */
+    /* parses, but the stored edges are far from the stated edge length: not a
+     * valid rope state, so the run must not go on from it */
+    resume_with_comp_line(path, "comp 72 1 0.5 3", TR_EGEOMETRY);
+}
+
 static void checkpoint_resume(void)
 {
     tr_error err;
@@ -243,6 +295,8 @@ static void checkpoint_resume(void)
         tr_curve_free(&xr);
         tr_engine_destroy(r);
     }
+    /* a checkpoint is input: broken content is refused, never continued */
+    corrupt_checkpoints(path);
     /* a truncated checkpoint is refused with its line */
     FILE *f = fopen(path, "r+");
     if (f) {

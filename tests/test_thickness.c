@@ -222,6 +222,16 @@ static void test_minrad(void)
     CHECK_NEAR(t.length, 6.0, 1e-15);
     CHECK(isnan(t.L_c) && isnan(t.L_p));
     tr_curve_free(&c);
+    /* A hairpin: the rope runs out and folds straight back (turning angle pi).
+     * The limit of MinRad as the turn angle -> pi is 0, so the fold has
+     * thickness 0; treating the antiparallel edges as "straight" would call
+     * it infinitely thick at that vertex. */
+    const double hp[] = {0, 0, 0, 2, 0, 0, 1, 0, 0};
+    make_curve(&c, 1, &nv, &open, hp);
+    CHECK_OK(tr_thickness_measure(&c, NULL, &t, NULL, &err));
+    CHECK(t.minrad == 0.0 && t.minrad_vertex == 1);
+    CHECK(t.thickness == 0.0 && isinf(t.ropelength));
+    tr_curve_free(&c);
 }
 
 static void test_components(void)
