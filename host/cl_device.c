@@ -131,8 +131,7 @@ int tr_cl_enumerate(tr_cl_device_list *out, tr_error *err)
     for (cl_uint p = 0; p < np; p++) {
         char pname[128];
         size_t got = 0;
-        if (clGetPlatformInfo(plat[p], CL_PLATFORM_NAME, sizeof pname - 1, pname, &got) != CL_SUCCESS)
-            got = 0;
+        TR_CL_CHECK(clGetPlatformInfo(plat[p], CL_PLATFORM_NAME, sizeof pname - 1, pname, &got));
         pname[got < sizeof pname ? got : sizeof pname - 1] = '\0';
 
         cl_uint nd = 0;
@@ -228,13 +227,14 @@ int tr_device_select(const char *spec, tr_device_choice *out, tr_error *err)
     }
 
     tr_cl_device_list l;
-    int rc = tr_cl_enumerate(&l, err);
+    tr_error why; /* err may be NULL; the message is needed for the warning */
+    int rc = tr_cl_enumerate(&l, &why);
     if (rc != TR_OK) {
         if (strcmp(spec, "auto") && strcmp(spec, "opencl"))
-            return rc;
+            return tr_fail(err, rc, "%s", why.msg);
         /* auto: OpenCL is broken here; the reference still works. */
         out->kind = TR_DEVICE_REFERENCE;
-        snprintf(out->warning, sizeof out->warning, "using the serial reference: %.400s", err->msg);
+        snprintf(out->warning, sizeof out->warning, "using the serial reference: %.400s", why.msg);
         return TR_OK;
     }
 

@@ -127,15 +127,24 @@ int tr_cl_grid_build(tr_cl_grid *g, const tr_cl_ctx *ctx, tr_cl_reduce *red,
         h = 1.0;
     double ext[3] = {s[1] - s[0], s[3] - s[2], s[5] - s[4]};
     const double max_cells = 4.0 * n + 4096.0;
+    for (int a = 0; a < 3; a++)
+        if (!isfinite(ext[a])) {
+            rc = tr_fail(err, TR_EGEOMETRY, "the curve spans more than a double can hold");
+            goto cleanup;
+        }
+    /* counted in double: ext / h can exceed any integer type before h grows */
     long dims[3];
     for (;;) {
-        double total = 1;
+        double total = 1, d[3];
         for (int a = 0; a < 3; a++) {
-            dims[a] = (long)floor(ext[a] / h) + 1;
-            total *= (double)dims[a];
+            d[a] = floor(ext[a] / h) + 1.0;
+            total *= d[a];
         }
-        if (total <= max_cells)
+        if (total <= max_cells) {
+            for (int a = 0; a < 3; a++)
+                dims[a] = (long)d[a];
             break;
+        }
         h *= 1.25;
     }
     size_t ncell = (size_t)(dims[0] * dims[1] * dims[2]);
@@ -190,8 +199,10 @@ int tr_cl_grid_build(tr_cl_grid *g, const tr_cl_ctx *ctx, tr_cl_reduce *red,
     ARG(g->bounds, 3, g->cell_end);
     TR_TRY(launch(ctx, g->bounds, (size_t)g->npad, err));
 
+    int flag = 0;
     for (int attempt = 0; attempt < 2; attempt++) {
-        int zero = 0, flag = 0;
+        int zero = 0;
+        flag = 0;
         TR_CL_CHECK(clEnqueueWriteBuffer(ctx->queue, g->overflow, CL_FALSE, 0, sizeof zero, &zero, 0,
                                          NULL, NULL));
         cl_mem a[] = {x, t->next};
@@ -232,11 +243,13 @@ int tr_cl_grid_build(tr_cl_grid *g, const tr_cl_ctx *ctx, tr_cl_reduce *red,
         }
         e = clEnqueueReadBuffer(ctx->queue, g->count, CL_TRUE, 0, (size_t)n * sizeof(int), cnt, 0,
                                 NULL, NULL);
+        if (e != CL_SUCCESS)
+            free(cnt);
+        TR_CL_CHECK(e);
         int most = 0;
         for (int i = 0; i < n; i++)
             most = cnt[i] > most ? cnt[i] : most;
         free(cnt);
-        TR_CL_CHECK(e);
         if ((double)most * n > 5e8) {
             rc = tr_fail(err, TR_EGEOMETRY,
                          "%d neighbours for one item within %g: the curve is far too dense", most, r);
@@ -244,6 +257,10 @@ int tr_cl_grid_build(tr_cl_grid *g, const tr_cl_ctx *ctx, tr_cl_reduce *red,
         }
         TR_TRY(alloc_lists(g, ctx, most + most / 4 + 4, err));
     }
+    /* the lists were sized to the counts of the first pass; a second
+     * overflow means the kernel disagrees with itself, never a silent cut */
+    if (flag)
+        rc = tr_fail(err, TR_EOPENCL, "neighbour lists still overflow after growing them");
 cleanup:
     return rc;
 }

@@ -12,6 +12,7 @@
 
 #include "cli.h"
 #include "curve_io.h"
+#include "text_file.h"
 #include "thickness.h"
 
 /* Struts within this relative distance of the shortest go to --struts:
@@ -31,63 +32,17 @@ static void usage(FILE *out)
             DEFAULT_STRUT_TOL);
 }
 
-/* A growing text buffer; on allocation failure it stops growing and
- * remembers that, so the caller checks once at the end. */
-typedef struct text {
-    char *p;
-    size_t n, cap;
-    int oom;
-} text;
-
-static void tprintf(text *t, const char *fmt, ...)
-#if defined(__GNUC__)
-    __attribute__((format(printf, 2, 3)))
-#endif
-    ;
-
-static void tprintf(text *t, const char *fmt, ...)
-{
-    if (t->oom)
-        return;
-    for (;;) {
-        va_list ap;
-        va_start(ap, fmt);
-        size_t room = t->cap - t->n;
-        int k = vsnprintf(t->p ? t->p + t->n : NULL, room, fmt, ap);
-        va_end(ap);
-        if (k < 0) {
-            t->oom = 1;
-            return;
-        }
-        if ((size_t)k < room) {
-            t->n += (size_t)k;
-            return;
-        }
-        size_t cap = t->cap ? 2 * t->cap : 4096;
-        while (cap - t->n <= (size_t)k)
-            cap *= 2;
-        char *g = realloc(t->p, cap);
-        if (!g) {
-            t->oom = 1;
-            return;
-        }
-        t->p = g;
-        t->cap = cap;
-    }
-}
-
-/* JSON has no infinity or NaN: they are written as null. */
-static void json_num(text *t, const char *key, double v, int comma)
+static void json_num(tr_text *t, const char *key, double v, int comma)
 {
     if (isfinite(v))
-        tprintf(t, "\"%s\": %.17g%s", key, v, comma ? ", " : "");
+        tr_text_printf(t, "\"%s\": %.17g%s", key, v, comma ? ", " : "");
     else
-        tprintf(t, "\"%s\": null%s", key, comma ? ", " : "");
+        tr_text_printf(t, "\"%s\": null%s", key, comma ? ", " : "");
 }
 
-static void json_fields(text *t, const tr_thickness *m)
+static void json_fields(tr_text *t, const tr_thickness *m)
 {
-    tprintf(t, "\"vertices\": %zu, ", m->vertices);
+    tr_text_printf(t, "\"vertices\": %zu, ", m->vertices);
     json_num(t, "length", m->length, 1);
     json_num(t, "minrad", m->minrad, 1);
     json_num(t, "dcsd", m->dcsd, 1);
@@ -96,30 +51,30 @@ static void json_fields(text *t, const tr_thickness *m)
     json_num(t, "L_p", m->L_p, 1);
     json_num(t, "L_c", m->L_c, 1);
     json_num(t, "L_a", m->L_a, 1);
-    tprintf(t, "\"minrad_vertex\": %zu", m->minrad_vertex);
+    tr_text_printf(t, "\"minrad_vertex\": %zu", m->minrad_vertex);
     if (isfinite(m->dcsd))
-        tprintf(t, ", \"shortest_strut\": {\"edges\": [%zu, %zu], \"positions\": [%.17g, %.17g], \"length\": %.17g}",
+        tr_text_printf(t, ", \"shortest_strut\": {\"edges\": [%zu, %zu], \"positions\": [%.17g, %.17g], \"length\": %.17g}",
                 m->shortest.ei, m->shortest.ej, m->shortest.si, m->shortest.sj, m->shortest.dist);
 }
 
-static void json_string(text *t, const char *s)
+static void json_string(tr_text *t, const char *s)
 {
-    tprintf(t, "\"");
+    tr_text_printf(t, "\"");
     for (; *s; s++) {
         unsigned char ch = (unsigned char)*s;
         if (ch == '"' || ch == '\\')
-            tprintf(t, "\\%c", ch);
+            tr_text_printf(t, "\\%c", ch);
         else if (ch < 0x20)
-            tprintf(t, "\\u%04x", ch);
+            tr_text_printf(t, "\\u%04x", ch);
         else
-            tprintf(t, "%c", ch);
+            tr_text_printf(t, "%c", ch);
     }
-    tprintf(t, "\"");
+    tr_text_printf(t, "\"");
 }
 
-static void table_row(text *t, const char *label, const tr_thickness *m)
+static void table_row(tr_text *t, const char *label, const tr_thickness *m)
 {
-    tprintf(t, "%-10s %9zu %22.15g %22.15g %22.15g %22.15g %22.15g %22.15g %22.15g %22.15g\n", label,
+    tr_text_printf(t, "%-10s %9zu %22.15g %22.15g %22.15g %22.15g %22.15g %22.15g %22.15g %22.15g\n", label,
             m->vertices, m->length, m->minrad, m->dcsd, m->thickness, m->ropelength, m->L_p, m->L_c,
             m->L_a);
 }
@@ -133,9 +88,9 @@ static void table_row(text *t, const char *label, const tr_thickness *m)
 static int write_struts(const char *path, const tr_curve *c, const tr_thickness *m,
                         const tr_strut_list *sl, tr_error *err)
 {
-    text t = {0};
+    tr_text t = {0};
     int have_mr = isfinite(m->minrad);
-    tprintf(&t, "STRUTS \n%zu %d \n", sl->n, have_mr ? 1 : 0);
+    tr_text_printf(&t, "STRUTS \n%zu %d \n", sl->n, have_mr ? 1 : 0);
     /* Global edge -> (component, first vertex in the component). */
     for (size_t i = 0; i < sl->n; i++) {
         const tr_strut *s = &sl->s[i];
@@ -152,19 +107,19 @@ static int write_struts(const char *path, const tr_curve *c, const tr_thickness 
             comp[q] = k;
             lead[q] = e[q] - off;
         }
-        tprintf(&t, "%d %d %zu %zu %.17g %.17g %.17g %.17g\n", comp[0], comp[1], lead[0], lead[1], s->si,
+        tr_text_printf(&t, "%d %d %zu %zu %.17g %.17g %.17g %.17g\n", comp[0], comp[1], lead[0], lead[1], s->si,
                 s->sj, s->dist, 0.0);
     }
     if (have_mr) {
         int k = tr_curve_comp_of(c, m->minrad_vertex);
-        tprintf(&t, "%d %zu %.17g %.17g \n", k, m->minrad_vertex - c->start[k], m->minrad, 0.0);
+        tr_text_printf(&t, "%d %zu %.17g %.17g \n", k, m->minrad_vertex - c->start[k], m->minrad, 0.0);
     }
     if (t.oom) {
-        free(t.p);
+        free(t.s);
         return tr_fail(err, TR_ENOMEM, "out of memory formatting struts");
     }
-    int rc = tr_write_file_atomic(path, t.p, t.n, err);
-    free(t.p);
+    int rc = tr_write_file_atomic(path, t.s, t.n, err);
+    free(t.s);
     return rc;
 }
 
@@ -234,10 +189,10 @@ int tr_cmd_measure(int argc, char **argv)
         }
     }
 
-    text out = {0};
+    tr_text out = {0};
     tr_strut_list sl = {0};
     if (json && nfiles > 1)
-        tprintf(&out, "[\n");
+        tr_text_printf(&out, "[\n");
     for (int f = 0; f < nfiles && status == 0; f++) {
         const tr_curve *c = &curves[f];
         tr_thickness m;
@@ -265,21 +220,21 @@ int tr_cmd_measure(int argc, char **argv)
             }
         }
         if (status == 0 && json) {
-            tprintf(&out, "%s{\"file\": ", nfiles > 1 ? "  " : "");
+            tr_text_printf(&out, "%s{\"file\": ", nfiles > 1 ? "  " : "");
             json_string(&out, files[f]);
-            tprintf(&out, ", \"components\": %d, ", c->ncomp);
+            tr_text_printf(&out, ", \"components\": %d, ", c->ncomp);
             json_fields(&out, &m);
-            tprintf(&out, ", \"per_component\": [");
+            tr_text_printf(&out, ", \"per_component\": [");
             for (int k = 0; k < c->ncomp; k++) {
-                tprintf(&out, "%s{\"component\": %d, \"closed\": %s, ", k ? ", " : "", k,
+                tr_text_printf(&out, "%s{\"component\": %d, \"closed\": %s, ", k ? ", " : "", k,
                         c->closed[k] ? "true" : "false");
                 json_fields(&out, &pc[k]);
-                tprintf(&out, "}");
+                tr_text_printf(&out, "}");
             }
-            tprintf(&out, "]}%s\n", (nfiles > 1 && f + 1 < nfiles) ? "," : "");
+            tr_text_printf(&out, "]}%s\n", (nfiles > 1 && f + 1 < nfiles) ? "," : "");
         } else if (status == 0) {
-            tprintf(&out, "%s: %d component%s\n", files[f], c->ncomp, c->ncomp == 1 ? "" : "s");
-            tprintf(&out, "%-10s %9s %22s %22s %22s %22s %22s %22s %22s %22s\n", "", "vertices", "length",
+            tr_text_printf(&out, "%s: %d component%s\n", files[f], c->ncomp, c->ncomp == 1 ? "" : "s");
+            tr_text_printf(&out, "%-10s %9s %22s %22s %22s %22s %22s %22s %22s %22s\n", "", "vertices", "length",
                     "minrad", "dcsd", "thickness", "ropelength", "L_p", "L_c", "L_a");
             table_row(&out, "curve", &m);
             for (int k = 0; per_comp && k < c->ncomp; k++) {
@@ -288,7 +243,7 @@ int tr_cmd_measure(int argc, char **argv)
                 table_row(&out, label, &pc[k]);
             }
             if (f + 1 < nfiles)
-                tprintf(&out, "\n");
+                tr_text_printf(&out, "\n");
         }
         free(pc);
         if (status == 0 && struts_path && write_struts(struts_path, c, &m, &sl, &err)) {
@@ -297,14 +252,14 @@ int tr_cmd_measure(int argc, char **argv)
         }
     }
     if (status == 0 && json && nfiles > 1)
-        tprintf(&out, "]\n");
+        tr_text_printf(&out, "]\n");
     if (status == 0 && out.oom) {
         fprintf(stderr, "tightrope measure: out of memory formatting the output\n");
         status = 1;
     }
     if (status == 0)
-        fwrite(out.p, 1, out.n, stdout);
-    free(out.p);
+        fwrite(out.s, 1, out.n, stdout);
+    free(out.s);
     tr_strut_list_free(&sl);
     for (int f = 0; f < nread && f < nfiles; f++)
         tr_curve_free(&curves[f]);

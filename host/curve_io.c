@@ -764,87 +764,22 @@ int tr_curve_parse(const char *name, const char *text, size_t len, tr_format fmt
 int tr_curve_read(const char *path, tr_format fmt, tr_curve *out, tr_error *err)
 {
     memset(out, 0, sizeof *out);
-    FILE *f = fopen(path, "rb");
-    if (!f)
-        return tr_fail(err, TR_EIO, "cannot open %s: %s", path, strerror(errno));
-    char *buf = NULL;
-    size_t n = 0, cap = 0;
-    for (;;) {
-        if (cap - n < 65536) {
-            size_t ncap = cap ? 2 * cap : 1 << 16;
-            char *g = realloc(buf, ncap);
-            if (!g) {
-                free(buf);
-                fclose(f);
-                return tr_fail(err, TR_ENOMEM, "out of memory reading %s", path);
-            }
-            buf = g;
-            cap = ncap;
-        }
-        size_t r = fread(buf + n, 1, cap - n, f);
-        n += r;
-        if (r == 0)
-            break;
-    }
-    int bad = ferror(f);
-    fclose(f);
-    if (bad) {
-        free(buf);
-        return tr_fail(err, TR_EIO, "error reading %s", path);
-    }
+    char *buf;
+    size_t n;
+    int rc = tr_read_file(path, &buf, &n, err);
+    if (rc)
+        return rc;
     if (fmt == TR_FORMAT_AUTO)
         fmt = tr_format_from_name(path);
-    int rc = tr_curve_parse(path, buf, n, fmt, out, err);
+    rc = tr_curve_parse(path, buf, n, fmt, out, err);
     free(buf);
     return rc;
 }
 
 /* ----------------------------------------------------------------- writing */
 
-typedef struct sbuf {
-    char *p;
-    size_t n, cap;
-    int oom;
-} sbuf;
-
-static void sb_printf(sbuf *b, const char *fmt, ...)
-#if defined(__GNUC__)
-    __attribute__((format(printf, 2, 3)))
-#endif
-    ;
-
-static void sb_printf(sbuf *b, const char *fmt, ...)
-{
-    if (b->oom)
-        return;
-    for (;;) {
-        va_list ap;
-        va_start(ap, fmt);
-        int m = vsnprintf(b->p ? b->p + b->n : NULL, b->p ? b->cap - b->n : 0, fmt, ap);
-        va_end(ap);
-        if (m < 0) {
-            b->oom = 1;
-            return;
-        }
-        if (b->p && (size_t)m < b->cap - b->n) {
-            b->n += (size_t)m;
-            return;
-        }
-        size_t ncap = b->cap ? 2 * b->cap : 4096;
-        while (ncap - b->n <= (size_t)m)
-            ncap *= 2;
-        char *g = realloc(b->p, ncap);
-        if (!g) {
-            b->oom = 1;
-            return;
-        }
-        b->p = g;
-        b->cap = ncap;
-    }
-}
-
 /* Each line of comments becomes "# line". */
-static void sb_comments(sbuf *b, const char *comments)
+static void sb_comments(tr_text *b, const char *comments)
 {
     if (!comments)
         return;
@@ -852,7 +787,7 @@ static void sb_comments(sbuf *b, const char *comments)
     while (*p) {
         const char *e = strchr(p, '\n');
         size_t n = e ? (size_t)(e - p) : strlen(p);
-        sb_printf(b, n ? "# %.*s\n" : "#\n", (int)n, p);
+        tr_text_printf(b, n ? "# %.*s\n" : "#\n", (int)n, p);
         p += n;
         if (*p == '\n')
             p++;
@@ -875,55 +810,55 @@ static int ids_usable(const tr_curve *c)
     return 1;
 }
 
-static void write_vect(sbuf *b, const tr_curve *c, const char *comments)
+static void write_vect(tr_text *b, const tr_curve *c, const char *comments)
 {
-    sb_printf(b, "VECT\n");
+    tr_text_printf(b, "VECT\n");
     sb_comments(b, comments);
-    sb_printf(b, "%d %zu 0 # components vertices colours\n", c->ncomp, c->nv);
+    tr_text_printf(b, "%d %zu 0 # components vertices colours\n", c->ncomp, c->nv);
     for (int k = 0; k < c->ncomp; k++)
-        sb_printf(b, k ? " %s%zu" : "%s%zu", c->closed[k] ? "-" : "", tr_comp_nv(c, k));
-    sb_printf(b, " # vertices per component (negative: closed)\n");
+        tr_text_printf(b, k ? " %s%zu" : "%s%zu", c->closed[k] ? "-" : "", tr_comp_nv(c, k));
+    tr_text_printf(b, " # vertices per component (negative: closed)\n");
     for (int k = 0; k < c->ncomp; k++)
-        sb_printf(b, k ? " 0" : "0");
-    sb_printf(b, " # colours per component\n");
+        tr_text_printf(b, k ? " 0" : "0");
+    tr_text_printf(b, " # colours per component\n");
     int keep = ids_usable(c);
     for (int k = 0; k < c->ncst; k++) {
         const tr_constraint *q = &c->cst[k];
         int id = cst_number(c, k, keep);
         switch (q->kind) {
         case TR_CST_FIXED:
-            sb_printf(b, "# Constraint %d Fixed %.17g %.17g %.17g\n", id, q->p[0], q->p[1], q->p[2]);
+            tr_text_printf(b, "# Constraint %d Fixed %.17g %.17g %.17g\n", id, q->p[0], q->p[1], q->p[2]);
             break;
         case TR_CST_LINE:
-            sb_printf(b, "# Constraint %d Line %.17g %.17g %.17g %.17g %.17g %.17g\n", id, q->u[0], q->u[1],
+            tr_text_printf(b, "# Constraint %d Line %.17g %.17g %.17g %.17g %.17g %.17g\n", id, q->u[0], q->u[1],
                       q->u[2], q->p[0], q->p[1], q->p[2]);
             break;
         case TR_CST_PLANE:
-            sb_printf(b, "# Constraint %d Plane %.17g %.17g %.17g %.17g\n", id, q->u[0], q->u[1], q->u[2], q->d);
+            tr_text_printf(b, "# Constraint %d Plane %.17g %.17g %.17g %.17g\n", id, q->u[0], q->u[1], q->u[2], q->d);
             break;
         }
     }
     for (int k = 0; k < c->ncomp; k++) {
-        sb_printf(b, "# component %d\n", k);
+        tr_text_printf(b, "# component %d\n", k);
         for (size_t i = c->start[k]; i < c->start[k + 1]; i++) {
             const double *v = c->x + 3 * i;
             if (c->vcst && c->vcst[i] >= 0)
-                sb_printf(b, "%.17g %.17g %.17g # Cst: %d\n", v[0], v[1], v[2], cst_number(c, c->vcst[i], keep));
+                tr_text_printf(b, "%.17g %.17g %.17g # Cst: %d\n", v[0], v[1], v[2], cst_number(c, c->vcst[i], keep));
             else
-                sb_printf(b, "%.17g %.17g %.17g\n", v[0], v[1], v[2]);
+                tr_text_printf(b, "%.17g %.17g %.17g\n", v[0], v[1], v[2]);
         }
     }
 }
 
-static void write_lines(sbuf *b, const tr_curve *c, const char *comments)
+static void write_lines(tr_text *b, const tr_curve *c, const char *comments)
 {
     sb_comments(b, comments);
     for (int k = 0; k < c->ncomp; k++) {
         if (k)
-            sb_printf(b, "\n");
+            tr_text_printf(b, "\n");
         for (size_t i = c->start[k]; i < c->start[k + 1]; i++) {
             const double *v = c->x + 3 * i;
-            sb_printf(b, "%.17g\t%.17g\t%.17g\n", v[0], v[1], v[2]);
+            tr_text_printf(b, "%.17g\t%.17g\t%.17g\n", v[0], v[1], v[2]);
         }
     }
 }
@@ -949,23 +884,14 @@ int tr_curve_format(const tr_curve *c, tr_format fmt, const char *comments, char
             return tr_fail(err, TR_EINVAL, "a knotplot list holds one component, this curve has %d; use .tsv or .vect",
                            c->ncomp);
     }
-    sbuf b = {NULL, 0, 0, 0};
+    tr_text b = {0};
     if (fmt == TR_FORMAT_VECT)
         write_vect(&b, c, comments);
     else
         write_lines(&b, c, comments);
-    if (b.oom) {
-        free(b.p);
+    *text = tr_text_take(&b, len);
+    if (!*text)
         return tr_fail(err, TR_ENOMEM, "out of memory formatting a curve of %zu vertices", c->nv);
-    }
-    if (!b.p) {
-        b.p = malloc(1);
-        if (!b.p)
-            return tr_fail(err, TR_ENOMEM, "out of memory formatting a curve");
-        b.p[0] = '\0';
-    }
-    *text = b.p;
-    *len = b.n;
     return TR_OK;
 }
 
@@ -985,86 +911,3 @@ int tr_curve_write(const char *path, tr_format fmt, const tr_curve *c, const cha
     return rc;
 }
 
-/* Temporary name beside the target (same file system, so rename is atomic),
- * created with O_EXCL; the suffix mixes the pid and the clock, and a clash
- * just tries the next one. */
-static int open_temp(const char *path, char *tmp, size_t tmpn)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_REALTIME, &ts);
-    uint64_t salt = ((uint64_t)getpid() << 32) ^ (uint64_t)ts.tv_nsec ^ ((uint64_t)ts.tv_sec << 20);
-    for (int attempt = 0; attempt < 100; attempt++) {
-        salt = salt * 6364136223846793005ULL + 1442695040888963407ULL;
-        int m = snprintf(tmp, tmpn, "%s.tmp%06x", path, (unsigned)(salt >> 40));
-        if (m < 0 || (size_t)m >= tmpn) {
-            errno = ENAMETOOLONG;
-            return -1;
-        }
-        int fd = open(tmp, O_WRONLY | O_CREAT | O_EXCL, 0666);
-        if (fd >= 0 || errno != EEXIST)
-            return fd;
-    }
-    return -1;
-}
-
-int tr_write_file_atomic(const char *path, const char *text, size_t len, tr_error *err)
-{
-    char tmp[4096];
-    int fd = open_temp(path, tmp, sizeof tmp);
-    if (fd < 0)
-        return tr_fail(err, TR_EIO, "cannot write %s: %s", path, strerror(errno));
-    size_t done = 0;
-    while (done < len) {
-        ssize_t w = write(fd, text + done, len - done);
-        if (w < 0) {
-            if (errno == EINTR)
-                continue;
-            int e = errno;
-            close(fd);
-            unlink(tmp);
-            return tr_fail(err, TR_EIO, "cannot write %s: %s", path, strerror(e));
-        }
-        done += (size_t)w;
-    }
-    if (fsync(fd) != 0) {
-        int e = errno;
-        close(fd);
-        unlink(tmp);
-        return tr_fail(err, TR_EIO, "cannot sync %s: %s", path, strerror(e));
-    }
-    if (close(fd) != 0) {
-        int e = errno;
-        unlink(tmp);
-        return tr_fail(err, TR_EIO, "cannot write %s: %s", path, strerror(e));
-    }
-    if (rename(tmp, path) != 0) {
-        int e = errno;
-        unlink(tmp);
-        return tr_fail(err, TR_EIO, "cannot replace %s: %s", path, strerror(e));
-    }
-    /* Make the rename itself durable; a failure here loses nothing that is
-     * already visible, so it is not an error. */
-    char dir[4096];
-    const char *slash = strrchr(path, '/');
-    if (slash) {
-        size_t n = (size_t)(slash - path);
-        if (n == 0)
-            n = 1;
-        if (n < sizeof dir) {
-            memcpy(dir, path, n);
-            dir[n] = '\0';
-        } else {
-            dir[0] = '\0';
-        }
-    } else {
-        strcpy(dir, ".");
-    }
-    if (dir[0]) {
-        int dfd = open(dir, O_RDONLY);
-        if (dfd >= 0) {
-            (void)fsync(dfd);
-            close(dfd);
-        }
-    }
-    return TR_OK;
-}

@@ -10,6 +10,7 @@
 #define TR_CURVE_IO_H
 
 #include "curve.h"
+#include "text_file.h" /* tr_write_file_atomic, used by every writer */
 
 typedef enum tr_format {
     TR_FORMAT_AUTO = 0, /* by extension (.vect, .tsv, .txt/.dat/.knot) and then by content */
@@ -35,9 +36,6 @@ int tr_curve_write(const char *path, tr_format fmt, const tr_curve *c, const cha
  * several components in a KnotPlot list, non-finite coordinates). */
 int tr_curve_format(const tr_curve *c, tr_format fmt, const char *comments, char **text, size_t *len,
                     tr_error *err);
-
-/* Writes whole text to path atomically (temporary name, fsync, rename). */
-int tr_write_file_atomic(const char *path, const char *text, size_t len, tr_error *err);
 
 tr_format tr_format_from_name(const char *name);
 

@@ -1,6 +1,6 @@
 # 'tightrope measure' from the command line (included by tests/CMakeLists.txt).
 set(_measure_check ${CMAKE_CURRENT_SOURCE_DIR}/cli/measure_check.cmake)
-foreach(mode json array struts)
+foreach(mode json array struts dir)
   add_test(NAME cli_measure_${mode}
     COMMAND ${CMAKE_COMMAND} -DTR=$<TARGET_FILE:tightrope> -DMODE=${mode}
             -DSHARED=${CMAKE_SOURCE_DIR}/../shared -DWORK=${CMAKE_CURRENT_BINARY_DIR}/measure_${mode}

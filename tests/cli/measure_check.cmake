@@ -1,5 +1,5 @@
 # Command-line checks of 'tightrope measure', run as cmake -P with
-#   -DTR=<tightrope> -DMODE=<json|array|struts|bad> -DSHARED=<../shared> -DWORK=<scratch dir> [-DFILE=<bad file>]
+#   -DTR=<tightrope> -DMODE=<json|array|struts|dir|bad> -DSHARED=<../shared> -DWORK=<scratch dir> [-DFILE=<bad file>]
 # Expected numbers come from the octrope peer table (tightknot_ropelength.tsv),
 # never from our own output.
 cmake_minimum_required(VERSION 3.19)
@@ -99,6 +99,12 @@ elseif(MODE STREQUAL "bad")
   list(LENGTH nl nlines)
   if(NOT nlines EQUAL 1 OR NOT se MATCHES "^[^\n]*:[0-9]+: ")
     fail("bad input ${FILE}: want one 'FILE:LINE: ...' line, got '${se}'")
+  endif()
+elseif(MODE STREQUAL "dir")
+  # a directory given as the curve: one line with the system's reason, exit 2
+  execute_process(COMMAND ${TR} measure ${WORK} RESULT_VARIABLE rc OUTPUT_VARIABLE so ERROR_VARIABLE se)
+  if(NOT rc EQUAL 2 OR NOT se MATCHES "^[^\n]*${WORK}: Is a directory\n$")
+    fail("measure of a directory: exit ${rc}, stderr '${se}'")
   endif()
 else()
   fail("unknown MODE ${MODE}")
