@@ -1,6 +1,8 @@
 /* Subcommands of the tightrope program. Each returns the process exit status:
- * 0 success, 1 a run that did not reach its goal, 2 bad input or usage. The
- * command layer is the only place that prints errors. */
+ * 0 success; 2 bad input, bad usage, or an output file that cannot be
+ * written (the user can fix all three); 1 anything else: a run that did not
+ * reach its goal, a device failure, out of memory. The command layer is the
+ * only place that prints errors. */
 #ifndef TR_CLI_H
 #define TR_CLI_H
 

@@ -248,7 +248,7 @@ int tr_cmd_measure(int argc, char **argv)
         free(pc);
         if (status == 0 && struts_path && write_struts(struts_path, c, &m, &sl, &err)) {
             fprintf(stderr, "%s\n", err.msg);
-            status = 1;
+            status = 2; /* cannot write an output: like bad input, see cli.h */
         }
     }
     if (status == 0 && json && nfiles > 1)

@@ -174,6 +174,7 @@ int tr_cmd_tighten(int argc, char **argv)
     const char *in = NULL, *out = NULL, *ckpt = NULL, *resume = NULL, *device = NULL;
     long n = 0, refine_to = 0, steps = 0;
     double target = 0, residual = 1e-4, time_limit = 0, ckpt_every = 300;
+    int residual_given = 0; /* the default residual is a stopping rule, not a goal */
     int json = 0, quiet = 0;
     static const char *valued[] = {"-o", "--output", "--n", "--refine-to", "--target", "--residual",
                                    "--steps", "--time-limit", "--checkpoint", "--checkpoint-every",
@@ -210,8 +211,10 @@ int tr_cmd_tighten(int argc, char **argv)
                 bad = parse_count(v, &refine_to) || refine_to < 4;
             else if (!strcmp(a, "--target"))
                 bad = parse_double(v, &target) || target <= 0;
-            else if (!strcmp(a, "--residual"))
+            else if (!strcmp(a, "--residual")) {
                 bad = parse_double(v, &residual);
+                residual_given = 1;
+            }
             else if (!strcmp(a, "--steps"))
                 bad = parse_count(v, &steps);
             else if (!strcmp(a, "--time-limit"))
@@ -313,7 +316,10 @@ int tr_cmd_tighten(int argc, char **argv)
     if (rc) {
         fprintf(stderr, "tightrope tighten: %s\n", err.msg);
         tr_engine_destroy(e);
-        return rc == TR_ETOPOLOGY || rc == TR_EIO ? 1 : 2;
+        /* exit codes as cli.h: a checkpoint that cannot be written or a bad
+         * option is the user's to fix (2); a refused step, a device or
+         * memory failure is a run that did not get there (1) */
+        return rc == TR_EIO || rc == TR_EINVAL || rc == TR_EPARSE ? 2 : 1;
     }
 
     tr_engine_progress p;
@@ -376,8 +382,15 @@ int tr_cmd_tighten(int argc, char **argv)
     if (why == TR_STOP_SIGNAL)
         fprintf(stderr, "tightrope tighten: interrupted; %s%s%swrote %s\n", ckpt ? "checkpoint " : "",
                 ckpt ? ckpt : "", ckpt ? " and " : "", out);
+    /* a requested ropelength or residual that was not reached is a run that
+     * did not reach its goal: the best state is written, the status says so */
+    int goal = target > 0 || residual_given;
+    int reached = why == TR_STOP_TARGET || why == TR_STOP_RESIDUAL;
+    if (goal && !reached && why != TR_STOP_SIGNAL)
+        fprintf(stderr, "tightrope tighten: stopped (%s) before reaching the requested %s; wrote %s\n",
+                tr_stop_reason_name(why), target > 0 ? "ropelength" : "residual", out);
     free(cm.p);
     tr_curve_free(&fin);
     tr_engine_destroy(e);
-    return why == TR_STOP_SIGNAL ? 1 : 0;
+    return why == TR_STOP_SIGNAL || (goal && !reached) ? 1 : 0;
 }

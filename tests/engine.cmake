@@ -32,6 +32,10 @@ tr_engine_test(tighten_bad_device 2 DIR ${_eng_dir}/dev ONLY "s.vect"
 tr_engine_test(tighten_trefoil_steps 0 DIR ${_eng_dir}/trefoil ONLY "s.vect;t.vect" OUT ${_eng_dir}/trefoil/t.vect
   MATCH "^VECT\n# tightened by tightrope[^\n]*\n# command: tighten [^\n]*--steps 20[^\n]*\n# N 72\n# length [0-9.]+\n# MinRad [0-9.]+\n# dcsd [0-9.]+\n# thickness (1|0[.]99999999)[0-9.]*\n# ropelength [0-9.]+\n# residual [^\n]+\n# steps 20\n# stop steps\n"
   CMD sh -c "'${_tr}' make torus 2 3 --n 72 -o '${_eng_dir}/trefoil/s.vect' && exec '${_tr}' tighten '${_eng_dir}/trefoil/s.vect' -o '${_eng_dir}/trefoil/t.vect' --steps 20 --quiet")
+# a requested ropelength that a 5-step run cannot reach: best state written, exit 1
+tr_engine_test(tighten_target_not_reached 1 DIR ${_eng_dir}/target ONLY "s.vect;t.vect" OUT ${_eng_dir}/target/t.vect
+  MATCH "^VECT\n# tightened by tightrope[^\n]*\n# command: tighten [^\n]*--target 20[^\n]*\n# N 72\n"
+  CMD sh -c "'${_tr}' make torus 2 3 --n 72 -o '${_eng_dir}/target/s.vect' && exec '${_tr}' tighten '${_eng_dir}/target/s.vect' -o '${_eng_dir}/target/t.vect' --steps 5 --target 20 --quiet --device reference")
 tr_engine_test(tighten_json_resume 0 DIR ${_eng_dir}/resume ONLY "s.vect;t.vect;u.vect;ck.txt;json.txt" OUT ${_eng_dir}/resume/json.txt
   MATCH "^{\n  \"output\": [^\n]*\n  \"device\": \"serial reference[^\n]*\n  \"stop\": \"steps\",\n  \"N\": 72,\n  \"steps\": 16,\n"
   CMD sh -c "'${_tr}' make torus 2 3 --n 72 -o '${_eng_dir}/resume/s.vect' && '${_tr}' tighten '${_eng_dir}/resume/s.vect' -o '${_eng_dir}/resume/t.vect' --steps 8 --checkpoint '${_eng_dir}/resume/ck.txt' --quiet --device reference > /dev/null && exec '${_tr}' tighten --resume '${_eng_dir}/resume/ck.txt' -o '${_eng_dir}/resume/u.vect' --steps 16 --json --device reference > '${_eng_dir}/resume/json.txt'")
