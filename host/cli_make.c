@@ -2,11 +2,13 @@
  * simple clasp) in the format its file name asks for. */
 #include <errno.h>
 #include <limits.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "cli.h"
+#include "cli_args.h"
 #include "curve_io.h"
 #include "generate.h"
 
@@ -36,39 +38,6 @@ static void usage(FILE *out)
             "(nothing is left behind then).\n");
 }
 
-static int parse_size(const char *s, size_t *out)
-{
-    char *end;
-    errno = 0;
-    unsigned long long v = strtoull(s, &end, 10);
-    if (!*s || *end || errno || s[0] == '-' || v > (unsigned long long)1 << 40)
-        return -1;
-    *out = (size_t)v;
-    return 0;
-}
-
-static int parse_double(const char *s, double *out)
-{
-    char *end;
-    errno = 0;
-    double v = strtod(s, &end);
-    if (!*s || *end || errno)
-        return -1;
-    *out = v;
-    return 0;
-}
-
-static int parse_int(const char *s, int *out)
-{
-    char *end;
-    errno = 0;
-    long v = strtol(s, &end, 10);
-    if (!*s || *end || errno || v < INT_MIN || v > INT_MAX)
-        return -1;
-    *out = (int)v;
-    return 0;
-}
-
 int tr_cmd_make(int argc, char **argv)
 {
     const char *kind = NULL, *outpath = NULL;
@@ -95,19 +64,19 @@ int tr_cmd_make(int argc, char **argv)
             if (!strcmp(a, "-o") || !strcmp(a, "--output")) {
                 outpath = v;
             } else if (!strcmp(a, "--n") || !strcmp(a, "-n")) {
-                if (parse_size(v, &n)) {
+                if (tr_arg_size(v, 1, (size_t)1 << 40, &n)) {
                     fprintf(stderr, "tightrope make: bad --n '%s' (a vertex count)\n", v);
                     return 2;
                 }
                 have_n = 1;
             } else if (!strcmp(a, "--radius")) {
-                if (parse_double(v, &radius)) {
+                if (tr_arg_double(v, -HUGE_VAL, HUGE_VAL, &radius)) {
                     fprintf(stderr, "tightrope make: bad --radius '%s'\n", v);
                     return 2;
                 }
                 have_radius = 1;
             } else {
-                if (parse_double(v, &height)) {
+                if (tr_arg_double(v, -HUGE_VAL, HUGE_VAL, &height)) {
                     fprintf(stderr, "tightrope make: bad --height '%s'\n", v);
                     return 2;
                 }
@@ -164,7 +133,7 @@ int tr_cmd_make(int argc, char **argv)
     char comment[512];
     if (is_torus) {
         int p, q;
-        if (parse_int(pos[0], &p) || parse_int(pos[1], &q)) {
+        if (tr_arg_int(pos[0], INT_MIN, INT_MAX, &p) || tr_arg_int(pos[1], INT_MIN, INT_MAX, &q)) {
             fprintf(stderr, "tightrope make: bad torus knot '%s %s' (two integers)\n", pos[0], pos[1]);
             return 2;
         }

@@ -11,6 +11,7 @@
 #include <string.h>
 
 #include "cli.h"
+#include "cli_args.h"
 #include "curve_io.h"
 #include "text_file.h"
 #include "thickness.h"
@@ -147,9 +148,7 @@ int tr_cmd_measure(int argc, char **argv)
         } else if (!strcmp(a, "--struts") && i + 1 < argc) {
             struts_path = argv[++i];
         } else if (!strcmp(a, "--strut-tol") && i + 1 < argc) {
-            char *end;
-            strut_tol = strtod(argv[++i], &end);
-            if (*end || !(strut_tol >= 0) || !isfinite(strut_tol)) {
+            if (tr_arg_double(argv[++i], 0.0, HUGE_VAL, &strut_tol)) {
                 fprintf(stderr, "tightrope measure: --strut-tol wants a number >= 0, got '%s'\n", argv[i]);
                 free(files);
                 return 2;
