@@ -42,6 +42,15 @@ static void usage(FILE *f)
             "  --no-scale         analyse the coordinates as given\n");
 }
 
+static int parse_double(const char *s, double *v)
+{
+    char *end;
+    errno = 0;
+    *v = strtod(s, &end);
+    return (end == s || *end || errno || !isfinite(*v)) ? -1 : 0;
+}
+
+/* Comma-separated finite numbers. */
 static int parse_list(const char *s, double *v, size_t max, size_t *n)
 {
     *n = 0;
@@ -49,7 +58,7 @@ static int parse_list(const char *s, double *v, size_t max, size_t *n)
         char *end;
         errno = 0;
         v[*n] = strtod(s, &end);
-        if (end == s || errno)
+        if (end == s || errno || !isfinite(v[*n]))
             return -1;
         (*n)++;
         if (*end == ',')
@@ -62,12 +71,10 @@ static int parse_list(const char *s, double *v, size_t max, size_t *n)
     return *s ? -1 : 0;
 }
 
-static int parse_double(const char *s, double *v)
+/* An integer in [lo, hi], written as a number ("9", "9.0", "1e2"). */
+static int parse_int(const char *s, double lo, double hi, double *v)
 {
-    char *end;
-    errno = 0;
-    *v = strtod(s, &end);
-    return (end == s || *end || errno || !isfinite(*v)) ? -1 : 0;
+    return parse_double(s, v) || *v != floor(*v) || *v < lo || *v > hi ? -1 : 0;
 }
 
 static int write_text(const char *dir, const char *name, char *text, tr_error *err)
@@ -87,8 +94,13 @@ static int write_text(const char *dir, const char *name, char *text, tr_error *e
 
 static int make_dir(const char *dir)
 {
-    if (mkdir(dir, 0777) == 0 || errno == EEXIST)
+    if (mkdir(dir, 0777) == 0)
         return 0;
+    struct stat st;
+    if (errno == EEXIST && stat(dir, &st) == 0 && S_ISDIR(st.st_mode))
+        return 0;
+    if (errno == EEXIST)
+        errno = ENOTDIR;
     return -1;
 }
 
@@ -99,75 +111,124 @@ typedef struct cli_opts {
     int plots, paper, scale;
 } cli_opts;
 
-/* One closed component: copy it into its own curve, scale to thickness 1,
- * measure it with its struts, analyse, write. Returns a process status. */
-static int analyse_component(const tr_curve *c, int k, const char *in, const char *dir,
-                             const cli_opts *o, int *plots_missing)
+/* One closed component, analysed and not yet written. */
+typedef struct comp_result {
+    int k;
+    tr_curve one;     /* the component alone, scaled */
+    double scale;
+    tr_thickness th;
+    tr_analysis an;
+} comp_result;
+
+static void comp_result_free(comp_result *r)
+{
+    tr_analysis_free(&r->an);
+    tr_curve_free(&r->one);
+}
+
+/* Copies component k into its own curve, scales it to thickness 1, measures
+ * it with its struts and analyses it. Returns a process status: 0, 1 (could
+ * not be done), 2 (the input or an option is wrong for it; *optbad when an
+ * option is). Prints its own one-line message. */
+static int analyse_component(const tr_curve *c, int k, const char *in, const cli_opts *o,
+                             comp_result *r, int *optbad)
 {
     tr_error err = {{0}};
+    memset(r, 0, sizeof *r);
+    r->k = k;
+    r->scale = 1.0;
     size_t nv = tr_comp_nv(c, k);
     unsigned char closed = 1;
-    tr_curve one;
-    if (tr_curve_alloc(&one, 1, &nv, &closed, &err) != TR_OK) {
+    if (tr_curve_alloc(&r->one, 1, &nv, &closed, &err) != TR_OK) {
         fprintf(stderr, "tightrope analyze: %s\n", err.msg);
         return 1;
     }
-    memcpy(one.x, c->x + 3 * c->start[k], 3 * nv * sizeof *one.x);
+    memcpy(r->one.x, c->x + 3 * c->start[k], 3 * nv * sizeof *r->one.x);
     int status = 1, rc;
-    tr_thickness th;
     tr_strut_list sl = {0};
-    tr_analysis an;
-    memset(&an, 0, sizeof an);
-    double scale = 1.0;
-    if ((rc = tr_thickness_measure(&one, NULL, &th, NULL, &err)) != TR_OK) {
-        fprintf(stderr, "tightrope analyze: %s: thickness: %s\n", in, err.msg);
-        goto out;
+    if ((rc = tr_thickness_measure(&r->one, NULL, &r->th, NULL, &err)) != TR_OK) {
+        fprintf(stderr, "tightrope analyze: %s: component %d: thickness: %s\n", in, k, err.msg);
+        status = rc == TR_ENOMEM ? 1 : 2;
+        goto fail;
     }
     if (o->scale) {
-        if (!(th.thickness > 0) || !isfinite(th.thickness)) {
+        if (!(r->th.thickness > 0) || !isfinite(r->th.thickness)) {
             fprintf(stderr, "tightrope analyze: %s: component %d has no finite thickness\n", in, k);
-            goto out;
+            status = 2;
+            goto fail;
         }
-        scale = 1.0 / th.thickness;
+        r->scale = 1.0 / r->th.thickness;
         for (size_t i = 0; i < 3 * nv; i++)
-            one.x[i] *= scale;
+            r->one.x[i] *= r->scale;
     }
     tr_thickness_opts to = {.strut_rel_tol = o->strut_tol};
-    if ((rc = tr_thickness_measure(&one, &to, &th, &sl, &err)) != TR_OK) {
-        fprintf(stderr, "tightrope analyze: %s: thickness: %s\n", in, err.msg);
-        goto out;
+    if ((rc = tr_thickness_measure(&r->one, &to, &r->th, &sl, &err)) != TR_OK) {
+        fprintf(stderr, "tightrope analyze: %s: component %d: thickness: %s\n", in, k, err.msg);
+        status = rc == TR_ENOMEM ? 1 : 2;
+        goto fail;
+    }
+    /* The bin must be read against this component's length after scaling. */
+    double L = r->th.length;
+    if (o->ao.contact_bin > 0 && !(o->ao.contact_bin >= TR_CONTACT_BIN_MIN_REL * L &&
+                                   o->ao.contact_bin <= TR_CONTACT_BIN_MAX_REL * L)) {
+        fprintf(stderr,
+                "tightrope analyze: --contact-bin %g outside [%.6g, %.6g] (L x %g to L / 8) for "
+                "component %d of %s, L = %.6g\n",
+                o->ao.contact_bin, TR_CONTACT_BIN_MIN_REL * L, TR_CONTACT_BIN_MAX_REL * L,
+                TR_CONTACT_BIN_MIN_REL, k, in, L);
+        *optbad = 1;
+        status = 2;
+        goto fail;
     }
     tr_contact_pair *pairs = NULL;
     size_t np = 0;
-    double dmax = isfinite(th.dcsd) ? (1.0 + o->strut_tol) * th.dcsd : INFINITY;
-    if ((rc = tr_contact_pairs_from_struts(one.x, nv, 0, sl.s, sl.n, dmax, &pairs, &np, &err)) !=
+    double dmax = isfinite(r->th.dcsd) ? (1.0 + o->strut_tol) * r->th.dcsd : INFINITY;
+    if ((rc = tr_contact_pairs_from_struts(r->one.x, nv, 0, sl.s, sl.n, dmax, &pairs, &np, &err)) !=
         TR_OK) {
-        fprintf(stderr, "tightrope analyze: %s\n", err.msg);
-        goto out;
+        fprintf(stderr, "tightrope analyze: %s: component %d: %s\n", in, k, err.msg);
+        goto fail;
     }
-    rc = tr_analyze_component(one.x, nv, pairs, np, &o->ao, &an, &err);
+    rc = tr_analyze_component(r->one.x, nv, pairs, np, &o->ao, &r->an, &err);
     free(pairs);
     if (rc != TR_OK) {
         fprintf(stderr, "tightrope analyze: %s: component %d: %s\n", in, k, err.msg);
+        if (rc == TR_EINVAL)
+            *optbad = 1;
         status = rc == TR_ENOMEM ? 1 : 2;
-        goto out;
+        goto fail;
     }
-    tr_report_ctx ctx = {in, k, scale, &th,
-                         o->paper < 0 ? tr_report_is_trefoil_like(&an, &th) : o->paper};
+    tr_strut_list_free(&sl);
+    return 0;
+fail:
+    tr_strut_list_free(&sl);
+    comp_result_free(r);
+    return status;
+}
+
+/* Writes the tables, the summary and (with --plots) the plots of one
+ * analysed component into dir, which exists. Returns a process status. */
+static int write_component(comp_result *r, const char *in, const char *dir, const cli_opts *o,
+                           int *plots_missing)
+{
+    tr_error err = {{0}};
+    const tr_analysis *an = &r->an;
+    tr_report_ctx ctx = {in, r->k, r->scale, &r->th,
+                         o->paper < 0 ? tr_report_is_trefoil_like(an, &r->th) : o->paper};
     char *t;
     int bad = 0;
-    bad |= tr_report_curvature_csv(&an, &t) || write_text(dir, "curvature.csv", t, &err);
-    bad |= !bad && (tr_report_torsion_csv(&an, &t) || write_text(dir, "torsion.csv", t, &err));
-    bad |= !bad && (tr_report_plateaus_csv(&an, &t) || write_text(dir, "plateaus.csv", t, &err));
-    bad |= !bad && (tr_report_symmetry_csv(&an, &t) || write_text(dir, "symmetry.csv", t, &err));
-    bad |= !bad && (tr_report_contacts_csv(&an, one.x, nv, &t) || write_text(dir, "contacts.csv", t, &err));
-    if (an.have_sigma) {
-        bad |= !bad && (tr_report_sigma_csv(&an, 4000, &t) || write_text(dir, "sigma.csv", t, &err));
-        bad |= !bad && (tr_report_fixed_points_csv(&an, &t) || write_text(dir, "fixed_points.csv", t, &err));
+    size_t nv = r->one.nv;
+    bad |= tr_report_curvature_csv(an, &t) || write_text(dir, "curvature.csv", t, &err);
+    bad |= !bad && (tr_report_torsion_csv(an, &t) || write_text(dir, "torsion.csv", t, &err));
+    bad |= !bad && (tr_report_plateaus_csv(an, &t) || write_text(dir, "plateaus.csv", t, &err));
+    bad |= !bad && (tr_report_symmetry_csv(an, &t) || write_text(dir, "symmetry.csv", t, &err));
+    bad |= !bad && (tr_report_contacts_csv(an, r->one.x, nv, &t) || write_text(dir, "contacts.csv", t, &err));
+    if (an->have_sigma) {
+        bad |= !bad && (tr_report_sigma_csv(an, 4000, &t) || write_text(dir, "sigma.csv", t, &err));
+        bad |= !bad && (tr_report_fixed_points_csv(an, &t) || write_text(dir, "fixed_points.csv", t, &err));
     }
-    bad |= !bad && (tr_report_summary_json(&an, &ctx, &t) || write_text(dir, "summary.json", t, &err));
+    bad |= !bad && (tr_report_summary_json(an, &ctx, &t) || write_text(dir, "summary.json", t, &err));
     char *txt = NULL;
-    bad |= !bad && tr_report_text(&an, &ctx, &txt);
+    bad |= !bad && tr_report_text(an, &ctx, &txt);
     if (!bad) {
         fputs(txt, stdout);
         bad |= write_text(dir, "report.txt", txt, &err) != TR_OK;
@@ -176,27 +237,34 @@ static int analyse_component(const tr_curve *c, int k, const char *in, const cha
     }
     if (bad) {
         fprintf(stderr, "tightrope analyze: writing %s: %s\n", dir, err.msg[0] ? err.msg : "out of memory");
-        goto out;
+        return 1;
     }
     if (o->plots) {
-        rc = tr_analysis_plots(dir, &an, &err);
+        int rc = tr_analysis_plots(dir, an, &err);
         if (rc == TR_EUNSUPPORTED) {
             fprintf(stderr, "tightrope analyze: no plots: %s; the CSV files are written\n", err.msg);
             *plots_missing = 1;
         } else if (rc != TR_OK) {
             fprintf(stderr, "tightrope analyze: plots: %s\n", err.msg);
-            goto out;
+            return 1;
         } else {
             printf("plots: %s/{curvature_torsion,plateau_zoom,accumulated_torsion%s}.png\n", dir,
-                   an.have_sigma ? ",contact_map,sigma9" : "");
+                   an->have_sigma ? ",contact_map,sigma9" : "");
         }
     }
-    status = 0;
-out:
-    tr_analysis_free(&an);
-    tr_strut_list_free(&sl);
-    tr_curve_free(&one);
-    return status;
+    return 0;
+}
+
+/* Options followed by a value. */
+static int takes_value(const char *a)
+{
+    static const char *const names[] = {"--out",      "-o",          "-m",          "--plateau-eps",
+                                        "--plateau-min", "--jump-window", "--jump-at", "--sym-tol",
+                                        "--strut-tol", "--contact-bin", "--power"};
+    for (size_t i = 0; i < sizeof names / sizeof *names; i++)
+        if (!strcmp(a, names[i]))
+            return 1;
+    return 0;
 }
 
 int tr_cmd_analyze(int argc, char **argv)
@@ -222,37 +290,58 @@ int tr_cmd_analyze(int argc, char **argv)
             o.paper = 0;
         } else if (!strcmp(a, "--no-scale")) {
             o.scale = 0;
-        } else if (a[0] == '-' && a[1] != '\0' && !v) {
+        } else if (takes_value(a) && !v) {
             fprintf(stderr, "tightrope analyze: %s needs a value\n", a);
             return 2;
         } else if (!strcmp(a, "--out") || !strcmp(a, "-o")) {
+            if (!*v) {
+                fprintf(stderr, "tightrope analyze: %s needs a directory name\n", a);
+                return 2;
+            }
             out = v, i++;
         } else if (!strcmp(a, "-m")) {
-            if (parse_double(v, &d) || d < 1 || d != floor(d) || d > 1e6) {
-                fprintf(stderr, "tightrope analyze: -m needs a positive integer, got '%s'\n", v);
+            if (parse_int(v, 1, 1e6, &d)) {
+                fprintf(stderr, "tightrope analyze: -m needs an integer from 1 to 1000000, got '%s'\n", v);
                 return 2;
             }
             o.ao.m = (size_t)d, i++;
-        } else if (!strcmp(a, "--plateau-eps") || !strcmp(a, "--sym-tol") ||
-                   !strcmp(a, "--strut-tol") || !strcmp(a, "--contact-bin") ||
-                   !strcmp(a, "--plateau-min") || !strcmp(a, "--power")) {
-            if (parse_double(v, &d) || !(d > 0)) {
-                fprintf(stderr, "tightrope analyze: %s needs a positive number, got '%s'\n", a, v);
+        } else if (!strcmp(a, "--power")) {
+            if (parse_int(v, 1, TR_CONTACT_POWER_MAX, &d)) {
+                fprintf(stderr, "tightrope analyze: --power needs an integer from 1 to %d, got '%s'\n",
+                        TR_CONTACT_POWER_MAX, v);
                 return 2;
             }
-            if (!strcmp(a, "--plateau-eps"))
-                o.ao.plateau_eps = d;
-            else if (!strcmp(a, "--sym-tol"))
+            o.ao.power = (int)d, i++;
+        } else if (!strcmp(a, "--plateau-min")) {
+            if (parse_int(v, 1, 1e9, &d)) {
+                fprintf(stderr, "tightrope analyze: --plateau-min needs an integer >= 1 (arcs), got '%s'\n", v);
+                return 2;
+            }
+            o.ao.plateau_min = (size_t)d, i++;
+        } else if (!strcmp(a, "--plateau-eps")) {
+            if (parse_double(v, &d) || !(d > 0 && d < 1)) {
+                fprintf(stderr, "tightrope analyze: --plateau-eps needs a number in (0, 1), got '%s'\n", v);
+                return 2;
+            }
+            o.ao.plateau_eps = d, i++;
+        } else if (!strcmp(a, "--sym-tol") || !strcmp(a, "--strut-tol")) {
+            if (parse_double(v, &d) || !(d > 0 && d <= 1)) {
+                fprintf(stderr, "tightrope analyze: %s needs a number in (0, 1], got '%s'\n", a, v);
+                return 2;
+            }
+            if (!strcmp(a, "--sym-tol"))
                 o.ao.sym_tol = d;
-            else if (!strcmp(a, "--strut-tol"))
-                o.strut_tol = d;
-            else if (!strcmp(a, "--contact-bin"))
-                o.ao.contact_bin = d;
-            else if (!strcmp(a, "--plateau-min"))
-                o.ao.plateau_min = (size_t)d;
             else
-                o.ao.power = (int)d;
+                o.strut_tol = d;
             i++;
+        } else if (!strcmp(a, "--contact-bin")) {
+            /* the upper and lower bounds depend on the knot's length: checked
+             * per component once it is scaled */
+            if (parse_double(v, &d) || !(d > 0)) {
+                fprintf(stderr, "tightrope analyze: --contact-bin needs a positive number, got '%s'\n", v);
+                return 2;
+            }
+            o.ao.contact_bin = d, i++;
         } else if (!strcmp(a, "--jump-window")) {
             double w[2];
             size_t n;
@@ -265,14 +354,13 @@ int tr_cmd_analyze(int argc, char **argv)
         } else if (!strcmp(a, "--jump-at")) {
             size_t n;
             if (parse_list(v, o.jump_at, 64, &n) || n == 0) {
-                fprintf(stderr, "tightrope analyze: --jump-at needs a comma-separated list, got '%s'\n", v);
+                fprintf(stderr, "tightrope analyze: --jump-at needs 1 to 64 comma-separated numbers, got '%s'\n", v);
                 return 2;
             }
             o.ao.jump_at = o.jump_at;
             o.ao.n_jump_at = n, i++;
         } else if (a[0] == '-' && a[1] != '\0') {
-            fprintf(stderr, "tightrope analyze: unknown option '%s'\n", a);
-            usage(stderr);
+            fprintf(stderr, "tightrope analyze: unknown option '%s' (see tightrope analyze --help)\n", a);
             return 2;
         } else if (!in) {
             in = a;
@@ -281,8 +369,12 @@ int tr_cmd_analyze(int argc, char **argv)
             return 2;
         }
     }
-    if (!in || !out) {
-        usage(stderr);
+    if (!in) {
+        fprintf(stderr, "tightrope analyze: no input curve (see tightrope analyze --help)\n");
+        return 2;
+    }
+    if (!out) {
+        fprintf(stderr, "tightrope analyze: no output directory (--out DIR)\n");
         return 2;
     }
     tr_error err = {{0}};
@@ -292,37 +384,86 @@ int tr_cmd_analyze(int argc, char **argv)
         fprintf(stderr, "tightrope analyze: %s\n", err.msg);
         return rc == TR_EIO || rc == TR_EPARSE ? 2 : 1;
     }
-    if (make_dir(out)) {
-        fprintf(stderr, "tightrope analyze: cannot create directory %s: %s\n", out, strerror(errno));
+    /* Everything about the input and the options is checked, and every
+     * component analysed, before the output directory is made. */
+    size_t m = o.ao.m ? o.ao.m : 10;
+    int nclosed = 0;
+    for (int k = 0; k < c.ncomp; k++) {
+        if (!c.closed[k])
+            continue;
+        nclosed++;
+        size_t nv = tr_comp_nv(&c, k);
+        if (nv / m < 4) {
+            fprintf(stderr, "tightrope analyze: -m %zu leaves fewer than 4 averaged vertices on component %d of %s (%zu vertices)\n",
+                    m, k, in, nv);
+            tr_curve_free(&c);
+            return 2;
+        }
+        if (o.ao.plateau_min > nv) {
+            fprintf(stderr, "tightrope analyze: --plateau-min %zu exceeds the %zu vertices of component %d of %s\n",
+                    o.ao.plateau_min, nv, k, in);
+            tr_curve_free(&c);
+            return 2;
+        }
+    }
+    if (!nclosed) {
+        fprintf(stderr, "tightrope analyze: %s has no closed component\n", in);
+        tr_curve_free(&c);
+        return 2;
+    }
+    comp_result *res = calloc((size_t)nclosed, sizeof *res);
+    int *done = calloc((size_t)nclosed, sizeof *done);
+    if (!res || !done) {
+        fprintf(stderr, "tightrope analyze: out of memory\n");
+        free(res), free(done);
         tr_curve_free(&c);
         return 1;
     }
-    int status = 0, nclosed = 0, plots_missing = 0;
-    for (int k = 0; k < c.ncomp; k++) {
+    int status = 0, ndone = 0, optbad = 0;
+    for (int k = 0, q = 0; k < c.ncomp && !optbad; k++) {
         if (!c.closed[k]) {
-            fprintf(stderr, "tightrope analyze: %s: component %d is open; skipped (the portrait is for closed knots)\n", in, k);
+            fprintf(stderr, "tightrope analyze: warning: %s: component %d is open; skipped (the portrait is for closed knots)\n", in, k);
             continue;
         }
-        nclosed++;
+        int s = analyse_component(&c, k, in, &o, &res[q], &optbad);
+        if (s == 0)
+            done[q] = 1, ndone++;
+        else if (s > status)
+            status = s;
+        q++;
+    }
+    if (optbad) /* an option wrong for the input: nothing is written */
+        ndone = 0, status = 2;
+    int plots_missing = 0;
+    if (ndone && make_dir(out)) {
+        fprintf(stderr, "tightrope analyze: cannot create directory %s: %s\n", out, strerror(errno));
+        status = 1;
+        ndone = 0;
+    }
+    for (int q = 0; q < nclosed && ndone; q++) {
+        if (!done[q])
+            continue;
         char dir[4096];
-        if (c.ncomp > 1) {
-            snprintf(dir, sizeof dir, "%s/comp%d", out, k);
-            if (make_dir(dir)) {
-                fprintf(stderr, "tightrope analyze: cannot create directory %s: %s\n", dir, strerror(errno));
-                status = 1;
-                break;
-            }
-        } else {
-            snprintf(dir, sizeof dir, "%s", out);
+        int len = c.ncomp > 1 ? snprintf(dir, sizeof dir, "%s/comp%d", out, res[q].k)
+                              : snprintf(dir, sizeof dir, "%s", out);
+        if (len < 0 || (size_t)len >= sizeof dir) {
+            fprintf(stderr, "tightrope analyze: output directory name too long: %s\n", out);
+            status = 1;
+            break;
         }
-        int s = analyse_component(&c, k, in, dir, &o, &plots_missing);
+        if (c.ncomp > 1 && make_dir(dir)) {
+            fprintf(stderr, "tightrope analyze: cannot create directory %s: %s\n", dir, strerror(errno));
+            status = 1;
+            break;
+        }
+        int s = write_component(&res[q], in, dir, &o, &plots_missing);
         if (s > status)
             status = s;
     }
+    for (int q = 0; q < nclosed; q++)
+        if (done[q])
+            comp_result_free(&res[q]);
+    free(res), free(done);
     tr_curve_free(&c);
-    if (!nclosed) {
-        fprintf(stderr, "tightrope analyze: %s has no closed component\n", in);
-        return 2;
-    }
     return status;
 }

@@ -58,8 +58,12 @@ int tr_contact_fn_from_samples(const double *l, const double *u, size_t n, doubl
                                tr_contact_fn *out, tr_error *err)
 {
     memset(out, 0, sizeof *out);
+    if (!(L > 0) || !isfinite(L))
+        return tr_fail(err, TR_EINVAL, "a contact function needs a positive finite period, got %g", L);
     if (n < 2)
         return tr_fail(err, TR_EGEOMETRY, "a contact function needs at least 2 samples");
+    if (n > ((size_t)-1) / sizeof(lu))
+        return tr_fail(err, TR_ENOMEM, "too many samples (%zu) for a contact function", n);
     lu *s = malloc(n * sizeof *s);
     double *w = malloc(n * sizeof *w), *v = malloc(n * sizeof *v);
     size_t *len = malloc(n * sizeof *len);
@@ -155,7 +159,9 @@ double tr_contact_fn_slope(const tr_contact_fn *f, double l)
     return lb > la ? (ub - ua) / (lb - la) : 0.0;
 }
 
+/* One occupied bin along t = l + partner. */
 typedef struct bin_acc {
+    size_t bin;         /* its index in [0, nb) */
     size_t count;
     int two;            /* split into two clusters */
     double lo_d, hi_d;  /* mean offsets (lo only when !two: the single cluster) */
@@ -193,28 +199,37 @@ int tr_contact_functions_build(const tr_contact_pair *p, size_t np, double L, do
 {
     memset(minus, 0, sizeof *minus);
     memset(plus, 0, sizeof *plus);
+    if (!(L > 0) || !isfinite(L))
+        return tr_fail(err, TR_EINVAL, "contact functions need a positive finite length, got %g", L);
     if (np < 2)
         return tr_fail(err, TR_EGEOMETRY, "too few contacts (%zu) for contact functions", np);
-    if (!(bin > 0) || bin > L / 8)
-        return tr_fail(err, TR_EINVAL, "contact-function bin %g out of range", bin);
+    if (!(bin >= TR_CONTACT_BIN_MIN_REL * L) || !(bin <= TR_CONTACT_BIN_MAX_REL * L))
+        return tr_fail(err, TR_EINVAL, "contact-function bin %g outside [%g, %g] (L x %g to L x %g)",
+                       bin, TR_CONTACT_BIN_MIN_REL * L, TR_CONTACT_BIN_MAX_REL * L,
+                       TR_CONTACT_BIN_MIN_REL, TR_CONTACT_BIN_MAX_REL);
+    if (np > ((size_t)-1) / (2 * sizeof(pixel)))
+        return tr_fail(err, TR_ENOMEM, "too many contacts (%zu)", np);
     /* Pixels are binned along t = l + partner = 2l + d (mod 2L), d the forward
      * offset, not along l: t grows along every monotone branch (dt/dl = 1 +
      * sigma' >= 1), so a bin of width `bin` holds a piece of each branch
      * whose offsets spread by at most `bin`, steep and flat parts alike, and
-     * the two partners stay apart by the difference of their offsets. */
+     * the two partners stay apart by the difference of their offsets.
+     * nb <= 2 / TR_CONTACT_BIN_MIN_REL + 1; only occupied bins are stored. */
     size_t nb = (size_t)ceil(2.0 * L / bin), npx = 2 * np;
     pixel *px = malloc(npx * sizeof *px);
-    bin_acc *b = calloc(nb, sizeof *b);
-    double *ml = malloc(nb * sizeof *ml), *mu = malloc(nb * sizeof *mu);
-    double *pl = malloc(nb * sizeof *pl), *pu = malloc(nb * sizeof *pu);
+    bin_acc *b = malloc(npx * sizeof *b);
+    size_t *fwd = malloc(npx * sizeof *fwd), *bwd = malloc(npx * sizeof *bwd);
+    double *ml = malloc(npx * sizeof *ml), *mu = malloc(npx * sizeof *mu);
+    double *pl = malloc(npx * sizeof *pl), *pu = malloc(npx * sizeof *pu);
     int rc = TR_OK;
-    if (!px || !b || !ml || !mu || !pl || !pu) {
+    if (!px || !b || !fwd || !bwd || !ml || !mu || !pl || !pu) {
         rc = tr_fail(err, TR_ENOMEM, "out of memory for contact functions");
         goto done;
     }
     for (size_t k = 0; k < np; k++) {
         double a = tr_wrap(p[k].li, L), c = tr_wrap(p[k].lj, L);
         double dac = tr_wrap(c - a, L), dca = tr_wrap(a - c, L);
+        /* t / bin < 2L / bin <= nb; rounding can reach nb, which is bin 0 */
         px[2 * k] = (pixel){(size_t)(tr_wrap(2.0 * a + dac, 2.0 * L) / bin) % nb, a, dac};
         px[2 * k + 1] = (pixel){(size_t)(tr_wrap(2.0 * c + dca, 2.0 * L) / bin) % nb, c, dca};
     }
@@ -222,12 +237,13 @@ int tr_contact_functions_build(const tr_contact_pair *p, size_t np, double L, do
     /* Two partners of one point are distinct strands: their offsets differ by
      * more than a small fraction of L. */
     double gap_min = 1e-3 * L;
-    size_t ntwo = 0;
+    size_t ntwo = 0, ng = 0;
     for (size_t i = 0; i < npx;) {
         size_t j = i;
         while (j < npx && px[j].bin == px[i].bin)
             j++;
-        bin_acc *B = &b[px[i].bin];
+        bin_acc *B = &b[ng++];
+        B->bin = px[i].bin;
         B->count = j - i;
         double gmax = 0.0, g2 = 0.0;
         size_t split = j;
@@ -254,37 +270,46 @@ int tr_contact_functions_build(const tr_contact_pair *p, size_t np, double L, do
                      "contacts do not form two partner branches (no point has two partners)");
         goto done;
     }
+    /* The nearest two-cluster bins after and before each occupied bin, around
+     * the circle of bins (the bins are sorted). */
+    size_t last = 0;
+    for (size_t q = 2 * ng; q-- > 0;) {
+        if (b[q % ng].two)
+            last = q % ng;
+        if (q < ng)
+            fwd[q] = last;
+    }
+    for (size_t q = 0; q < 2 * ng; q++) {
+        if (b[q % ng].two)
+            last = q % ng;
+        if (q >= ng)
+            bwd[q - ng] = last;
+    }
     size_t nm = 0, npl = 0;
-    for (size_t k = 0; k < nb; k++) {
-        bin_acc *B = &b[k];
-        if (B->count == 0)
-            continue;
+    for (size_t k = 0; k < ng; k++) {
+        const bin_acc *B = &b[k];
         if (B->two) {
             ml[nm] = B->lo_l, mu[nm++] = B->lo_l + B->lo_d;
             pl[npl] = B->hi_l, pu[npl++] = B->hi_l + B->hi_d;
             continue;
         }
         /* one cluster: the branch whose offset in the nearest two-cluster bin
-         * is closer (offsets change by at most one bin width per bin) */
-        for (size_t r = 1; r <= nb; r++) {
-            const bin_acc *A = &b[(k + r) % nb];
-            if (!A->two)
-                A = &b[(k + nb - r % nb) % nb];
-            if (!A->two)
-                continue;
-            if (fabs(B->lo_d - A->lo_d) <= fabs(B->lo_d - A->hi_d))
-                ml[nm] = B->lo_l, mu[nm++] = B->lo_l + B->lo_d;
-            else
-                pl[npl] = B->lo_l, pu[npl++] = B->lo_l + B->lo_d;
-            break;
-        }
+         * is closer (offsets change by at most one bin width per bin); the
+         * bin ahead wins a tie */
+        const bin_acc *F = &b[fwd[k]], *R = &b[bwd[k]];
+        size_t df = (F->bin + nb - B->bin) % nb, dr = (B->bin + nb - R->bin) % nb;
+        const bin_acc *A = df <= dr ? F : R;
+        if (fabs(B->lo_d - A->lo_d) <= fabs(B->lo_d - A->hi_d))
+            ml[nm] = B->lo_l, mu[nm++] = B->lo_l + B->lo_d;
+        else
+            pl[npl] = B->lo_l, pu[npl++] = B->lo_l + B->lo_d;
     }
     if ((rc = tr_contact_fn_from_samples(ml, mu, nm, L, minus, err)) != TR_OK)
         goto done;
     if ((rc = tr_contact_fn_from_samples(pl, pu, npl, L, plus, err)) != TR_OK)
         tr_contact_fn_free(minus);
 done:
-    free(px), free(b), free(ml), free(mu), free(pl), free(pu);
+    free(px), free(b), free(fwd), free(bwd), free(ml), free(mu), free(pl), free(pu);
     return rc;
 }
 
@@ -304,8 +329,12 @@ int tr_power_fixed_points(const tr_contact_fn *f, int power, size_t grid, tr_fix
                           size_t *nfp, tr_cycle **cyc, size_t *ncyc, tr_error *err)
 {
     *fp = NULL, *cyc = NULL, *nfp = 0, *ncyc = 0;
-    if (power < 1 || grid < 8)
-        return tr_fail(err, TR_EINVAL, "fixed points need power >= 1 and a grid of >= 8 points");
+    if (power < 1 || power > TR_CONTACT_POWER_MAX)
+        return tr_fail(err, TR_EINVAL, "functional power %d outside [1, %d]", power, TR_CONTACT_POWER_MAX);
+    if (grid < 8 || grid > ((size_t)1 << 40))
+        return tr_fail(err, TR_EINVAL, "fixed points need a grid of 8 to 2^40 points, got %zu", grid);
+    if (!f || f->n < 2 || !(f->L > 0) || !isfinite(f->L))
+        return tr_fail(err, TR_EINVAL, "fixed points need a contact function of >= 2 knots and a positive period");
     double L = f->L;
     size_t cap = 64, n = 0;
     tr_fixed_point *pts = malloc(cap * sizeof *pts);

@@ -53,6 +53,13 @@ double tr_contact_fn_slope(const tr_contact_fn *f, double l);
 int tr_contact_functions_build(const tr_contact_pair *p, size_t np, double L, double bin,
                                tr_contact_fn *minus, tr_contact_fn *plus, tr_error *err);
 
+/* Range of the bin width of tr_contact_functions_build, relative to L: below
+ * L * 1e-7 a bin is far under any polygon's resolution (and the bin index of
+ * t in [0, 2L) would lose its meaning); above L/8 the two branches merge.
+ * Outside it the function returns TR_EINVAL. */
+#define TR_CONTACT_BIN_MIN_REL 1e-7
+#define TR_CONTACT_BIN_MAX_REL 0.125
+
 typedef struct tr_fixed_point {
     double l;       /* fixed point of f^power, in [0, L) */
     double slope;   /* derivative of f^power there (chain rule along the orbit) */
@@ -67,8 +74,13 @@ typedef struct tr_cycle {
     size_t first;  /* index (into the fixed-point array) of its member with the smallest l */
 } tr_cycle;
 
+/* Largest functional power tr_power_fixed_points accepts (the paper's is 9;
+ * each grid point costs `power` evaluations of f). */
+#define TR_CONTACT_POWER_MAX 100
+
 /* Fixed points of f^power: roots of ((f^power(l) - l + L/2) mod L) - L/2 on a
  * grid of `grid` points refined by bisection; then grouped into orbits of f.
+ * power in [1, TR_CONTACT_POWER_MAX], grid >= 8, else TR_EINVAL.
  * Arrays allocated (free()). */
 int tr_power_fixed_points(const tr_contact_fn *f, int power, size_t grid, tr_fixed_point **fp,
                           size_t *nfp, tr_cycle **cyc, size_t *ncyc, tr_error *err);

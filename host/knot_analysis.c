@@ -89,6 +89,17 @@ int tr_analyze_component(const double *x, size_t n, const tr_contact_pair *pairs
         o.plateau_min = 2;
     if (!o.power)
         o.power = 9;
+    /* Caller's values that would make the analysis meaningless or unbounded;
+     * the averaging block is checked by tr_shape_average. */
+    if (o.power < 1 || o.power > TR_CONTACT_POWER_MAX)
+        return tr_fail(err, TR_EINVAL, "functional power %d outside [1, %d]", o.power,
+                       TR_CONTACT_POWER_MAX);
+    if (!(o.plateau_eps < 1.0))
+        return tr_fail(err, TR_EINVAL, "plateau tolerance %g must be below 1 (plateau level 1 - eps > 0)",
+                       o.plateau_eps);
+    if (o.plateau_min > n)
+        return tr_fail(err, TR_EINVAL, "plateaus of at least %zu arcs on a knot of %zu vertices",
+                       o.plateau_min, n);
     out->n = n;
     out->m = o.m;
     out->power = o.power;
@@ -98,6 +109,13 @@ int tr_analyze_component(const double *x, size_t n, const tr_contact_pair *pairs
         return rc;
     double L = out->L = out->sym.L;
     double e = L / (double)n;
+    if (o.contact_bin > 0 &&
+        !(o.contact_bin >= TR_CONTACT_BIN_MIN_REL * L && o.contact_bin <= TR_CONTACT_BIN_MAX_REL * L)) {
+        rc = tr_fail(err, TR_EINVAL, "contact-function bin %g outside [%g, %g] (L x %g to L x %g)",
+                     o.contact_bin, TR_CONTACT_BIN_MIN_REL * L, TR_CONTACT_BIN_MAX_REL * L,
+                     TR_CONTACT_BIN_MIN_REL, TR_CONTACT_BIN_MAX_REL);
+        goto fail;
+    }
     /* Origin from the curvature of the averaged knot near the twofold points. */
     tr_averaged_knot av0;
     if ((rc = tr_shape_average(x, n, o.m, 0, &av0, err)) != TR_OK)

@@ -54,6 +54,62 @@ usage)
   [ "$(wc -l <"$work/err")" = 1 ] || fail "more than one line: $(cat "$work/err")"
   "$tr" analyze --help | grep -q 'usage: tightrope analyze' || fail "help"
   ;;
+options)
+  # Each refused value: exit 2, one line that starts like every analyze message and names the
+  # option, and no output directory left behind. Values accepted at the edges still run.
+  refused() { want=$1; shift; rm -rf "$work/o"
+    "$tr" analyze "$knot" --out "$work/o" "$@" >/dev/null 2>"$work/err"; rc=$?
+    [ $rc = 2 ] || fail "$*: exit $rc: $(cat "$work/err")"
+    [ "$(wc -l <"$work/err")" = 1 ] || fail "$*: not one line: $(cat "$work/err")"
+    grep -q -e "^tightrope analyze: .*$want" "$work/err" || fail "$*: does not say '$want': $(cat "$work/err")"
+    [ -e "$work/o" ] && fail "$*: left $work/o behind"; true; }
+  refused --contact-bin --contact-bin 1e-300   # once SIGFPE: a bin count beyond size_t, then % 0
+  refused --contact-bin --contact-bin 1e-6     # below L x 1e-7 of the scaled knot (L = 32.7)
+  refused --contact-bin --contact-bin 5        # above L/8
+  refused --contact-bin --contact-bin 0
+  refused --contact-bin --contact-bin nan
+  refused --power --power 0
+  refused --power --power 101
+  refused --power --power 2.5
+  refused --power --power 1e300
+  refused --plateau-min --plateau-min 0
+  refused --plateau-min --plateau-min 1.5
+  refused --plateau-min --plateau-min 1e300
+  refused --plateau-min --plateau-min 401      # more than the 400 vertices
+  refused --plateau-eps --plateau-eps 1
+  refused --strut-tol --strut-tol -1
+  refused -m -m 0
+  refused -m -m 1e300
+  refused -m -m 101                            # N = 400: fewer than 4 averaged vertices
+  refused --jump-at --jump-at 1,inf
+  refused --jump-window --jump-window 0.1,inf
+  refused "unknown option '--bogus'" --bogus   # last on the line: not 'needs a value'
+  refused "unknown option '--bogus'" --bogus -m 2
+  refused "--power needs a value" --power
+  for ok in "--contact-bin 0.004 --power 100 --plateau-min 400" "--contact-bin 4 --power 1 -m 100"; do
+    rm -rf "$work/o"
+    # shellcheck disable=SC2086
+    "$tr" analyze "$knot" --out "$work/o" $ok >/dev/null 2>"$work/err" || fail "$ok refused: $(cat "$work/err")"
+    [ -s "$work/o/summary.json" ] || fail "$ok: no summary"
+  done
+  ;;
+nodir)
+  # A bad input is found before anything is made: no empty output directory.
+  printf 'VECT\n1 3 0\n3\n0\n0 0 0\n1 0 0\n' >"$work/short.vect"
+  printf 'VECT\n1 4 0\n4\n0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n' >"$work/open.vect"
+  for f in "$work/no_such.vect" "$work/short.vect" "$work/open.vect"; do
+    "$tr" analyze "$f" --out "$work/o" >/dev/null 2>"$work/err"; rc=$?
+    [ $rc = 2 ] || fail "$f: exit $rc: $(cat "$work/err")"
+    grep -q '^tightrope analyze: ' "$work/err" || fail "$f: message $(cat "$work/err")"
+    [ -e "$work/o" ] && fail "$f: left $work/o behind"
+  done
+  # an existing file where the directory should go: refused, the file untouched
+  echo keep >"$work/file"
+  "$tr" analyze "$knot" --out "$work/file" >/dev/null 2>"$work/err"; rc=$?
+  [ $rc = 1 ] || fail "--out FILE: exit $rc"
+  grep -q "^tightrope analyze: cannot create directory $work/file" "$work/err" || fail "--out FILE: $(cat "$work/err")"
+  [ "$(cat "$work/file")" = keep ] || fail "--out FILE overwritten"
+  ;;
 *) fail "unknown case $case_" ;;
 esac
 echo PASS
