@@ -214,33 +214,45 @@ static int write_component(comp_result *r, const char *in, const char *dir, cons
     const tr_analysis *an = &r->an;
     tr_report_ctx ctx = {in, r->k, r->scale, &r->th,
                          o->paper < 0 ? tr_report_is_trefoil_like(an, &r->th) : o->paper};
-    char *t;
-    int bad = 0;
+    /* Each table is formatted (non-zero only when memory runs out), then
+     * written atomically. */
+    char *t = NULL, *txt = NULL;
+    int rc = TR_OK, fmt = 0;
     size_t nv = r->one.nv;
-    bad |= tr_report_curvature_csv(an, &t) || write_text(dir, "curvature.csv", t, &err);
-    bad |= !bad && (tr_report_torsion_csv(an, &t) || write_text(dir, "torsion.csv", t, &err));
-    bad |= !bad && (tr_report_plateaus_csv(an, &t) || write_text(dir, "plateaus.csv", t, &err));
-    bad |= !bad && (tr_report_symmetry_csv(an, &t) || write_text(dir, "symmetry.csv", t, &err));
-    bad |= !bad && (tr_report_contacts_csv(an, r->one.x, nv, &t) || write_text(dir, "contacts.csv", t, &err));
+#define EMIT(name, call)                                                  \
+    do {                                                                  \
+        if (rc == TR_OK && !fmt) {                                        \
+            if ((fmt = (call)) == 0)                                      \
+                rc = write_text(dir, name, t, &err);                      \
+        }                                                                 \
+    } while (0)
+    EMIT("curvature.csv", tr_report_curvature_csv(an, &t));
+    EMIT("torsion.csv", tr_report_torsion_csv(an, &t));
+    EMIT("plateaus.csv", tr_report_plateaus_csv(an, &t));
+    EMIT("symmetry.csv", tr_report_symmetry_csv(an, &t));
+    EMIT("contacts.csv", tr_report_contacts_csv(an, r->one.x, nv, &t));
     if (an->have_sigma) {
-        bad |= !bad && (tr_report_sigma_csv(an, 4000, &t) || write_text(dir, "sigma.csv", t, &err));
-        bad |= !bad && (tr_report_fixed_points_csv(an, &t) || write_text(dir, "fixed_points.csv", t, &err));
+        EMIT("sigma.csv", tr_report_sigma_csv(an, 4000, &t));
+        EMIT("fixed_points.csv", tr_report_fixed_points_csv(an, &t));
     }
-    bad |= !bad && (tr_report_summary_json(an, &ctx, &t) || write_text(dir, "summary.json", t, &err));
-    char *txt = NULL;
-    bad |= !bad && tr_report_text(an, &ctx, &txt);
-    if (!bad) {
+    EMIT("summary.json", tr_report_summary_json(an, &ctx, &t));
+#undef EMIT
+    if (rc == TR_OK && !fmt && (fmt = tr_report_text(an, &ctx, &txt)) == 0) {
         fputs(txt, stdout);
-        bad |= write_text(dir, "report.txt", txt, &err) != TR_OK;
+        rc = write_text(dir, "report.txt", txt, &err);
     } else {
         free(txt);
     }
-    if (bad) {
-        fprintf(stderr, "tightrope analyze: writing %s: %s\n", dir, err.msg[0] ? err.msg : "out of memory");
+    if (fmt || rc == TR_ENOMEM) {
+        fprintf(stderr, "tightrope analyze: writing %s: out of memory\n", dir);
         return 1;
     }
+    if (rc != TR_OK) { /* an output the user can fix */
+        fprintf(stderr, "tightrope analyze: writing %s: %s\n", dir, err.msg);
+        return 2;
+    }
     if (o->plots) {
-        int rc = tr_analysis_plots(dir, an, &err);
+        rc = tr_analysis_plots(dir, an, &err);
         if (rc == TR_EUNSUPPORTED) {
             fprintf(stderr, "tightrope analyze: no plots: %s; the CSV files are written\n", err.msg);
             *plots_missing = 1;
@@ -437,7 +449,7 @@ int tr_cmd_analyze(int argc, char **argv)
     int plots_missing = 0;
     if (ndone && make_dir(out)) {
         fprintf(stderr, "tightrope analyze: cannot create directory %s: %s\n", out, strerror(errno));
-        status = 1;
+        status = errno == ENOMEM ? 1 : 2;
         ndone = 0;
     }
     for (int q = 0; q < nclosed && ndone; q++) {
@@ -448,12 +460,12 @@ int tr_cmd_analyze(int argc, char **argv)
                               : snprintf(dir, sizeof dir, "%s", out);
         if (len < 0 || (size_t)len >= sizeof dir) {
             fprintf(stderr, "tightrope analyze: output directory name too long: %s\n", out);
-            status = 1;
+            status = 2;
             break;
         }
         if (c.ncomp > 1 && make_dir(dir)) {
             fprintf(stderr, "tightrope analyze: cannot create directory %s: %s\n", dir, strerror(errno));
-            status = 1;
+            status = 2;
             break;
         }
         int s = write_component(&res[q], in, dir, &o, &plots_missing);

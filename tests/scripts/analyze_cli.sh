@@ -106,7 +106,7 @@ nodir)
   # an existing file where the directory should go: refused, the file untouched
   echo keep >"$work/file"
   "$tr" analyze "$knot" --out "$work/file" >/dev/null 2>"$work/err"; rc=$?
-  [ $rc = 1 ] || fail "--out FILE: exit $rc"
+  [ $rc = 2 ] || fail "--out FILE: exit $rc (an output the user can fix)"
   grep -q "^tightrope analyze: cannot create directory $work/file" "$work/err" || fail "--out FILE: $(cat "$work/err")"
   [ "$(cat "$work/file")" = keep ] || fail "--out FILE overwritten"
   ;;
