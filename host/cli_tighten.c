@@ -49,6 +49,9 @@ static void usage(FILE *out)
             "                     (default 300), at the end and on SIGINT/SIGTERM\n"
             "  --resume FILE      continue from a checkpoint\n"
             "  --device D         reference | auto | a device spec (default $TIGHTROPE_DEVICE or auto)\n"
+            "  --no-polish        skip the polish stage (a serial augmented-Lagrangian / L-BFGS\n"
+            "                     minimisation on the host at the finest level, which by default\n"
+            "                     takes the last 80%% of the finest level's time or runs when it jams)\n"
             "  --json             print a JSON summary on stdout\n"
             "  --quiet            no progress line\n");
 }
@@ -175,7 +178,7 @@ int tr_cmd_tighten(int argc, char **argv)
     long n = 0, refine_to = 0, steps = 0;
     double target = 0, residual = 1e-4, time_limit = 0, ckpt_every = 300;
     int residual_given = 0; /* the default residual is a stopping rule, not a goal */
-    int json = 0, quiet = 0;
+    int json = 0, quiet = 0, no_polish = 0;
     static const char *valued[] = {"-o", "--output", "--n", "--refine-to", "--target", "--residual",
                                    "--steps", "--time-limit", "--checkpoint", "--checkpoint-every",
                                    "--resume", "--device"};
@@ -187,6 +190,10 @@ int tr_cmd_tighten(int argc, char **argv)
         }
         if (!strcmp(a, "--json")) {
             json = 1;
+            continue;
+        }
+        if (!strcmp(a, "--no-polish")) {
+            no_polish = 1;
             continue;
         }
         if (!strcmp(a, "--quiet")) {
@@ -255,6 +262,7 @@ int tr_cmd_tighten(int argc, char **argv)
     tr_error err;
     tr_engine_params prm;
     tr_engine_params_default(&prm);
+    prm.polish = !no_polish;
     tr_engine *e = NULL;
     int rc;
     if (resume) {
@@ -346,6 +354,9 @@ int tr_cmd_tighten(int argc, char **argv)
                 th.vertices, th.length, th.minrad, th.dcsd, th.thickness, th.ropelength);
         tprintf(&cm, "residual %.6g\nsteps %ld\nstop %s\n%s", p.residual, p.steps, tr_stop_reason_name(why),
                 rescaled ? "rescaled to thickness 1\n" : "");
+        if (p.polished)
+            tprintf(&cm, "polish %s: ropelength %.9f -> %.9f in %.2f s\n", p.polished > 0 ? "accepted" : "rejected",
+                    p.polish_before, p.polish_after, p.polish_seconds);
         if (cm.oom)
             rc = tr_fail(&err, TR_ENOMEM, "out of memory");
     }
@@ -378,6 +389,9 @@ int tr_cmd_tighten(int argc, char **argv)
                th.vertices, th.ropelength, th.length, th.thickness, th.minrad, th.dcsd);
         printf("  %ld steps in %.1f s, residual %.2e, stopped: %s\n", p.steps, p.elapsed, p.residual,
                tr_stop_reason_name(why));
+        if (p.polished)
+            printf("  polish %s: ropelength %.6f -> %.6f in %.1f s\n", p.polished > 0 ? "accepted" : "rejected",
+                   p.polish_before, p.polish_after, p.polish_seconds);
     }
     if (why == TR_STOP_SIGNAL)
         fprintf(stderr, "tightrope tighten: interrupted; %s%s%swrote %s\n", ckpt ? "checkpoint " : "",

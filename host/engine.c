@@ -7,6 +7,7 @@
 #include <time.h>
 
 #include "curve_io.h"
+#include "polish.h"
 #include "refine_lowpass.h"
 
 #ifndef M_PI
@@ -29,6 +30,8 @@ struct tr_engine {
     double elapsed_base; /* seconds before this process (from a checkpoint) */
     double t0;           /* monotonic start of this process's run */
     long steps_at_t0;
+    int polished; /* 0: not yet; 1: accepted; -1: ran and kept the engine's curve */
+    double polish_before, polish_after, polish_seconds;
 };
 
 static double now_s(void)
@@ -68,6 +71,8 @@ void tr_engine_params_default(tr_engine_params *p)
     p->proj.max_newton = 3;
     p->proj.cg_rtol = 1e-4;
     p->proj.max_cg = 200;
+    p->polish = 1;
+    p->polish_share = 0.8;
 }
 
 const char *tr_stop_reason_name(tr_stop_reason r)
@@ -310,6 +315,10 @@ void tr_engine_get_progress(const tr_engine *e, tr_engine_progress *p)
     p->h = e->h;
     p->elapsed = e->elapsed_base + t;
     p->steps_per_s = t > 0 ? (double)(e->steps - e->steps_at_t0) / t : 0.0;
+    p->polished = e->polished;
+    p->polish_before = e->polish_before;
+    p->polish_after = e->polish_after;
+    p->polish_seconds = e->polish_seconds;
 }
 
 int tr_engine_get_curve(tr_engine *e, tr_curve *out, tr_error *err)
@@ -645,6 +654,37 @@ fail:
     return rc;
 }
 
+/* The polish stage: download, polish on the host, upload and settle onto
+ * the engine's exact constraint set (equal edges to 1e-9). The polished
+ * curve is at thickness 1 with every constraint satisfied, so settle moves
+ * it by no more than its edge deviation. */
+static int run_polish(tr_engine *e, double seconds, tr_error *err)
+{
+    int rc = e->be.ops->download(e->be.state, e->curve.x, NULL, err);
+    if (rc)
+        return rc;
+    tr_polish_params pp;
+    tr_polish_params_default(&pp);
+    pp.time_limit = seconds;
+    tr_polish_stats ps;
+    if ((rc = tr_polish(&e->curve, &pp, &ps, err)))
+        return rc;
+    e->polish_before = ps.ropelength_before;
+    e->polish_after = ps.ropelength_after;
+    e->polish_seconds = ps.seconds;
+    e->polished = ps.accepted ? 1 : -1;
+    if (!ps.accepted)
+        return TR_OK;
+    if ((rc = e->be.ops->upload(e->be.state, e->curve.x, NULL, err)))
+        return rc;
+    e->contacts_valid = 0;
+    if ((rc = settle(e, "the polished curve", 0.0, err)))
+        return rc;
+    e->h = e->ebar[0];
+    e->jammed = 0;
+    return TR_OK;
+}
+
 /* ---- the run loop with levels, stops, checkpoints, progress ---- */
 
 int tr_engine_run(tr_engine *e, const tr_engine_limits *lim, tr_stop_reason *why, tr_error *err)
@@ -672,6 +712,15 @@ int tr_engine_run(tr_engine *e, const tr_engine_limits *lim, tr_stop_reason *why
             stop = TR_STOP_RESIDUAL;
         else if (final_level && e->jammed)
             stop = TR_STOP_JAMMED;
+        if (final_level && e->prm.polish && e->polished == 0 && e->curve.ncst == 0 &&
+            (stop == TR_STOP_RESIDUAL || stop == TR_STOP_JAMMED ||
+             (stop == TR_STOP_NONE && lim->time_limit > 0 &&
+              now_s() - level_t0 >= (1.0 - e->prm.polish_share) * time_left_at_level))) {
+            double left = lim->time_limit > 0 ? lim->time_limit - p.elapsed : 0.0;
+            if ((rc = run_polish(e, lim->time_limit > 0 ? fmax(left, 1e-3) : 0.0, err)))
+                return rc;
+            continue;
+        }
         else if (!final_level) {
             double coarse_res = lim->coarse_residual > 0 ? lim->coarse_residual : 1e-3;
             if (e->jammed || (e->steps > 0 && e->residual < coarse_res))

@@ -42,6 +42,12 @@ typedef struct tr_engine_params {
     tr_correct_params correct;
     int project;             /* project the force onto the active tangent cone first */
     tr_correct_params proj;  /* its solver settings (max_newton = release passes) */
+    /* The polish stage (polish.h) at the finest level: runs serially on the
+     * host on the downloaded curve, once, when the finest level would stop
+     * (jammed, residual reached) or, under a time limit, for the last
+     * polish_share of the time left when the finest level began. */
+    int polish;
+    double polish_share;
 } tr_engine_params;
 
 void tr_engine_params_default(tr_engine_params *p);
@@ -71,6 +77,9 @@ typedef struct tr_engine_progress {
     double h;
     double elapsed;    /* seconds, including earlier runs resumed from checkpoints */
     double steps_per_s;
+    int polished;      /* 1: the polish stage ran and was accepted; -1: ran, rejected */
+    double polish_before, polish_after; /* oracle ropelength around it */
+    double polish_seconds;
 } tr_engine_progress;
 
 typedef struct tr_engine_limits {
