@@ -56,6 +56,7 @@ typedef struct ctx {
     double mu;
     double *lam_e, *lam_c1, *lam_c2; /* per edge / vertex multipliers */
     double *dphi_e;   /* scratch: penalty derivative per edge */
+    double *good;     /* the last iterate that passed the guards */
     double *len_k, *mean_k;
     strut_pair *sp;
     size_t nsp, capsp;
@@ -327,6 +328,7 @@ static int on_iter(void *vc, const double *x, double f, const double *g, int it)
         c->broken = 1;
         return 1;
     }
+    memcpy(c->good, x, 3 * c->nv * sizeof *x);
     if (c->p->observe)
         c->p->observe(c->p->user, x, c->nv);
     double m = 0.0;
@@ -356,6 +358,7 @@ static void ctx_free(ctx *c)
     free(c->lam_c1);
     free(c->lam_c2);
     free(c->dphi_e);
+    free(c->good);
     free(c->len_k);
     free(c->mean_k);
     free(c->sp);
@@ -424,11 +427,12 @@ int tr_polish(tr_curve *cv, const tr_polish_params *prm, tr_polish_stats *st, tr
     c.lam_c1 = calloc(nv, sizeof *c.lam_c1);
     c.lam_c2 = calloc(nv, sizeof *c.lam_c2);
     c.dphi_e = calloc(nv, sizeof *c.dphi_e);
+    c.good = malloc(3 * nv * sizeof *c.good);
     c.len_k = calloc((size_t)nc, sizeof *c.len_k);
     c.mean_k = calloc((size_t)nc, sizeof *c.mean_k);
     double *x = malloc(3 * nv * sizeof *x), *best = malloc(3 * nv * sizeof *best);
     if (!c.next || !c.prev || !c.comp || !c.ne || !c.gap || !c.lam_e || !c.lam_c1 || !c.lam_c2 ||
-        !c.dphi_e || !c.len_k || !c.mean_k || !x || !best) {
+        !c.dphi_e || !c.good || !c.len_k || !c.mean_k || !x || !best) {
         rc = tr_fail(err, TR_ENOMEM, "out of memory (polish, %zu vertices)", nv);
         goto done;
     }
@@ -454,6 +458,7 @@ int tr_polish(tr_curve *cv, const tr_polish_params *prm, tr_polish_stats *st, tr
     if ((rc = tr_nsearch_build(&c.ns, &c.w, err)))
         goto done;
     memcpy(x, c.w.x, 3 * nv * sizeof *x);
+    memcpy(c.good, x, 3 * nv * sizeof *x);
     if ((rc = rebuild(&c, x, err)))
         goto done;
     c.deadline = prm->time_limit > 0 ? t0 + prm->time_limit : 0.0;
@@ -465,6 +470,7 @@ int tr_polish(tr_curve *cv, const tr_polish_params *prm, tr_polish_stats *st, tr
     lp.max_iter = prm->max_inner;
     lp.gtol = 1e-3;
     double prev_viol = INFINITY, viol = INFINITY;
+    int breaks = 0;
     double *gtmp = best; /* scratch for evaluations */
     for (int outer = 0; outer < prm->max_outer && !c.out_of_time; outer++) {
         tr_lbfgs_result res;
@@ -475,8 +481,16 @@ int tr_polish(tr_curve *cv, const tr_polish_params *prm, tr_polish_stats *st, tr
             st->inner_iters += res.iters;
             st->evals += res.evals;
             if (c.broken) {
-                st->why_rejected = "a motion guard broke (strands too close or MinRad < 0.9)";
-                goto done;
+                /* the penalty was too weak for this iterate: drop it, go
+                 * back to the last guarded iterate and stiffen */
+                if (++breaks > 8 || c.mu >= prm->mu_max) {
+                    st->why_rejected = "a motion guard broke (strands too close or MinRad < 0.9)";
+                    goto done;
+                }
+                c.broken = 0;
+                memcpy(x, c.good, 3 * nv * sizeof *x);
+                c.mu = fmin(10.0 * c.mu, prm->mu_max);
+                continue;
             }
             if (!c.need_rebuild)
                 break;
