@@ -9,6 +9,7 @@
 #include "analysis_plots.h"
 #include "analysis_report.h"
 #include "cli.h"
+#include "cli_args.h"
 #include "contacts.h"
 #include "curve_io.h"
 #include "knot_analysis.h"
@@ -42,14 +43,6 @@ static void usage(FILE *f)
             "  --no-scale         analyse the coordinates as given\n");
 }
 
-static int parse_double(const char *s, double *v)
-{
-    char *end;
-    errno = 0;
-    *v = strtod(s, &end);
-    return (end == s || *end || errno || !isfinite(*v)) ? -1 : 0;
-}
-
 /* Comma-separated finite numbers. */
 static int parse_list(const char *s, double *v, size_t max, size_t *n)
 {
@@ -69,12 +62,6 @@ static int parse_list(const char *s, double *v, size_t max, size_t *n)
             return -1;
     }
     return *s ? -1 : 0;
-}
-
-/* An integer in [lo, hi], written as a number ("9", "9.0", "1e2"). */
-static int parse_int(const char *s, double lo, double hi, double *v)
-{
-    return parse_double(s, v) || *v != floor(*v) || *v < lo || *v > hi ? -1 : 0;
 }
 
 static int write_text(const char *dir, const char *name, char *text, tr_error *err)
@@ -312,32 +299,32 @@ int tr_cmd_analyze(int argc, char **argv)
             }
             out = v, i++;
         } else if (!strcmp(a, "-m")) {
-            if (parse_int(v, 1, 1e6, &d)) {
+            if (tr_arg_size(v, 1, 1000000, &o.ao.m)) {
                 fprintf(stderr, "tightrope analyze: -m needs an integer from 1 to 1000000, got '%s'\n", v);
                 return 2;
             }
-            o.ao.m = (size_t)d, i++;
+            i++;
         } else if (!strcmp(a, "--power")) {
-            if (parse_int(v, 1, TR_CONTACT_POWER_MAX, &d)) {
+            if (tr_arg_int(v, 1, TR_CONTACT_POWER_MAX, &o.ao.power)) {
                 fprintf(stderr, "tightrope analyze: --power needs an integer from 1 to %d, got '%s'\n",
                         TR_CONTACT_POWER_MAX, v);
                 return 2;
             }
-            o.ao.power = (int)d, i++;
+            i++;
         } else if (!strcmp(a, "--plateau-min")) {
-            if (parse_int(v, 1, 1e9, &d)) {
+            if (tr_arg_size(v, 1, 1000000000, &o.ao.plateau_min)) {
                 fprintf(stderr, "tightrope analyze: --plateau-min needs an integer >= 1 (arcs), got '%s'\n", v);
                 return 2;
             }
-            o.ao.plateau_min = (size_t)d, i++;
+            i++;
         } else if (!strcmp(a, "--plateau-eps")) {
-            if (parse_double(v, &d) || !(d > 0 && d < 1)) {
+            if (tr_arg_double(v, 0, 1, &d) || d == 0 || d == 1) {
                 fprintf(stderr, "tightrope analyze: --plateau-eps needs a number in (0, 1), got '%s'\n", v);
                 return 2;
             }
             o.ao.plateau_eps = d, i++;
         } else if (!strcmp(a, "--sym-tol") || !strcmp(a, "--strut-tol")) {
-            if (parse_double(v, &d) || !(d > 0 && d <= 1)) {
+            if (tr_arg_double(v, 0, 1, &d) || d == 0) {
                 fprintf(stderr, "tightrope analyze: %s needs a number in (0, 1], got '%s'\n", a, v);
                 return 2;
             }
@@ -349,7 +336,7 @@ int tr_cmd_analyze(int argc, char **argv)
         } else if (!strcmp(a, "--contact-bin")) {
             /* the upper and lower bounds depend on the knot's length: checked
              * per component once it is scaled */
-            if (parse_double(v, &d) || !(d > 0)) {
+            if (tr_arg_double(v, 0, INFINITY, &d) || d == 0) {
                 fprintf(stderr, "tightrope analyze: --contact-bin needs a positive number, got '%s'\n", v);
                 return 2;
             }

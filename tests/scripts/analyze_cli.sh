@@ -34,6 +34,49 @@ plots)
     [ "$(head -c 4 "$work/out/$f.png" | od -An -c | tr -d ' ')" = '211PNG' ] || fail "$f.png is not a PNG"
   done
   ;;
+plots_coarse)
+  # Coarse knots (N = 100 and 400, m = 10: averaged arcs of 3.3 and 1.0) have no kappa = 1
+  # plateau and few points: every plot must still be drawn and hold data (the zoom was once
+  # fixed to [0, 0.6], empty there, and gnuplot failed), and no temporary file is left.
+  command -v gnuplot >/dev/null || { echo "gnuplot not installed"; exit 77; }
+  for n in 100 400; do
+    "$tr" make torus 2 3 --n $n -o "$work/t$n.vect" >/dev/null 2>&1 || fail "make N = $n"
+    "$tr" analyze "$work/t$n.vect" --out "$work/o$n" --plots >"$work/stdout" 2>"$work/stderr" || fail "N = $n: exit $?: $(cat "$work/stderr")"
+    for f in curvature_torsion plateau_zoom accumulated_torsion; do
+      [ "$(head -c 4 "$work/o$n/$f.png" | od -An -c | tr -d ' ')" = '211PNG' ] || fail "N = $n: $f.png is not a PNG"
+    done
+    # gnuplot says so when a plot has no data in its range
+    grep -Ei 'undefined|empty|no valid points' "$work/o$n/gnuplot.log" && fail "N = $n: a plot without data"
+    ls -a "$work/o$n" | grep -q '\.tmp' && fail "N = $n: temporary files left: $(ls -a "$work/o$n")"
+    grep -q "set xrange \[Z0:Z1\]" "$work/o$n/plots.gp" || fail "N = $n: no zoom window"
+  done
+  ;;
+plots_atomic)
+  # PNGs are drawn under temporary names and renamed only when gnuplot succeeds: a gnuplot
+  # that fails half-way leaves the previous PNGs whole and no temporary file behind. The fake
+  # gnuplot writes into every file named by a 'set output' line of plots.gp, then fails.
+  mkdir -p "$work/bin" "$work/out"
+  cat >"$work/bin/gnuplot" <<'EOS'
+#!/bin/sh
+sed -n "s/^set output '\(.*\)'$/\1/p" "$1" | while read -r f; do echo partial >"$f"; done
+exit 1
+EOS
+  chmod +x "$work/bin/gnuplot"
+  echo old >"$work/out/curvature_torsion.png"
+  PATH="$work/bin:$PATH" "$tr" analyze "$knot" --out "$work/out" -m 2 --plots >/dev/null 2>"$work/err"; rc=$?
+  [ $rc = 1 ] || fail "failing gnuplot: exit $rc"
+  grep -q '^tightrope analyze: plots: gnuplot failed' "$work/err" || fail "message: $(cat "$work/err")"
+  [ "$(cat "$work/out/curvature_torsion.png")" = old ] || fail "old PNG overwritten by a failed run"
+  ls "$work/out" | grep -q '\.png.' && fail "temporary files left: $(ls "$work/out")"
+  [ "$(ls "$work/out"/*.png | wc -l)" = 1 ] || fail "PNG from a failed run: $(ls "$work/out")"
+  # the same fake, succeeding: each PNG takes its final name
+  sed -i 's/^exit 1$/exit 0/' "$work/bin/gnuplot"
+  PATH="$work/bin:$PATH" "$tr" analyze "$knot" --out "$work/out" -m 2 --plots >/dev/null 2>"$work/err" || fail "exit $?: $(cat "$work/err")"
+  for f in curvature_torsion plateau_zoom accumulated_torsion contact_map sigma9; do
+    [ "$(cat "$work/out/$f.png")" = partial ] || fail "$f.png not renamed into place"
+  done
+  ls "$work/out" | grep -q '\.png.' && fail "temporary files left: $(ls "$work/out")"
+  ;;
 cycles)
   # A trefoil tightened by our engine (N = 1600, bench/data) against the paper's published
   # structure: sigma-^9 has 18 fixed points forming two 9-cycles, one stable, and the stable
