@@ -660,28 +660,61 @@ fail:
  * it by no more than its edge deviation. */
 static int run_polish(tr_engine *e, double seconds, tr_error *err)
 {
-    int rc = e->be.ops->download(e->be.state, e->curve.x, NULL, err);
-    if (rc)
+    size_t nx = 3 * e->curve.nv;
+    double *keep = malloc((nx + (size_t)e->curve.ncomp) * sizeof *keep);
+    if (!keep)
+        return tr_fail(err, TR_ENOMEM, "out of memory");
+    int rc = e->be.ops->download(e->be.state, keep, keep + nx, err);
+    if (rc) {
+        free(keep);
         return rc;
+    }
+    memcpy(e->curve.x, keep, nx * sizeof *keep);
     tr_polish_params pp;
     tr_polish_params_default(&pp);
     pp.time_limit = seconds;
     tr_polish_stats ps;
-    if ((rc = tr_polish(&e->curve, &pp, &ps, err)))
-        return rc;
+    if ((rc = tr_polish(&e->curve, &pp, &ps, err))) {
+        free(keep);
+        if (rc != TR_EGEOMETRY)
+            return rc;
+        e->polished = -1; /* nothing to polish (no finite thickness): the engine goes on */
+        return TR_OK;
+    }
     e->polish_before = ps.ropelength_before;
     e->polish_after = ps.ropelength_after;
     e->polish_seconds = ps.seconds;
     e->polished = ps.accepted ? 1 : -1;
-    if (!ps.accepted)
+    if (!ps.accepted) {
+        free(keep);
         return TR_OK;
+    }
     if ((rc = e->be.ops->upload(e->be.state, e->curve.x, NULL, err)))
-        return rc;
+        goto restore;
     e->contacts_valid = 0;
     if ((rc = settle(e, "the polished curve", 0.0, err)))
-        return rc;
+        goto restore;
+    free(keep);
     e->h = e->ebar[0];
     e->jammed = 0;
+    return TR_OK;
+restore:
+    /* the engine could not take the polished curve on: go on from its own */
+    if (rc == TR_ENOMEM || rc == TR_EOPENCL) {
+        free(keep);
+        return rc;
+    }
+    memcpy(e->curve.x, keep, 3 * e->curve.nv * sizeof *keep);
+    rc = e->be.ops->upload(e->be.state, keep, keep + 3 * e->curve.nv, err);
+    free(keep);
+    if (rc)
+        return rc;
+    tr_measure m;
+    if ((rc = rebuild_contacts(e, 1, err)) || (rc = measure(e, &m, err)))
+        return rc;
+    fill_state(e, &m);
+    e->polished = -1;
+    e->polish_after = e->polish_before;
     return TR_OK;
 }
 
