@@ -73,6 +73,7 @@ void tr_engine_params_default(tr_engine_params *p)
     p->proj.max_cg = 200;
     p->polish = 1;
     p->polish_share = 0.8;
+    p->polish_coarse = 1;
 }
 
 const char *tr_stop_reason_name(tr_stop_reason r)
@@ -345,6 +346,7 @@ int tr_engine_refine(tr_engine *e, size_t n, tr_error *err)
         return rc;
     /* resampling may bring strands slightly closer than 2 (never near
      * crossing): the correction pushes them back out */
+    e->polished = 0;
     rc = settle(e, "the refined curve", 0.25, err);
     if (rc == TR_EGEOMETRY)
         return tr_fail_wrap(err, TR_ETOPOLOGY, "refining to %zu vertices", n);
@@ -745,7 +747,8 @@ int tr_engine_run(tr_engine *e, const tr_engine_limits *lim, tr_stop_reason *why
             stop = TR_STOP_RESIDUAL;
         else if (final_level && e->jammed)
             stop = TR_STOP_JAMMED;
-        if (final_level && e->prm.polish && e->polished == 0 && e->curve.ncst == 0 &&
+        int can_polish = e->prm.polish && e->polished == 0 && e->curve.ncst == 0;
+        if (final_level && can_polish &&
             (stop == TR_STOP_RESIDUAL || stop == TR_STOP_JAMMED ||
              (stop == TR_STOP_NONE && lim->time_limit > 0 &&
               now_s() - level_t0 >= (1.0 - e->prm.polish_share) * time_left_at_level))) {
@@ -754,12 +757,23 @@ int tr_engine_run(tr_engine *e, const tr_engine_limits *lim, tr_stop_reason *why
                 return rc;
             continue;
         }
-        else if (!final_level) {
+        if (!final_level && stop == TR_STOP_NONE) {
+            /* a coarse level has half the time left when it began; with
+             * polish_coarse the engine gets the first half of that and the
+             * polish the rest (it usually converges much sooner) */
+            int pc = e->prm.polish && e->prm.polish_coarse && e->curve.ncst == 0;
             double coarse_res = lim->coarse_residual > 0 ? lim->coarse_residual : 1e-3;
-            if (e->jammed || (e->steps > 0 && e->residual < coarse_res))
+            double used = now_s() - level_t0;
+            if (e->jammed || (e->steps > 0 && e->residual < coarse_res) || (pc && e->polished != 0))
                 level_done = 1;
-            if (lim->time_limit > 0 && now_s() - level_t0 > 0.5 * time_left_at_level)
+            if (lim->time_limit > 0 && used > (pc ? 0.25 : 0.5) * time_left_at_level)
                 level_done = 1;
+            if (level_done && pc && e->polished == 0) {
+                double budget = lim->time_limit > 0 ? fmax(0.5 * time_left_at_level - used, 1e-3) : 0.0;
+                if ((rc = run_polish(e, budget, err)))
+                    return rc;
+                continue;
+            }
         }
         if (lim->progress && (stop != TR_STOP_NONE || now_s() - t_last_prog >= lim->progress_every)) {
             lim->progress(&p, lim->user);

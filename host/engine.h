@@ -48,6 +48,7 @@ typedef struct tr_engine_params {
      * polish_share of the time left when the finest level began. */
     int polish;
     double polish_share;
+    int polish_coarse; /* also polish every coarse level before refining it */
 } tr_engine_params;
 
 void tr_engine_params_default(tr_engine_params *p);
