@@ -45,7 +45,8 @@ typedef struct tr_engine_params {
     /* The polish stage (polish.h) at the finest level: runs serially on the
      * host on the downloaded curve, once, when the finest level would stop
      * (jammed, residual reached) or, under a time limit, for the last
-     * polish_share of the time left when the finest level began. */
+     * polish_share of the time left when the finest level began. It honours
+     * the stop flag; no periodic checkpoint is written while it runs. */
     int polish;
     double polish_share;
     int polish_coarse; /* also polish every coarse level before refining it */

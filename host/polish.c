@@ -338,7 +338,7 @@ static int on_iter(void *vc, const double *x, double f, const double *g, int it)
         c->need_rebuild = 1;
         return 1;
     }
-    if (c->deadline > 0 && now_s() > c->deadline) {
+    if ((c->deadline > 0 && now_s() > c->deadline) || (c->p->stop && *c->p->stop)) {
         c->out_of_time = 1;
         return 1;
     }

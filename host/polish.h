@@ -39,6 +39,7 @@
 #ifndef TR_POLISH_H
 #define TR_POLISH_H
 
+#include <signal.h>
 #include <stddef.h>
 
 #include "curve.h"
@@ -58,6 +59,9 @@ typedef struct tr_polish_params {
      * independently with it); x has 3 nv entries in thickness-1 units. */
     void (*observe)(void *user, const double *x, size_t nv);
     void *user;
+    /* Raised by a signal handler (may be NULL): stop as at the time limit
+     * (the result so far is still checked and kept if shorter). */
+    volatile sig_atomic_t *stop;
 } tr_polish_params;
 
 void tr_polish_params_default(tr_polish_params *p);
