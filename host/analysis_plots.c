@@ -167,14 +167,22 @@ int tr_analysis_plots(const char *dir, const tr_analysis *a, tr_error *err)
     const char *ksrc = d3 ? "''" : "'curvature.csv'", *tsrc = d3 ? "''" : "'torsion.csv'";
     const char *kname = d3 ? "kappa (sector I)" : "kappa", *tname = d3 ? "tau (sector I)" : "tau";
     char ztitle[512];
-    if (a->have_l12)
-        snprintf(ztitle, sizeof ztitle,
-                 "kappa = 1 plateau: l1 = %.4g, l2 = %.4g (dashed%s)", a->l1, a->l2,
-                 d3 ? "; averaged over the symmetry images" : "");
-    else
-        snprintf(ztitle, sizeof ztitle,
-                 "no kappa = 1 plateau found: the curvature maximum, kappa = %.4g at l = %.4g", kmax,
-                 kmax_at);
+    if (a->have_l12) {
+        char wrapped[64] = "";
+        if (zl1 != a->l1)
+            snprintf(wrapped, sizeof wrapped, " (drawn at l1 - L = %.4g)", zl1);
+        snprintf(ztitle, sizeof ztitle, "kappa = 1 plateau: l1 = %.4g%s, l2 = %.4g (dashed%s)", a->l1,
+                 wrapped, a->l2, d3 ? "; averaged over the symmetry images" : "");
+    } else {
+        int whole = 0;
+        for (size_t i = 0; i < a->nplateaus; i++)
+            whole |= a->plateaus[i].first == 0 && a->plateaus[i].last == a->prof.n - 1;
+        snprintf(ztitle, sizeof ztitle, "%s: the curvature maximum, kappa = %.4g at l = %.4g",
+                 whole ? "kappa at the plateau level along the whole curve, no plateau ends"
+                 : a->nplateaus ? "no plateau inside one symmetry sector"
+                                : "no kappa = 1 plateau found",
+                 kmax, kmax_at);
+    }
 
     size_t cap = 32768;
     s = malloc(cap);

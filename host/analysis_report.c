@@ -405,9 +405,13 @@ int tr_report_text(const tr_analysis *a, const tr_report_ctx *ctx, char **out)
     if (ctx->thick) {
         const tr_thickness *t = ctx->thick;
         sb_printf(&b, "  scaled by %.10g to thickness 1: length %.10g, MinRad %.10g, shortest strut %.10g,\n"
-                      "  thickness %.10g, ropelength %.10g (L_p %.10g, L_c %.10g, L_a %.10g)\n",
-                  ctx->scale, t->length, t->minrad, t->dcsd, t->thickness, t->ropelength, t->L_p,
-                  t->L_c, t->L_a);
+                      "  thickness %.10g, ropelength %.10g ",
+                  ctx->scale, t->length, t->minrad, t->dcsd, t->thickness, t->ropelength);
+        /* the paper's lengths exist only for near-equilateral polygons */
+        if (isfinite(t->L_p) && isfinite(t->L_c) && isfinite(t->L_a))
+            sb_printf(&b, "(L_p %.10g, L_c %.10g, L_a %.10g)\n", t->L_p, t->L_c, t->L_a);
+        else
+            sb_printf(&b, "(L_p, L_c, L_a: n/a, the polygon is not near-equilateral)\n");
         if (cmp)
             sb_printf(&b, "  paper (N = 200640): L_a = %.9f\n", P_L);
     }

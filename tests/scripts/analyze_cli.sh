@@ -51,6 +51,29 @@ plots_coarse)
     grep -q "set xrange \[Z0:Z1\]" "$work/o$n/plots.gp" || fail "N = $n: no zoom window"
   done
   ;;
+plots_origin)
+  # A stadium (two unit semicircles joined by straights of length 3, N = 400) has C2 symmetry
+  # and the origin at a semicircle apex, in the middle of a kappa = 1 plateau whose ends lie
+  # pi/2 before and after it: the zoom window must run across the origin, from below -pi/2 to
+  # above pi/2, and be a zoom (under 3/4 of L), not run from l1 ~ L - pi/2 down to l2 (a
+  # reversed axis showing the rest of the curve).
+  command -v gnuplot >/dev/null || { echo "gnuplot not installed"; exit 77; }
+  awk 'BEGIN { pi = atan2(0, -1); s = 3; L = 2 * pi + 2 * s; n = 400
+    for (i = 0; i < n; i++) { t = 1.234 + i * L / n; t -= L * int(t / L)
+      if (t < pi / 2) { x = s / 2 + cos(t); y = sin(t) }
+      else if (t < pi / 2 + s) { x = s / 2 - (t - pi / 2); y = 1 }
+      else if (t < 3 * pi / 2 + s) { a = pi / 2 + t - pi / 2 - s; x = -s / 2 + cos(a); y = sin(a) }
+      else if (t < 3 * pi / 2 + 2 * s) { x = -s / 2 + (t - 3 * pi / 2 - s); y = -1 }
+      else { a = 3 * pi / 2 + t - 3 * pi / 2 - 2 * s; x = s / 2 + cos(a); y = sin(a) }
+      printf "%.17g %.17g 0\n", x, y } }' >"$work/stadium.txt"
+  "$tr" analyze "$work/stadium.txt" --out "$work/o" --no-scale -m 2 --plots >"$work/stdout" 2>"$work/stderr" || fail "exit $?: $(cat "$work/stderr")"
+  grep -q '^symmetry: C2' "$work/stdout" || fail "not C2: $(grep symmetry "$work/stdout")"
+  # (a plane curve: tau = 0 throughout, which gnuplot calls an empty y range)
+  grep -Ei 'undefined|no valid points' "$work/o/gnuplot.log" && fail "a plot without data"
+  awk -F'[=;]' '/^Z0 = / { z0 = $2 + 0; z1 = $4 + 0; pi = atan2(0, -1)
+    ok = z0 < -pi / 2 && z1 > pi / 2 && z1 - z0 < 0.75 * (2 * pi + 6) }
+    END { exit !ok }' "$work/o/plots.gp" || fail "zoom window: $(grep '^Z0' "$work/o/plots.gp")"
+  ;;
 plots_atomic)
   # PNGs are drawn under temporary names and renamed only when gnuplot succeeds: a gnuplot
   # that fails half-way leaves the previous PNGs whole and no temporary file behind. The fake
