@@ -462,6 +462,10 @@ int tr_polish(tr_curve *cv, const tr_polish_params *prm, tr_polish_stats *st, tr
     if ((rc = rebuild(&c, x, err)))
         goto done;
     c.deadline = prm->time_limit > 0 ? t0 + prm->time_limit : 0.0;
+    if (!(prm->max_move > 0 && prm->max_move <= prm->skin / 8) || prm->max_inner < 1 || prm->max_outer < 1) {
+        rc = tr_fail(err, TR_EINVAL, "polish: need 0 < max_move <= skin / 8 and at least one iteration");
+        goto done;
+    }
     tr_lbfgs_params lp;
     tr_lbfgs_params_default(&lp);
     lp.m = prm->lbfgs_m;
@@ -474,11 +478,14 @@ int tr_polish(tr_curve *cv, const tr_polish_params *prm, tr_polish_stats *st, tr
     double *gtmp = best; /* scratch for evaluations */
     for (int outer = 0; outer < prm->max_outer && !c.out_of_time; outer++) {
         tr_lbfgs_result res;
+        int used = 0; /* iterations of this round, over list rebuilds */
         for (;;) {
             c.need_rebuild = 0;
+            lp.max_iter = prm->max_inner - used;
             if ((rc = tr_lbfgs_minimize(3 * nv, x, &lp, eval, on_iter, &c, &res, err)))
                 goto done;
             st->inner_iters += res.iters;
+            used += res.iters;
             st->evals += res.evals;
             if (c.broken) {
                 /* the penalty was too weak for this iterate: drop it, go
@@ -492,7 +499,7 @@ int tr_polish(tr_curve *cv, const tr_polish_params *prm, tr_polish_stats *st, tr
                 c.mu = fmin(10.0 * c.mu, prm->mu_max);
                 continue;
             }
-            if (!c.need_rebuild)
+            if (!c.need_rebuild || used >= prm->max_inner)
                 break;
             if ((rc = rebuild(&c, x, err)))
                 goto done;

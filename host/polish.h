@@ -50,7 +50,7 @@ typedef struct tr_polish_params {
     int max_outer;     /* augmented-Lagrangian rounds */
     int max_inner;     /* L-BFGS iterations per round */
     double skin;       /* pair list cutoff 2 + skin */
-    double max_move;   /* per-vertex cap on one L-BFGS iteration (< skin/4) */
+    double max_move;   /* per-vertex cap on one L-BFGS iteration (<= skin/8) */
     double viol_tol;   /* stop when the worst relative violation is below this */
     double mu0;        /* first penalty */
     double mu_max;
