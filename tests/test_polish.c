@@ -243,6 +243,16 @@ int main(void)
     CHECK_OK(tr_curve_copy(&c, &s, &err));
     CHECK_OK(tr_polish(&c, NULL, &st, &err));
     CHECK(st.skipped && !st.accepted);
+    /* a step cap the pair-list rebuild rule cannot honour is refused */
+    {
+        tr_curve t;
+        CHECK_OK(tr_make_torus(&t, 2, 3, 72, &err));
+        tr_polish_params bad;
+        tr_polish_params_default(&bad);
+        bad.max_move = bad.skin / 4;
+        CHECK(tr_polish(&t, &bad, &st, &err) == TR_EINVAL);
+        tr_curve_free(&t);
+    }
     CHECK(memcmp(c.x, s.x, 3 * s.nv * sizeof *s.x) == 0);
     tr_curve_free(&c);
     tr_curve_free(&s);
