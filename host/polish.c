@@ -473,7 +473,7 @@ int tr_polish(tr_curve *cv, const tr_polish_params *prm, tr_polish_stats *st, tr
     lp.group = 3;
     lp.max_iter = prm->max_inner;
     lp.gtol = 1e-3;
-    double prev_viol = INFINITY, viol = INFINITY;
+    double prev_viol = INFINITY, viol = INFINITY, prev_len = INFINITY;
     int breaks = 0;
     double *gtmp = best; /* scratch for evaluations */
     for (int outer = 0; outer < prm->max_outer && !c.out_of_time; outer++) {
@@ -490,13 +490,14 @@ int tr_polish(tr_curve *cv, const tr_polish_params *prm, tr_polish_stats *st, tr
             if (c.broken) {
                 /* the penalty was too weak for this iterate: drop it, go
                  * back to the last guarded iterate and stiffen */
-                if (++breaks > 8 || c.mu >= prm->mu_max) {
+                if (++breaks > 40) {
                     st->why_rejected = "a motion guard broke (strands too close or MinRad < 0.9)";
                     goto done;
                 }
                 c.broken = 0;
                 memcpy(x, c.good, 3 * nv * sizeof *x);
-                c.mu = fmin(10.0 * c.mu, prm->mu_max);
+                c.mu = fmin(4.0 * c.mu, prm->mu_max);
+                lp.max_move = fmax(0.5 * lp.max_move, 1e-6);
                 continue;
             }
             if (!c.need_rebuild || used >= prm->max_inner)
@@ -508,10 +509,17 @@ int tr_polish(tr_curve *cv, const tr_polish_params *prm, tr_polish_stats *st, tr
                 break;
         }
         st->outer = outer + 1;
+        lp.max_move = fmin(2.0 * lp.max_move, prm->max_move);
         eval(&c, x, gtmp);
         viol = fmax(c.viol_strut, fmax(c.viol_curv, c.viol_edge));
-        if (viol <= prm->viol_tol && res.reason == TR_LBFGS_GTOL && lp.gtol <= 1e-8)
+        double len = 0.0;
+        for (int k = 0; k < nc; k++)
+            len += c.len_k[k] * (double)c.ne[k];
+        /* converged: feasible and either stationary or no longer shortening */
+        if (viol <= prm->viol_tol &&
+            ((res.reason == TR_LBFGS_GTOL && lp.gtol <= 1e-8) || fabs(prev_len - len) <= 1e-13 * len))
             break;
+        prev_len = len;
         update_multipliers(&c, x);
         if (viol > 0.25 * prev_viol)
             c.mu = fmin(10.0 * c.mu, prm->mu_max);
