@@ -8,6 +8,7 @@ bash scripts/deps.sh
 cmake -S . -B build -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
 cmake --build build -j"$(nproc)"
 mkdir -p demo
-./build/tightrope make torus 2 3 --n 120 -o demo/trefoil-start.vect
-./build/tightrope tighten demo/trefoil-start.vect -o demo/trefoil.vect --refine-to 240 --time-limit 60
+# T(2,3) at N = 400, tightened at N = 100, 200, 400 (each level polished) in 20 s
+./build/tightrope make torus 2 3 --n 400 -o demo/trefoil-start.vect
+./build/tightrope tighten demo/trefoil-start.vect -o demo/trefoil.vect --n 100 --refine-to 400 --time-limit 20
 ./build/tightrope measure demo/trefoil.vect
