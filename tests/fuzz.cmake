@@ -17,14 +17,15 @@ if(TIGHTROPE_FUZZ)
   endif()
   if(_fz_ok)
     set(_fz_sources ${CMAKE_SOURCE_DIR}/tests/fuzz_readers.c ${CMAKE_SOURCE_DIR}/host/curve_io.c
-                    ${CMAKE_SOURCE_DIR}/host/curve.c ${CMAKE_SOURCE_DIR}/host/error.c)
+                    ${CMAKE_SOURCE_DIR}/host/curve.c ${CMAKE_SOURCE_DIR}/host/error.c
+                    ${CMAKE_SOURCE_DIR}/host/text_file.c)
     set(_fz_bin ${CMAKE_CURRENT_BINARY_DIR}/fuzz_readers)
     add_custom_command(OUTPUT ${_fz_bin}
       COMMAND ${TR_FUZZ_CLANG} -std=c17 -D_POSIX_C_SOURCE=200809L -g -O1 -Wall -Wextra -Werror
               -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined
               -I${CMAKE_SOURCE_DIR}/host ${_fz_sources} -lm -o ${_fz_bin}
       DEPENDS ${_fz_sources} ${CMAKE_SOURCE_DIR}/host/curve_io.h ${CMAKE_SOURCE_DIR}/host/curve.h
-              ${CMAKE_SOURCE_DIR}/host/error.h
+              ${CMAKE_SOURCE_DIR}/host/error.h ${CMAKE_SOURCE_DIR}/host/text_file.h
       COMMENT "Building the libFuzzer target fuzz_readers with clang")
     add_custom_target(fuzz_readers ALL DEPENDS ${_fz_bin})
     # New inputs go to the first corpus directory, which lives in the build
