@@ -6,19 +6,21 @@
  * vertex is constrained, so that ropelength = length), the residual, the
  * steps and the command line. SIGINT/SIGTERM stop the run at the next step,
  * write a last checkpoint (with --checkpoint) and the output, and exit 1. */
-#include <errno.h>
+#include <float.h>
+#include <limits.h>
 #include <math.h>
 #include <signal.h>
-#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
 
 #include "cli.h"
+#include "cli_args.h"
 #include "curve_io.h"
 #include "engine.h"
 #include "generate.h"
+#include "text_file.h"
 #include "thickness.h"
 
 /* The one piece of process state: raised by the signal handler, polled by
@@ -56,28 +58,6 @@ static void usage(FILE *out)
             "  --quiet            no progress line\n");
 }
 
-static int parse_double(const char *s, double *v)
-{
-    char *end;
-    errno = 0;
-    double d = strtod(s, &end);
-    if (end == s || *end || errno || !isfinite(d) || d < 0)
-        return -1;
-    *v = d;
-    return 0;
-}
-
-static int parse_count(const char *s, long *v)
-{
-    char *end;
-    errno = 0;
-    long d = strtol(s, &end, 10);
-    if (end == s || *end || errno || d <= 0)
-        return -1;
-    *v = d;
-    return 0;
-}
-
 typedef struct progress_ctx {
     int tty;
     int printed;
@@ -94,49 +74,6 @@ static void on_progress(const tr_engine_progress *p, void *user)
     ctx->printed = 1;
 }
 
-/* A growing text buffer for the certificate comments. */
-typedef struct text {
-    char *p;
-    size_t n, cap;
-    int oom;
-} text;
-
-static void tprintf(text *t, const char *fmt, ...)
-#if defined(__GNUC__)
-    __attribute__((format(printf, 2, 3)))
-#endif
-    ;
-
-static void tprintf(text *t, const char *fmt, ...)
-{
-    if (t->oom)
-        return;
-    for (;;) {
-        va_list ap;
-        va_start(ap, fmt);
-        size_t room = t->cap - t->n;
-        int k = vsnprintf(t->p ? t->p + t->n : NULL, room, fmt, ap);
-        va_end(ap);
-        if (k < 0) {
-            t->oom = 1;
-            return;
-        }
-        if ((size_t)k < room) {
-            t->n += (size_t)k;
-            return;
-        }
-        size_t cap = t->cap ? 2 * t->cap : 1024;
-        while (cap - t->n <= (size_t)k)
-            cap *= 2;
-        char *g = realloc(t->p, cap);
-        if (!g) {
-            t->oom = 1;
-            return;
-        }
-        t->p = g;
-        t->cap = cap;
-    }
-}
 
 static void json_num(const char *key, double v, int comma)
 {
@@ -213,23 +150,23 @@ int tr_cmd_tighten(int argc, char **argv)
             if (!strcmp(a, "-o") || !strcmp(a, "--output"))
                 out = v;
             else if (!strcmp(a, "--n"))
-                bad = parse_count(v, &n) || n < 4;
+                bad = tr_arg_long(v, 4, LONG_MAX, &n);
             else if (!strcmp(a, "--refine-to"))
-                bad = parse_count(v, &refine_to) || refine_to < 4;
+                bad = tr_arg_long(v, 4, LONG_MAX, &refine_to);
             else if (!strcmp(a, "--target"))
-                bad = parse_double(v, &target) || target <= 0;
+                bad = tr_arg_double(v, 0, DBL_MAX, &target) || target <= 0;
             else if (!strcmp(a, "--residual")) {
-                bad = parse_double(v, &residual);
+                bad = tr_arg_double(v, 0, DBL_MAX, &residual);
                 residual_given = 1;
             }
             else if (!strcmp(a, "--steps"))
-                bad = parse_count(v, &steps);
+                bad = tr_arg_long(v, 1, LONG_MAX, &steps);
             else if (!strcmp(a, "--time-limit"))
-                bad = parse_double(v, &time_limit) || time_limit <= 0;
+                bad = tr_arg_double(v, 0, DBL_MAX, &time_limit) || time_limit <= 0;
             else if (!strcmp(a, "--checkpoint"))
                 ckpt = v;
             else if (!strcmp(a, "--checkpoint-every"))
-                bad = parse_double(v, &ckpt_every) || ckpt_every <= 0;
+                bad = tr_arg_double(v, 0, DBL_MAX, &ckpt_every) || ckpt_every <= 0;
             else if (!strcmp(a, "--resume"))
                 resume = v;
             else
@@ -344,27 +281,29 @@ int tr_cmd_tighten(int argc, char **argv)
         rc = tr_thickness_measure(&fin, NULL, &th, NULL, &err);
         rescaled = 1;
     }
-    text cm = {0};
+    tr_text cm = {0};
+    char *comments = NULL;
     if (rc == TR_OK) {
-        tprintf(&cm, "tightened by tightrope %s on %s\n", TIGHTROPE_VERSION, tr_engine_device(e));
-        tprintf(&cm, "command:");
+        tr_text_printf(&cm, "tightened by tightrope %s on %s\n", TIGHTROPE_VERSION, tr_engine_device(e));
+        tr_text_printf(&cm, "command:");
         for (int i = 0; i < argc; i++)
-            tprintf(&cm, " %s", argv[i]);
-        tprintf(&cm, "\nN %zu\nlength %.17g\nMinRad %.17g\ndcsd %.17g\nthickness %.17g\nropelength %.17g\n",
+            tr_text_printf(&cm, " %s", argv[i]);
+        tr_text_printf(&cm, "\nN %zu\nlength %.17g\nMinRad %.17g\ndcsd %.17g\nthickness %.17g\nropelength %.17g\n",
                 th.vertices, th.length, th.minrad, th.dcsd, th.thickness, th.ropelength);
-        tprintf(&cm, "residual %.6g\nsteps %ld\nstop %s\n%s", p.residual, p.steps, tr_stop_reason_name(why),
+        tr_text_printf(&cm, "residual %.6g\nsteps %ld\nstop %s\n%s", p.residual, p.steps, tr_stop_reason_name(why),
                 rescaled ? "rescaled to thickness 1\n" : "");
         if (p.polished)
-            tprintf(&cm, "polish %s: ropelength %.9f -> %.9f in %.2f s\n", p.polished > 0 ? "accepted" : "rejected",
+            tr_text_printf(&cm, "polish %s: ropelength %.9f -> %.9f in %.2f s\n", p.polished > 0 ? "accepted" : "rejected",
                     p.polish_before, p.polish_after, p.polish_seconds);
-        if (cm.oom)
+        comments = tr_text_take(&cm, NULL);
+        if (!comments)
             rc = tr_fail(&err, TR_ENOMEM, "out of memory");
     }
     if (rc == TR_OK)
-        rc = tr_curve_write(out, TR_FORMAT_AUTO, &fin, cm.p, &err);
+        rc = tr_curve_write(out, TR_FORMAT_AUTO, &fin, comments, &err);
     if (rc) {
         fprintf(stderr, "tightrope tighten: %s\n", err.msg);
-        free(cm.p);
+        free(comments);
         tr_curve_free(&fin);
         tr_engine_destroy(e);
         return 2;
@@ -403,7 +342,7 @@ int tr_cmd_tighten(int argc, char **argv)
     if (goal && !reached && why != TR_STOP_SIGNAL)
         fprintf(stderr, "tightrope tighten: stopped (%s) before reaching the requested %s; wrote %s\n",
                 tr_stop_reason_name(why), target > 0 ? "ropelength" : "residual", out);
-    free(cm.p);
+    free(comments);
     tr_curve_free(&fin);
     tr_engine_destroy(e);
     return why == TR_STOP_SIGNAL || (goal && !reached) ? 1 : 0;

@@ -9,6 +9,7 @@
 #include "curve_io.h"
 #include "polish.h"
 #include "refine_lowpass.h"
+#include "text_file.h"
 
 #ifndef M_PI
 #define M_PI 3.14159265358979323846
@@ -359,47 +360,6 @@ int tr_engine_refine(tr_engine *e, size_t n, tr_error *err)
 
 /* ---- checkpoints: exact text (hex floats) ---- */
 
-typedef struct sbuf {
-    char *s;
-    size_t n, cap;
-    int oom;
-} sbuf;
-
-static void sb_printf(sbuf *b, const char *fmt, ...)
-#if defined(__GNUC__)
-    __attribute__((format(printf, 2, 3)))
-#endif
-    ;
-
-#include <stdarg.h>
-static void sb_printf(sbuf *b, const char *fmt, ...)
-{
-    if (b->oom)
-        return;
-    for (;;) {
-        va_list ap;
-        va_start(ap, fmt);
-        int k = vsnprintf(b->s ? b->s + b->n : NULL, b->s ? b->cap - b->n : 0, fmt, ap);
-        va_end(ap);
-        if (k < 0) {
-            b->oom = 1;
-            return;
-        }
-        if (b->s && b->n + (size_t)k < b->cap) {
-            b->n += (size_t)k;
-            return;
-        }
-        size_t nc = (b->cap + (size_t)k + 1) * 2;
-        char *ns = realloc(b->s, nc);
-        if (!ns) {
-            b->oom = 1;
-            return;
-        }
-        b->s = ns;
-        b->cap = nc;
-    }
-}
-
 int tr_engine_checkpoint_write(tr_engine *e, const char *path, tr_error *err)
 {
     int rc = e->be.ops->download(e->be.state, e->curve.x, e->ebar, err);
@@ -408,65 +368,33 @@ int tr_engine_checkpoint_write(tr_engine *e, const char *path, tr_error *err)
     tr_engine_progress p;
     tr_engine_get_progress(e, &p);
     const tr_curve *c = &e->curve;
-    sbuf b = {0};
-    sb_printf(&b, "tightrope-checkpoint 1\n");
-    sb_printf(&b, "ncomp %d\n", c->ncomp);
+    tr_text b = {0};
+    tr_text_printf(&b, "tightrope-checkpoint 1\n");
+    tr_text_printf(&b, "ncomp %d\n", c->ncomp);
     for (int k = 0; k < c->ncomp; k++)
-        sb_printf(&b, "comp %zu %d %a %d\n", tr_comp_nv(c, k), c->closed[k], e->ebar[k], e->gap[k]);
-    sb_printf(&b, "state %ld %ld %a %a %a %a %a %d\n", e->steps, e->rejected, e->h, e->disp_acc,
+        tr_text_printf(&b, "comp %zu %d %a %d\n", tr_comp_nv(c, k), c->closed[k], e->ebar[k], e->gap[k]);
+    tr_text_printf(&b, "state %ld %ld %a %a %a %a %a %d\n", e->steps, e->rejected, e->h, e->disp_acc,
               p.elapsed, e->residual, e->length, e->jammed);
-    sb_printf(&b, "ncst %d\n", c->ncst);
+    tr_text_printf(&b, "ncst %d\n", c->ncst);
     for (int q = 0; q < c->ncst; q++) {
         const tr_constraint *k = &c->cst[q];
-        sb_printf(&b, "cst %d %d %a %a %a %a %a %a %a\n", (int)k->kind, k->id, k->p[0], k->p[1], k->p[2],
+        tr_text_printf(&b, "cst %d %d %a %a %a %a %a %a %a\n", (int)k->kind, k->id, k->p[0], k->p[1], k->p[2],
                   k->u[0], k->u[1], k->u[2], k->d);
     }
     for (size_t i = 0; i < c->nv; i++)
         if (c->vcst && c->vcst[i] >= 0)
-            sb_printf(&b, "vcst %zu %d\n", i, c->vcst[i]);
-    sb_printf(&b, "x\n");
+            tr_text_printf(&b, "vcst %zu %d\n", i, c->vcst[i]);
+    tr_text_printf(&b, "x\n");
     for (size_t i = 0; i < c->nv; i++)
-        sb_printf(&b, "%a %a %a\n", c->x[3 * i], c->x[3 * i + 1], c->x[3 * i + 2]);
-    sb_printf(&b, "end\n");
-    if (b.oom) {
-        free(b.s);
+        tr_text_printf(&b, "%a %a %a\n", c->x[3 * i], c->x[3 * i + 1], c->x[3 * i + 2]);
+    tr_text_printf(&b, "end\n");
+    size_t len;
+    char *text = tr_text_take(&b, &len);
+    if (!text)
         return tr_fail(err, TR_ENOMEM, "out of memory writing a checkpoint");
-    }
-    rc = tr_write_file_atomic(path, b.s, b.n, err);
-    free(b.s);
+    rc = tr_write_file_atomic(path, text, len, err);
+    free(text);
     return rc;
-}
-
-static char *read_all(const char *path, tr_error *err)
-{
-    FILE *f = fopen(path, "rb");
-    if (!f) {
-        tr_fail(err, TR_EIO, "%s: cannot open checkpoint", path);
-        return NULL;
-    }
-    size_t cap = 1 << 16, n = 0;
-    char *s = malloc(cap);
-    while (s) {
-        size_t k = fread(s + n, 1, cap - n - 1, f);
-        n += k;
-        if (n + 1 < cap)
-            break;
-        cap *= 2;
-        char *ns = realloc(s, cap);
-        if (!ns) {
-            free(s);
-            s = NULL;
-        } else {
-            s = ns;
-        }
-    }
-    fclose(f);
-    if (!s) {
-        tr_fail(err, TR_ENOMEM, "%s: out of memory reading checkpoint", path);
-        return NULL;
-    }
-    s[n] = 0;
-    return s;
 }
 
 /* A whole token that is a finite number (strtod alone accepts "zzz" as 0). */
@@ -481,9 +409,10 @@ int tr_engine_resume(tr_engine **out, const char *path, const char *device,
                      const tr_engine_params *p, tr_error *err)
 {
     *out = NULL;
-    char *text = read_all(path, err);
-    if (!text)
-        return TR_EIO;
+    char *text;
+    int rrc = tr_read_file(path, &text, NULL, err);
+    if (rrc)
+        return rrc;
     /* every vertex needs a line of at least "0 0 0\n": bounds the counts
      * before anything is allocated from them (taken before strtok cuts the text) */
     const size_t max_vertices = strlen(text) / 6;
