@@ -604,8 +604,6 @@ static int run_polish(tr_engine *e, double seconds, volatile sig_atomic_t *stop,
     tr_polish_params pp;
     tr_polish_params_default(&pp);
     pp.time_limit = seconds;
-    if (seconds > 0) /* under a time limit, go on while there is time (it stops when converged) */
-        pp.max_outer = 1000;
     pp.stop = stop;
     tr_polish_stats ps;
     if ((rc = tr_polish(&e->curve, &pp, &ps, err))) {

@@ -19,7 +19,8 @@
  * Method: augmented Lagrangian (Powell-Hestenes-Rockafellar; Nocedal &
  * Wright 17.4) with L-BFGS inner solves (lbfgs.h), multiplier updates after
  * each inner solve and a tenfold penalty increase when the worst violation
- * did not fall by 4.
+ * did not fall by 4; the whole run is restarted from its result with the
+ * first penalty while that still shortens the rope (max_restarts).
  *
  * Never a different knot (the engine's argument, engine.h): every L-BFGS
  * iteration moves each vertex at most max_move along a straight line; after
@@ -55,6 +56,10 @@ typedef struct tr_polish_params {
     double mu0;        /* first penalty */
     double mu_max;
     int lbfgs_m;
+    /* Runs from a fresh penalty, each from the last one's result, while a
+     * run shortens the rope by more than restart_tol (relative); 1: one run. */
+    int max_restarts;
+    double restart_tol;
     /* Optional observer of every accepted iterate (tests check the guards
      * independently with it); x has 3 nv entries in thickness-1 units. */
     void (*observe)(void *user, const double *x, size_t nv);
@@ -69,7 +74,8 @@ void tr_polish_params_default(tr_polish_params *p);
 typedef struct tr_polish_stats {
     int skipped;        /* constrained vertices: nothing done */
     int accepted;       /* the curve was replaced */
-    int outer, inner_iters, evals, rebuilds;
+    int outer, inner_iters, evals, rebuilds; /* summed over the runs */
+    int restarts;       /* augmented-Lagrangian runs made */
     double ropelength_before, ropelength_after; /* oracle, before / after (after = before if not accepted) */
     double max_viol;    /* worst relative violation at the end of the minimisation */
     double edge_dev;    /* max relative edge deviation of the result */
