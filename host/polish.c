@@ -588,9 +588,9 @@ int tr_polish(tr_curve *cv, const tr_polish_params *prm, tr_polish_stats *st, tr
             break;
         tr_polish_stats one;
         int rc = polish_once(cv, &run, &one, err);
-        if (rc && r == 0)
+        if (rc && (r == 0 || rc == TR_ENOMEM))
             return rc;
-        if (rc) /* a later run could not start (the curve is the accepted one): keep it */
+        if (rc) /* a later run found nothing to do (the curve is the accepted one): keep it */
             break;
         spent += one.seconds;
         st->seconds = spent;
