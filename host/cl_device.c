@@ -133,6 +133,9 @@ int tr_cl_enumerate(tr_cl_device_list *out, tr_error *err)
         size_t got = 0;
         TR_CL_CHECK(clGetPlatformInfo(plat[p], CL_PLATFORM_NAME, sizeof pname - 1, pname, &got));
         pname[got < sizeof pname ? got : sizeof pname - 1] = '\0';
+        char pvendor[128];
+        TR_CL_CHECK(clGetPlatformInfo(plat[p], CL_PLATFORM_VENDOR, sizeof pvendor - 1, pvendor, &got));
+        pvendor[got < sizeof pvendor ? got : sizeof pvendor - 1] = '\0';
 
         cl_uint nd = 0;
         e = clGetDeviceIDs(plat[p], CL_DEVICE_TYPE_ALL, 0, NULL, &nd);
@@ -158,6 +161,7 @@ int tr_cl_enumerate(tr_cl_device_list *out, tr_error *err)
             info->pid = plat[p];
             info->did = devs[d];
             snprintf(info->platform_name, sizeof info->platform_name, "%s", pname);
+            snprintf(info->platform_vendor, sizeof info->platform_vendor, "%s", pvendor);
             describe_device(info);
         }
     }
@@ -279,7 +283,9 @@ int tr_device_select(const char *spec, tr_device_choice *out, tr_error *err)
             rc = tr_fail(err, TR_EINVAL, "no opencl device %d:%d ('tightrope devices' lists them)", p, d);
     } else {
         for (int i = 0; i < l.n; i++)
-            if (contains_nocase(l.dev[i].name, spec) || contains_nocase(l.dev[i].platform_name, spec)) {
+            /* the platform vendor lets "pocl", "nvidia" or "amd" select a driver */
+            if (contains_nocase(l.dev[i].name, spec) || contains_nocase(l.dev[i].platform_name, spec) ||
+                contains_nocase(l.dev[i].platform_vendor, spec)) {
                 /* Prefer usable matches; an unusable one is reported below. */
                 if (found < 0 || (l.dev[i].usable && !l.dev[found].usable))
                     found = i;
@@ -287,7 +293,7 @@ int tr_device_select(const char *spec, tr_device_choice *out, tr_error *err)
             }
         if (found < 0)
             rc = tr_fail(err, TR_EINVAL,
-                         "no device matches '%s' (use reference, auto, P:D or part of a name)", spec);
+                         "no device matches '%s' (use reference, auto, P:D or part of a device, platform or vendor name)", spec);
         else if (matches > 1)
             rc = tr_fail(err, TR_EINVAL, "'%s' matches %d usable devices; use P:D", spec, matches);
     }

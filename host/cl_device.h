@@ -15,6 +15,7 @@ typedef struct tr_cl_device_info {
     cl_platform_id pid;
     cl_device_id did;
     char platform_name[128];
+    char platform_vendor[128]; /* CL_PLATFORM_VENDOR ("The pocl project", "NVIDIA Corporation") */
     char name[256];
     char vendor[128];
     char version[128];        /* CL_DEVICE_VERSION */

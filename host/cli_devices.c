@@ -38,7 +38,8 @@ static void usage(FILE *f)
     fprintf(f, "usage: tightrope devices [--json]\n"
                "Lists the serial reference and every OpenCL device with its P:D index,\n"
                "double-precision support and, for an unusable device, the reason.\n"
-               "Select one with --device reference|auto|P:D|NAME-PART or TIGHTROPE_DEVICE.\n");
+               "Select one with --device reference|auto|opencl|P:D|NAME-PART or TIGHTROPE_DEVICE;\n"
+               "NAME-PART is part of a device, platform or platform-vendor name (e.g. pocl).\n");
 }
 
 int tr_cmd_devices(int argc, char **argv)
@@ -87,6 +88,8 @@ int tr_cmd_devices(int argc, char **argv)
             const tr_cl_device_info *d = &l.dev[i];
             printf(",\n  {\"id\": \"%d:%d\", \"platform\": ", d->platform, d->device);
             json_string(d->platform_name);
+            printf(", \"platform_vendor\": ");
+            json_string(d->platform_vendor);
             printf(", \"name\": ");
             json_string(d->name);
             printf(", \"vendor\": ");

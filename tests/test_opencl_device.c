@@ -137,6 +137,20 @@ static void test_selection(int have_device)
         tr_device_choice again;
         CHECK_OK(tr_device_select(pd, &again, &err));
         CHECK(again.kind == TR_DEVICE_OPENCL && again.cl.did == ch.cl.did);
+        /* the platform vendor is a name to select by (PoCL: "The pocl
+         * project", so --device pocl), whenever it names one usable device */
+        CHECK(ch.cl.platform_vendor[0] != '\0');
+        int same_vendor = 0;
+        tr_cl_device_list l;
+        if (tr_cl_enumerate(&l, &err) == TR_OK) {
+            for (int i = 0; i < l.n; i++)
+                same_vendor += l.dev[i].usable && !strcmp(l.dev[i].platform_vendor, ch.cl.platform_vendor);
+            tr_cl_device_list_free(&l);
+        }
+        if (same_vendor == 1 && strlen(ch.cl.platform_vendor) < 128) {
+            CHECK_OK(tr_device_select(ch.cl.platform_vendor, &again, &err));
+            CHECK(again.kind == TR_DEVICE_OPENCL && again.cl.did == ch.cl.did);
+        }
     } else {
         CHECK(ch.kind == TR_DEVICE_REFERENCE && ch.warning[0] != '\0');
         CHECK(tr_device_select("opencl", &any, &err) != TR_OK || any.kind != TR_DEVICE_OPENCL);
