@@ -305,7 +305,7 @@ static void test_resample(void)
     tr_curve c, r;
     /* an irregular closed KnotPlot trefoil, refined */
     tr_shared_path(path, sizeof path, "data/knotplot/3.1.vect");
-    CHECK_OK(tr_curve_read(path, TR_FORMAT_AUTO, &c, &err));
+    REQUIRE_OK(tr_curve_read(path, TR_FORMAT_AUTO, &c, &err));
     size_t n = 120;
     CHECK_OK(tr_resample(&c, &n, &r, &err));
     if (r.nv) {
@@ -325,7 +325,7 @@ static void test_resample(void)
 
     /* open ropes with plane constraints on their ends */
     tr_shared_path(path, sizeof path, "data/knotplot/simple_clasp.vect");
-    CHECK_OK(tr_curve_read(path, TR_FORMAT_AUTO, &c, &err));
+    REQUIRE_OK(tr_curve_read(path, TR_FORMAT_AUTO, &c, &err));
     size_t nn[2] = {50, 61};
     CHECK_OK(tr_resample(&c, nn, &r, &err));
     if (r.nv) {
@@ -371,7 +371,7 @@ static void test_resample(void)
 
     /* smooth resampling of open ropes keeps their end vertices */
     tr_shared_path(path, sizeof path, "data/knotplot/simple_clasp.vect");
-    CHECK_OK(tr_curve_read(path, TR_FORMAT_AUTO, &c, &err));
+    REQUIRE_OK(tr_curve_read(path, TR_FORMAT_AUTO, &c, &err));
     CHECK_OK(tr_resample_smooth(&c, nn, &r, &err));
     if (r.nv) {
         CHECK(!memcmp(r.x, c.x, 3 * sizeof *r.x));

@@ -37,6 +37,18 @@ extern int tr_test_failures;
         }                                                                              \
     } while (0)
 
+/* CHECK_OK for a step the rest of a void test function needs (a file read): on
+ * failure the function returns instead of running on an uninitialised value. */
+#define REQUIRE_OK(expr)                                                               \
+    do {                                                                               \
+        int rc_ = (expr);                                                              \
+        if (rc_ != 0) {                                                                \
+            tr_test_failures++;                                                        \
+            tr_test_report(__FILE__, __LINE__, "%s returned %d (test stops)", #expr, rc_); \
+            return;                                                                    \
+        }                                                                              \
+    } while (0)
+
 void tr_test_report(const char *file, int line, const char *fmt, ...)
 #if defined(__GNUC__)
     __attribute__((format(printf, 3, 4)))
