@@ -589,7 +589,8 @@ fail:
  * the engine's exact constraint set (equal edges to 1e-9). The polished
  * curve is at thickness 1 with every constraint satisfied, so settle moves
  * it by no more than its edge deviation. */
-static int run_polish(tr_engine *e, double seconds, volatile sig_atomic_t *stop, tr_error *err)
+static int run_polish(tr_engine *e, double seconds, double target, volatile sig_atomic_t *stop,
+                      tr_error *err)
 {
     size_t nx = 3 * e->curve.nv;
     double *keep = malloc((nx + (size_t)e->curve.ncomp) * sizeof *keep);
@@ -604,6 +605,7 @@ static int run_polish(tr_engine *e, double seconds, volatile sig_atomic_t *stop,
     tr_polish_params pp;
     tr_polish_params_default(&pp);
     pp.time_limit = seconds;
+    pp.target = target;
     pp.stop = stop;
     tr_polish_stats ps;
     if ((rc = tr_polish(&e->curve, &pp, &ps, err))) {
@@ -683,7 +685,8 @@ int tr_engine_run(tr_engine *e, const tr_engine_limits *lim, tr_stop_reason *why
              (stop == TR_STOP_NONE && lim->time_limit > 0 &&
               now_s() - level_t0 >= (1.0 - e->prm.polish_share) * time_left_at_level))) {
             double left = lim->time_limit > 0 ? lim->time_limit - p.elapsed : 0.0;
-            if ((rc = run_polish(e, lim->time_limit > 0 ? fmax(left, 1e-3) : 0.0, lim->stop, err)))
+            if ((rc = run_polish(e, lim->time_limit > 0 ? fmax(left, 1e-3) : 0.0, lim->target,
+                                 lim->stop, err)))
                 return rc;
             continue;
         }
@@ -700,7 +703,7 @@ int tr_engine_run(tr_engine *e, const tr_engine_limits *lim, tr_stop_reason *why
                 level_done = 1;
             if (level_done && pc && e->polished == 0) {
                 double budget = lim->time_limit > 0 ? fmax(0.5 * time_left_at_level - used, 1e-3) : 0.0;
-                if ((rc = run_polish(e, budget, lim->stop, err)))
+                if ((rc = run_polish(e, budget, 0.0, lim->stop, err)))
                     return rc;
                 continue;
             }

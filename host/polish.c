@@ -615,6 +615,8 @@ int tr_polish(tr_curve *cv, const tr_polish_params *prm, tr_polish_stats *st, tr
         st->edge_dev = one.edge_dev;
         if (one.ropelength_before - one.ropelength_after <= prm->restart_tol * one.ropelength_before)
             break;
+        if (prm->target > 0 && one.ropelength_after <= prm->target)
+            break;
     }
     return TR_OK;
 }

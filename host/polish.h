@@ -60,6 +60,9 @@ typedef struct tr_polish_params {
      * run shortens the rope by more than restart_tol (relative); 1: one run. */
     int max_restarts;
     double restart_tol;
+    /* > 0: no further restart once an accepted run measures a ropelength at
+     * or below this (a user's --target; 0: none). */
+    double target;
     /* Optional observer of every accepted iterate (tests check the guards
      * independently with it); x has 3 nv entries in thickness-1 units. */
     void (*observe)(void *user, const double *x, size_t nv);

@@ -147,13 +147,14 @@ static void polish_loose_figure_eight(void)
     tr_error err;
     char path[4096];
     tr_curve k, c;
-    CHECK_OK(tr_curve_read(tr_shared_path(path, sizeof path, "data/knotplot/4.1.vect"), TR_FORMAT_AUTO, &k, &err));
+    REQUIRE_OK(tr_curve_read(tr_shared_path(path, sizeof path, "data/knotplot/4.1.vect"), TR_FORMAT_AUTO, &k, &err));
     size_t n = 100;
     CHECK_OK(tr_resample(&k, &n, &c, &err));
     tr_thickness t0, t1;
     CHECK_OK(tr_thickness_measure(&c, NULL, &t0, NULL, &err));
-    tr_curve once;
+    tr_curve once, tgt;
     CHECK_OK(tr_curve_copy(&once, &c, &err));
+    CHECK_OK(tr_curve_copy(&tgt, &c, &err));
     tr_polish_params pp;
     tr_polish_params_default(&pp);
     tr_polish_stats st, st1, again;
@@ -163,6 +164,13 @@ static void polish_loose_figure_eight(void)
     CHECK_OK(tr_polish(&once, &pp, &st1, &err));
     pp.max_restarts = 100;
     CHECK_OK(tr_polish(&c, &pp, &again, &err));
+    /* a target the first run already beats (the start's own ropelength):
+     * no restart after it, although restarts would shorten the rope further */
+    tr_polish_stats st_t;
+    pp.target = t0.ropelength;
+    CHECK_OK(tr_polish(&tgt, &pp, &st_t, &err));
+    pp.target = 0;
+    CHECK(st_t.accepted && st_t.restarts == 1 && st_t.ropelength_after <= t0.ropelength);
     printf("4_1 N 100 from KnotPlot: ropelength %.6f -> %.6f in %d runs (%.2f s), one run %.6f; polished again %.9f "
            "-> %.9f; TightKnot table (N 400, another conformation) %.6f\n",
            t0.ropelength, t1.ropelength, st.restarts, st.seconds, st1.ropelength_after, again.ropelength_before,
@@ -173,6 +181,7 @@ static void polish_loose_figure_eight(void)
     CHECK(t1.ropelength <= st1.ropelength_after);
     CHECK(again.ropelength_before - again.ropelength_after <= 1e-7 * again.ropelength_before);
     tr_curve_free(&once);
+    tr_curve_free(&tgt);
     tr_curve_free(&c);
     tr_curve_free(&k);
 }
