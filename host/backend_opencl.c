@@ -20,11 +20,12 @@
 #define KERNELS(X)                                                                            \
     X(tension_force) X(tension_smooth) X(tension_move) X(pairs_upper) X(scan_local)           \
     X(scan_sums) X(scan_add) X(pairs_write) X(contacts_csr) X(pairs_dist) X(rows_chain)       \
-    X(rows_strut) X(cg_init) X(jt_vertex) X(jt_ebar) X(j_rows) X(cg_start) X(cg_top)          \
+    X(rows_strut) X(cg_init) X(jt_vertex) X(jt_ebar_partial) X(jt_ebar) X(j_rows) X(cg_start) X(cg_top)          \
     X(cg_alpha) X(cg_yr) X(cg_beta) X(cg_p) X(dx_norm) X(step_scale) X(apply_dx)              \
     X(apply_debar) X(measure_edges) X(measure_minrad) X(measure_disp) X(comp_sum)            \
     X(cg_reset) X(release_pulling) X(project_field) X(tangent_finish) X(ebar_velocity)        \
-    X(tension_smooth2) X(precond_setup) X(precond_diag) X(precond_edges) X(copy_rows)
+    X(tension_smooth2) X(precond_setup) X(precond_diag) X(precond_edges) X(copy_rows)        \
+    X(tridiag_matrix) X(tridiag_level) X(tridiag_finish) X(tridiag_group)
 #define ENUM(k) K_##k,
 #define NAME(k) #k,
 enum { KERNELS(ENUM) K_COUNT };
@@ -69,6 +70,16 @@ typedef struct cl_state {
     cl_mem rC, rgrad, ract, rs, rt, rv, y, r, p, q, b;
     cl_mem cgq, cdeb, chg; /* curvature rows' second gradient and ebar derivative; a flag */
     cl_mem pdiag, z, po, tw, closed; /* preconditioner: diagonal, M^-1 r, edge off-diagonal, work */
+    /* The edge block by parallel cyclic reduction (kernels/tridiag.cl) instead
+     * of precond_edges' sequential sweep: level-0 set, two alternating sets,
+     * the Sherman-Morrison vector; tri_group > 0: one work-group of that size
+     * does the whole solve. */
+    int tri_pcr, tri_levels, any_closed;
+    /* work-groups per component of the ebar sums (jt_ebar_partial), and their partial sums */
+    int ebar_groups;
+    cl_mem ebar_part;
+    size_t tri_group;
+    cl_mem tset0, tp, tq, tuu;
 } cl_state;
 
 static void release(cl_mem *m)
@@ -89,7 +100,8 @@ static void cl_destroy(void *sp)
                    &s->pa,    &s->pb,   &s->adj,  &s->adjn, &s->pd,   &s->rC,   &s->rgrad,
                    &s->ract,  &s->rs,   &s->rt,   &s->rv,   &s->y,    &s->r,    &s->p,
                    &s->q,     &s->b,    &s->cgq,  &s->cdeb, &s->chg,
-                   &s->pdiag, &s->z,    &s->po,   &s->tw,   &s->closed};
+                   &s->pdiag, &s->z,    &s->po,   &s->tw,   &s->closed, &s->tset0,
+                   &s->tp,    &s->tq,   &s->tuu,  &s->ebar_part};
     for (size_t i = 0; i < sizeof m / sizeof m[0]; i++)
         release(m[i]);
     for (int i = 0; i < K_COUNT; i++)
@@ -118,15 +130,10 @@ cleanup:
     return rc;
 }
 
-/* Sets the arguments (pairs of size, pointer, terminated by 0) and launches
- * kernel id over n items (global padded to the fixed local size). With
- * profiling on, waits for the launch and adds its device time. */
-static int run(cl_state *s, int id, size_t n, tr_error *err, ...)
+/* Sets kernel id's arguments from ap (pairs of size, pointer, terminated by 0). */
+static int set_args(cl_state *s, int id, va_list ap, tr_error *err)
 {
-    int rc = TR_OK;
     cl_kernel k = s->k[id];
-    va_list ap;
-    va_start(ap, err);
     cl_uint i = 0;
     for (;;) {
         size_t sz = va_arg(ap, size_t);
@@ -135,15 +142,20 @@ static int run(cl_state *s, int id, size_t n, tr_error *err, ...)
         const void *v = va_arg(ap, const void *);
         cl_int e = clSetKernelArg(k, i++, sz, v);
         if (e != CL_SUCCESS) {
-            va_end(ap);
             tr_cl_fail(err, e, "clSetKernelArg", __FILE__, __LINE__);
             return tr_fail_wrap(err, TR_EOPENCL, "%s argument %u", kernel_names[id], i - 1);
         }
     }
-    va_end(ap);
-    size_t g = tr_cl_global(n), l = TR_CL_LOCAL;
+    return TR_OK;
+}
+
+/* Launches kernel id over global items in groups of local. With profiling
+ * on, waits for the launch and adds its device time. */
+static int enqueue(cl_state *s, int id, size_t g, size_t l, tr_error *err)
+{
+    int rc = TR_OK;
     cl_event ev = NULL;
-    TR_CL_CHECK(clEnqueueNDRangeKernel(s->ctx.queue, k, 1, NULL, &g, &l, 0, NULL,
+    TR_CL_CHECK(clEnqueueNDRangeKernel(s->ctx.queue, s->k[id], 1, NULL, &g, &l, 0, NULL,
                                        s->ctx.profiling ? &ev : NULL));
     if (ev) {
         cl_ulong t0 = 0, t1 = 0;
@@ -161,33 +173,36 @@ cleanup:
     return rc;
 }
 
+/* Sets the arguments and launches kernel id over n items (global padded to
+ * the fixed local size). */
+static int run(cl_state *s, int id, size_t n, tr_error *err, ...)
+{
+    va_list ap;
+    va_start(ap, err);
+    int rc = set_args(s, id, ap, err);
+    va_end(ap);
+    return rc != TR_OK ? rc : enqueue(s, id, tr_cl_global(n), TR_CL_LOCAL, err);
+}
+
 /* Launches with explicit work-groups (one per component, or a single one). */
 static int run_groups(cl_state *s, int id, size_t groups, tr_error *err, ...)
 {
-    int rc = TR_OK;
-    cl_kernel k = s->k[id];
     va_list ap;
     va_start(ap, err);
-    cl_uint i = 0;
-    for (;;) {
-        size_t sz = va_arg(ap, size_t);
-        if (!sz)
-            break;
-        const void *v = va_arg(ap, const void *);
-        cl_int e = clSetKernelArg(k, i++, sz, v);
-        if (e != CL_SUCCESS) {
-            va_end(ap);
-            tr_cl_fail(err, e, "clSetKernelArg", __FILE__, __LINE__);
-            return tr_fail_wrap(err, TR_EOPENCL, "%s argument %u", kernel_names[id], i - 1);
-        }
-    }
+    int rc = set_args(s, id, ap, err);
     va_end(ap);
     size_t l = groups ? TR_CL_LOCAL : 1, g = groups ? groups * TR_CL_LOCAL : 1;
-    TR_CL_CHECK(clEnqueueNDRangeKernel(s->ctx.queue, k, 1, NULL, &g, &l, 0, NULL, NULL));
-cleanup:
-    if (rc != TR_OK)
-        tr_fail_wrap(err, rc, "%s", kernel_names[id]);
-    return rc;
+    return rc != TR_OK ? rc : enqueue(s, id, g, l, err);
+}
+
+/* Launches one work-group of local items. */
+static int run_one_group(cl_state *s, int id, size_t local, tr_error *err, ...)
+{
+    va_list ap;
+    va_start(ap, err);
+    int rc = set_args(s, id, ap, err);
+    va_end(ap);
+    return rc != TR_OK ? rc : enqueue(s, id, local, local, err);
 }
 
 #define A(v) sizeof(v), (const void *)&(v)
@@ -406,8 +421,54 @@ static int apply_JT(cl_state *s, const tr_correct_params *prm, cl_mem y, tr_erro
     TR_TRY(run(s, K_jt_vertex, (size_t)nv, err, A(y), A(s->rgrad), A(s->cgq), A(s->ract), A(s->topo.next),
                A(s->topo.prev), A(s->adj), A(s->adjn), A(s->acap), A(s->rs), A(s->rt), A(s->cst),
                A(nv), A(s->dx), END));
-    TR_TRY(run_groups(s, K_jt_ebar, (size_t)s->ncomp, err, A(y), A(s->ract), A(s->start), A(s->ne),
-                      A(s->cdeb), A(nv), A(w), A(s->debar), END));
+    int G = s->ebar_groups;
+    TR_TRY(run_groups(s, K_jt_ebar_partial, (size_t)s->ncomp * (size_t)G, err, A(y), A(s->ract),
+                      A(s->start), A(s->cdeb), A(nv), A(G), A(s->ebar_part), END));
+    TR_TRY(run_groups(s, K_jt_ebar, (size_t)s->ncomp, err, A(s->ebar_part), A(s->ne), A(G), A(w),
+                      A(s->debar), END));
+cleanup:
+    return rc;
+}
+
+/* Solves the edge block whose level-0 set (matrix and right-hand side) is in
+ * tset0 by PCR into out; sm: apply the Sherman-Morrison correction of closed
+ * components (uu must be solved), else a plain solve (how uu is made). */
+static int tridiag_solve(cl_state *s, int sm, cl_mem out, tr_error *err)
+{
+    int rc = TR_OK;
+    int nv = s->nv;
+    cl_mem uu = sm ? s->tuu : s->pdiag; /* pdiag: any buffer, unread when !sm */
+    if (s->tri_group) {
+        TR_TRY(run_one_group(s, K_tridiag_group, s->tri_group, err, A(s->tri_levels), A(s->tset0),
+                             A(s->tp), A(s->tq), A(s->pdiag), A(s->po), A(s->topo.comp),
+                             A(s->start), A(s->ne), A(s->closed), A(uu), A(sm), A(nv), A(out),
+                             END));
+        return TR_OK;
+    }
+    cl_mem src = s->tset0, dst = s->tp;
+    for (int l = 0, stride = 1; l < s->tri_levels; l++, stride *= 2) {
+        TR_TRY(run(s, K_tridiag_level, (size_t)nv, err, A(stride), A(s->topo.comp), A(s->start),
+                   A(s->ne), A(nv), A(src), A(dst), END));
+        src = dst;
+        dst = dst == s->tp ? s->tq : s->tp;
+    }
+    TR_TRY(run(s, K_tridiag_finish, (size_t)nv, err, A(src), A(s->pdiag), A(s->po), A(s->topo.comp),
+               A(s->start), A(s->ne), A(s->closed), A(uu), A(sm), A(nv), A(out), END));
+cleanup:
+    return rc;
+}
+
+/* After precond_setup: the PCR level-0 matrix and, for closed components,
+ * the Sherman-Morrison vector uu (once per setup; the reference re-solves it
+ * in every application, same arithmetic up to rounding). */
+static int tridiag_setup(cl_state *s, tr_error *err)
+{
+    int rc = TR_OK;
+    int nv = s->nv;
+    TR_TRY(run(s, K_tridiag_matrix, (size_t)nv, err, A(s->pdiag), A(s->po), A(s->topo.comp),
+               A(s->start), A(s->ne), A(s->closed), A(nv), A(s->tset0), END));
+    if (s->any_closed)
+        TR_TRY(tridiag_solve(s, 0, s->tuu, err));
 cleanup:
     return rc;
 }
@@ -417,10 +478,18 @@ static int precond_apply(cl_state *s, cl_mem r, tr_error *err)
 {
     int rc = TR_OK;
     int nv = s->nv, nr = 2 * nv + s->np;
+    size_t d = sizeof(double);
     TR_TRY(run(s, K_precond_diag, (size_t)(nr - nv), err, A(r), A(s->pdiag), A(s->ract), A(nv), A(nr),
                A(s->z), END));
-    TR_TRY(run(s, K_precond_edges, (size_t)s->ncomp, err, A(r), A(s->pdiag), A(s->po), A(s->start),
-               A(s->ne), A(s->closed), A(s->ncomp), A(nv), A(s->tw), A(s->z), END));
+    if (s->tri_pcr) {
+        TR_CL_CHECK(clEnqueueCopyBuffer(s->ctx.queue, r, s->tset0, 0, 3 * (size_t)nv * d,
+                                        (size_t)nv * d, 0, NULL, NULL));
+        TR_TRY(tridiag_solve(s, 1, s->z, err));
+    } else {
+        TR_TRY(run(s, K_precond_edges, (size_t)s->ncomp, err, A(r), A(s->pdiag), A(s->po),
+                   A(s->start), A(s->ne), A(s->closed), A(s->ncomp), A(nv), A(s->tw), A(s->z),
+                   END));
+    }
 cleanup:
     return rc;
 }
@@ -438,6 +507,8 @@ static int cg_iterate(cl_state *s, const tr_correct_params *prm, int *iters, tr_
     TR_TRY(run(s, K_precond_setup, (size_t)nr, err, A(s->rgrad), A(s->cgq), A(s->cdeb), A(s->ract),
                A(s->topo.next), A(s->topo.prev), A(s->topo.comp), A(s->ne), A(s->pa), A(s->pb),
                A(s->rs), A(s->rt), A(s->cst), A(nv), A(np), A(w), A(reg), A(s->pdiag), A(s->po), END));
+    if (s->tri_pcr)
+        TR_TRY(tridiag_setup(s, err));
     TR_TRY(precond_apply(s, s->r, err));
     TR_TRY(run(s, K_copy_rows, (size_t)nr, err, A(s->z), A(s->p), A(nr), END));
     TR_TRY(tr_cl_reduce_dot(&s->red, &s->ctx, s->r, s->r, nr, s->sc, SC_RR, err));
@@ -678,6 +749,57 @@ static const tr_backend_ops opencl_ops = {
     .measure = cl_measure,
 };
 
+/* Threshold for the one-work-group PCR: below it a single launch with
+ * global-memory barriers beats a launch per level (launch overhead); above
+ * it one work-group is too few items for the rows. */
+#define TR_TRI_GROUP_MAX_ROWS 4096
+
+/* Which edge-block solver: TIGHTROPE_CL_TRIDIAG=thomas|pcr chooses (pcr-group
+ * and pcr-levels force one of PCR's two launch plans; the tests run each on
+ * any device); by default PCR on GPUs and accelerators, where the one-item
+ * Thomas sweep is the slowest kernel of the step, and Thomas on CPU devices,
+ * where it is O(N) against PCR's O(N log N) and matches the reference bit for
+ * bit. Allocates what PCR needs. */
+static int tridiag_choose(cl_state *s, const tr_cl_device_info *dev, tr_error *err)
+{
+    int rc = TR_OK;
+    const char *v = getenv("TIGHTROPE_CL_TRIDIAG");
+    int plan = 0; /* 1: one work-group, 2: a launch per level, 0: by size */
+    if (v && *v) {
+        if (strcmp(v, "pcr") && strcmp(v, "thomas") && strcmp(v, "pcr-group") &&
+            strcmp(v, "pcr-levels"))
+            return tr_fail(err, TR_EINVAL, "TIGHTROPE_CL_TRIDIAG='%s': use thomas, pcr, pcr-group or pcr-levels", v);
+        s->tri_pcr = strcmp(v, "thomas") != 0;
+        plan = !strcmp(v, "pcr-group") ? 1 : !strcmp(v, "pcr-levels") ? 2 : 0;
+    } else {
+        s->tri_pcr = !(dev->type & CL_DEVICE_TYPE_CPU);
+    }
+    if (!s->tri_pcr)
+        return TR_OK;
+    size_t nv = (size_t)s->nv, d = sizeof(double);
+    int maxne = 1;
+    for (int k = 0; k < s->ncomp; k++) {
+        maxne = s->h_ne[k] > maxne ? s->h_ne[k] : maxne;
+        s->any_closed |= s->shape.closed[k] && s->h_ne[k] >= 3;
+    }
+    s->tri_levels = 0;
+    while ((1L << s->tri_levels) < maxne)
+        s->tri_levels++;
+    s->tri_group = 0;
+    if (plan == 1 || (plan == 0 && nv <= TR_TRI_GROUP_MAX_ROWS)) {
+        size_t wg = 0;
+        TR_CL_CHECK(clGetKernelWorkGroupInfo(s->k[K_tridiag_group], dev->did,
+                                             CL_KERNEL_WORK_GROUP_SIZE, sizeof wg, &wg, NULL));
+        s->tri_group = wg < 1024 ? wg : 1024;
+    }
+    TR_TRY(buffer(s, &s->tset0, 4 * nv * d, err));
+    TR_TRY(buffer(s, &s->tp, 4 * nv * d, err));
+    TR_TRY(buffer(s, &s->tq, 4 * nv * d, err));
+    TR_TRY(buffer(s, &s->tuu, nv * d, err));
+cleanup:
+    return rc;
+}
+
 static int open_on(const tr_device_choice *dev, const tr_curve *c, int profiling, tr_backend *out,
                    tr_error *err)
 {
@@ -761,6 +883,17 @@ static int open_on(const tr_device_choice *dev, const tr_curve *c, int profiling
     TR_TRY(buffer(s, &s->chg, sizeof(int), err));
     TR_TRY(buffer(s, &s->po, nv * d, err));
     TR_TRY(buffer(s, &s->tw, 3 * nv * d, err));
+    TR_TRY(tridiag_choose(s, &dev->cl, err));
+    {
+        /* ~16 vertices per work-item and at most 256 groups per component;
+         * depends on the sizes only, so the summation order does too */
+        size_t maxnv = 1;
+        for (size_t k = 0; k < nc; k++)
+            maxnv = c->start[k + 1] - c->start[k] > maxnv ? c->start[k + 1] - c->start[k] : maxnv;
+        size_t g = (maxnv + 16 * TR_CL_LOCAL - 1) / (16 * TR_CL_LOCAL);
+        s->ebar_groups = (int)(g < 256 ? g : 256);
+        TR_TRY(buffer(s, &s->ebar_part, nc * (size_t)s->ebar_groups * d, err));
+    }
     TR_TRY(buffer(s, &s->closed, nc * sizeof(int), err));
     TR_TRY(buffer(s, &s->t1, nv * d, err));
     TR_TRY(buffer(s, &s->t2, nv * d, err));
@@ -862,4 +995,12 @@ int tr_backend_opencl_kernel_times(const tr_backend *b, tr_kernel_time *out, int
             n++;
         }
     return n;
+}
+
+const char *tr_backend_opencl_tridiag(const tr_backend *b)
+{
+    if (!b || b->ops != &opencl_ops)
+        return NULL;
+    const cl_state *s = b->state;
+    return !s->tri_pcr ? "thomas" : s->tri_group ? "pcr-group" : "pcr-levels";
 }

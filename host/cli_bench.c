@@ -46,7 +46,7 @@ static int cmp_double(const void *a, const void *b)
 }
 
 typedef struct result {
-    char device[160];
+    char device[192];
     size_t n;
     int valid;         /* validation passed (reference: 1) */
     double valid_diff; /* max |x_dev - x_ref| after the validation step */
@@ -137,7 +137,9 @@ static void bench_one(const char *spec, const tr_curve *c, const bench_ctx *bc, 
         snprintf(r->error, sizeof r->error, "%.290s", err.msg);
         return;
     }
-    snprintf(r->device, sizeof r->device, "%.150s", b.description);
+    const char *tri = tr_backend_opencl_tridiag(&b);
+    snprintf(r->device, sizeof r->device, "%.150s%s%s", b.description, tri ? ", edge block " : "",
+             tri ? tri : "");
     double *x = malloc(3 * c->nv * sizeof *x);
     if (!x) {
         snprintf(r->error, sizeof r->error, "out of memory");

@@ -184,22 +184,47 @@ __kernel void jt_vertex(__global const real *y, __global const real *rgrad,
     vstore3(tr_project_motion(cst, i, g), i, dx);
 }
 
-/* debar_k = (sum over rows of component k of y_r dC_r/debar_k) / (w ne_k);
- * work-group k (strided partial sums, then a tree). */
+/* debar_k = (sum over rows of component k of y_r dC_r/debar_k) / (w ne_k),
+ * in two stages so that a long component is summed by many work-groups (one
+ * work-group per component took 14 ms per call at N = 10^6 on an H100, a
+ * tenth of the step): work-group k G + g sums slice g of component k's rows
+ * (strided partial sums, then a tree) into part[k G + g] ... */
 __kernel __attribute__((reqd_work_group_size(TR_LOCAL_SIZE, 1, 1)))
-void jt_ebar(__global const real *y, __global const int *ract, __global const int *start,
-             __global const int *ne, __global const real *cdeb, const int nv,
-             const real ebar_weight, __global real *debar)
+void jt_ebar_partial(__global const real *y, __global const int *ract,
+                     __global const int *start, __global const real *cdeb, const int nv,
+                     const int groups_per_comp, __global real *part)
 {
     __local real s[TR_LOCAL_SIZE];
-    int k = get_group_id(0), l = get_local_id(0);
+    int G = groups_per_comp, k = get_group_id(0) / G, g = get_group_id(0) % G,
+        l = get_local_id(0);
     real sum = 0.0;
-    for (int a = start[k] + l; a < start[k + 1]; a += TR_LOCAL_SIZE) {
+    for (int a = start[k] + g * TR_LOCAL_SIZE + l; a < start[k + 1]; a += G * TR_LOCAL_SIZE) {
         if (ract[a])
             sum += -y[a];
         if (ract[nv + a])
             sum += cdeb[a] * y[nv + a];
     }
+    s[l] = sum;
+    barrier(CLK_LOCAL_MEM_FENCE);
+    for (int w = TR_LOCAL_SIZE / 2; w > 0; w >>= 1) {
+        if (l < w)
+            s[l] += s[l + w];
+        barrier(CLK_LOCAL_MEM_FENCE);
+    }
+    if (l == 0)
+        part[get_group_id(0)] = s[0];
+}
+
+/* ... and work-group k adds component k's G partial sums. */
+__kernel __attribute__((reqd_work_group_size(TR_LOCAL_SIZE, 1, 1)))
+void jt_ebar(__global const real *part, __global const int *ne, const int groups_per_comp,
+             const real ebar_weight, __global real *debar)
+{
+    __local real s[TR_LOCAL_SIZE];
+    int G = groups_per_comp, k = get_group_id(0), l = get_local_id(0);
+    real sum = 0.0;
+    for (int g = l; g < G; g += TR_LOCAL_SIZE)
+        sum += part[k * G + g];
     s[l] = sum;
     barrier(CLK_LOCAL_MEM_FENCE);
     for (int w = TR_LOCAL_SIZE / 2; w > 0; w >>= 1) {

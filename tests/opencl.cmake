@@ -20,3 +20,17 @@ set_tests_properties(cli_bench_small PROPERTIES ENVIRONMENT "${TR_TEST_ENV}"
   FAIL_REGULAR_EXPRESSION "\"valid\": false|\"error\"")
 add_test(NAME cli_bench_bad_n COMMAND ${_tr} bench --n 12,abc)
 set_tests_properties(cli_bench_bad_n PROPERTIES WILL_FAIL TRUE)
+# Both edge-block solvers of the preconditioner on whatever device there is
+# (by default Thomas on CPU devices such as PoCL, PCR on GPUs), each against
+# the serial reference.
+foreach(_solver pcr-group pcr-levels thomas)
+  add_test(NAME test_opencl_backend_${_solver} COMMAND test_opencl_backend)
+  set_tests_properties(test_opencl_backend_${_solver} PROPERTIES SKIP_RETURN_CODE 77
+    ENVIRONMENT "${TR_TEST_ENV};TIGHTROPE_CL_TRIDIAG=${_solver}"
+    WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR}
+    PASS_REGULAR_EXPRESSION "\\[${_solver}\\]: pairs.*all checks passed|skipped")
+endforeach()
+add_test(NAME cli_bench_bad_tridiag COMMAND ${_tr} bench --n 300 --steps 1 --device opencl)
+set_tests_properties(cli_bench_bad_tridiag PROPERTIES
+  ENVIRONMENT "${TR_TEST_ENV};TIGHTROPE_CL_TRIDIAG=bogus"
+  PASS_REGULAR_EXPRESSION "TIGHTROPE_CL_TRIDIAG='bogus': use thomas, pcr")

@@ -199,7 +199,14 @@ static void ops_case(const char *name, const tr_curve *c, double cutoff, int cg_
      * 3e-7 after 1..6 iterations; on the 1020-vertex Hopf link, converged to
      * 4e-15 after one iteration, the noise-driven second and third iterations
      * differ by 5e-13 and 6e-10 and agree again (3e-15) from the fourth. Two
-     * iterations: 1e-11 of the coordinates. */
+     * iterations: 1e-11 of the coordinates. With the PCR edge-block solver
+     * the preconditioner itself rounds differently (by eps times the block's
+     * condition, ~n^2/pi^2 for the near-straight chain: 1e-11 at n = 1024),
+     * which the Hopf link's noise-driven second iteration carries into y:
+     * 1e-10 of the coordinates (observed 2.2e-11 relative), as for the
+     * projected tension step below. */
+    const char *solver = tr_backend_opencl_tridiag(&p.dev);
+    int pcr = !strncmp(solver, "pcr", 3);
     CHECK_OK(R->restore(rs, &err));
     CHECK_OK(D->restore(ds, &err));
     one.max_cg = 2;
@@ -216,12 +223,14 @@ static void ops_case(const char *name, const tr_curve *c, double cutoff, int cg_
             scale = fmax(scale, fabs(p.xr[i]));
         (void)mr;
         snprintf(w, sizeof w, "%s n=%zu correct (2 cg)", name, c->nv);
-        compare(w, p.xd, p.xr, 3 * p.nv, 0.0, 1e-11 * scale);
-        compare(w, ed, er, (size_t)p.ncomp, 0.0, 1e-11 * scale); /* ebar moves with dx */
+        double tol = (pcr ? 1e-10 : 1e-11) * scale;
+        compare(w, p.xd, p.xr, 3 * p.nv, 0.0, tol);
+        compare(w, ed, er, (size_t)p.ncomp, 0.0, tol); /* ebar moves with dx */
     }
     CHECK(crr.active_rows == crd.active_rows);
-    compare(w, &crd.viol_after, &crr.viol_after, 1, 1e-6, 1e-10); /* as the positions: 1e-11 of |x| ~ 5, twice */
-    printf("%s: pairs %zu, correct cg %d/%d viol %.2g -> %.2g / %.2g\n", w, csr.pairs,
+    /* as the positions: their tolerance of |x| ~ 5, twice */
+    compare(w, &crd.viol_after, &crr.viol_after, 1, 1e-6, pcr ? 1e-9 : 1e-10);
+    printf("%s [%s]: pairs %zu, correct cg %d/%d viol %.2g -> %.2g / %.2g\n", w, solver, csr.pairs,
            crr.cg_iters, crd.cg_iters, crr.viol_before, crr.viol_after, crd.viol_after);
 
     /* force evaluation with the tangent projection (2b): the same rows, CG
