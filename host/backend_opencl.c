@@ -20,7 +20,8 @@
 #define KERNELS(X)                                                                            \
     X(tension_force) X(tension_smooth) X(tension_move) X(pairs_upper) X(scan_local)           \
     X(scan_sums) X(scan_add) X(pairs_write) X(contacts_csr) X(pairs_dist) X(rows_chain)       \
-    X(rows_strut) X(cg_init) X(jt_vertex) X(jt_ebar_partial) X(jt_ebar) X(j_rows) X(cg_start) X(cg_top)          \
+    X(rows_strut) X(cg_init) X(jt_vertex) X(jt_ebar_partial) X(jt_ebar) X(j_rows)             \
+    X(cg_start) X(cg_top)                                                                     \
     X(cg_alpha) X(cg_yr) X(cg_beta) X(cg_p) X(dx_norm) X(step_scale) X(apply_dx)              \
     X(apply_debar) X(measure_edges) X(measure_minrad) X(measure_disp) X(comp_sum)            \
     X(cg_reset) X(release_pulling) X(project_field) X(tangent_finish) X(ebar_velocity)        \

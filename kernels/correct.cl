@@ -206,11 +206,7 @@ void jt_ebar_partial(__global const real *y, __global const int *ract,
     }
     s[l] = sum;
     barrier(CLK_LOCAL_MEM_FENCE);
-    for (int w = TR_LOCAL_SIZE / 2; w > 0; w >>= 1) {
-        if (l < w)
-            s[l] += s[l + w];
-        barrier(CLK_LOCAL_MEM_FENCE);
-    }
+    TREE(tr_add, s, l)
     if (l == 0)
         part[get_group_id(0)] = s[0];
 }
@@ -227,11 +223,7 @@ void jt_ebar(__global const real *part, __global const int *ne, const int groups
         sum += part[k * G + g];
     s[l] = sum;
     barrier(CLK_LOCAL_MEM_FENCE);
-    for (int w = TR_LOCAL_SIZE / 2; w > 0; w >>= 1) {
-        if (l < w)
-            s[l] += s[l + w];
-        barrier(CLK_LOCAL_MEM_FENCE);
-    }
+    TREE(tr_add, s, l)
     if (l == 0)
         debar[k] = ne[k] ? s[0] / (ebar_weight * (real)ne[k]) : 0.0;
 }

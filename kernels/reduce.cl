@@ -16,15 +16,6 @@
         (s) = t_;                                                               \
     } while (0)
 
-#define TREE(op, s, l)                                                          \
-    for (int w_ = TR_LOCAL_SIZE / 2; w_ > 0; w_ >>= 1) {                       \
-        if ((l) < w_)                                                           \
-            (s)[l] = op((s)[l], (s)[(l) + w_]);                                 \
-        barrier(CLK_LOCAL_MEM_FENCE);                                           \
-    }
-
-inline real tr_add(real a, real b) { return a + b; }
-
 /* Length of the edge from vertex i to next[i] (0 where next[i] < 0: the end of an open rope). */
 inline real edge_len(__global const real *x, __global const int *next, int i)
 {
