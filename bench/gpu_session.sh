@@ -22,8 +22,9 @@ tr=$b/tightrope
 
 setup() {
   nvidia-smi -L || true
-  # the test data beside the checkout (../shared) does not travel: a copy may be carried in .gpu/
-  [ -d ../shared/data ] || { [ -d .gpu/shared/data ] && mkdir -p ../shared && cp -r .gpu/shared/data ../shared/; }
+  # the reference data beside the checkout (../shared) does not travel: a copy may be carried in .gpu/
+  local shared=../shared
+  [ -d $shared/data ] || shared=.gpu/shared
   echo "cores: $(nproc)"; gcc --version | head -1; cmake --version | head -1
   # The driver ships the ICD (libnvidia-opencl); containers often lack the
   # /etc/OpenCL/vendors entry that lets a loader find it.
@@ -45,7 +46,7 @@ setup() {
   [ -n "$lib" ] || lib=$(realpath .gpu/lib/libOpenCL.so.1)
   echo "headers: $inc  loader: $lib"
   export LD_LIBRARY_PATH=$(dirname "$lib")${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}
-  cmake -S . -B $b -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  cmake -S . -B $b -DCMAKE_BUILD_TYPE=RelWithDebInfo -DTIGHTROPE_SHARED_DIR="$(realpath $shared)" \
     -DOpenCL_INCLUDE_DIR="$inc" -DOpenCL_LIBRARY="$lib" > "$OUT/cmake.log" 2>&1 \
     || { tail -20 "$OUT/cmake.log"; return 1; }
   cmake --build $b -j "$(nproc)" > "$OUT/build.log" 2>&1 || { tail -30 "$OUT/build.log"; return 1; }

@@ -32,10 +32,14 @@ if(TIGHTROPE_FUZZ)
     # tree; the broken-file corpus and the KnotPlot files are read-only seeds.
     set(_fz_corpus ${CMAKE_CURRENT_BINARY_DIR}/fuzz_corpus)
     file(MAKE_DIRECTORY ${_fz_corpus})
+    set(_fz_seeds ${CMAKE_SOURCE_DIR}/tests/bad)
+    if(TR_HAVE_SHARED)
+      list(APPEND _fz_seeds ${TIGHTROPE_SHARED_DIR}/data/knotplot)
+    endif()
     add_test(NAME fuzz_readers
       COMMAND ${_fz_bin} -max_total_time=20 -timeout=10 -rss_limit_mb=2048 -print_final_stats=1
               -artifact_prefix=${CMAKE_CURRENT_BINARY_DIR}/fuzz-
-              ${_fz_corpus} ${CMAKE_SOURCE_DIR}/tests/bad ${CMAKE_SOURCE_DIR}/../shared/data/knotplot)
+              ${_fz_corpus} ${_fz_seeds})
     set_tests_properties(fuzz_readers PROPERTIES LABELS fuzz TIMEOUT 120
       ENVIRONMENT "ASAN_OPTIONS=detect_leaks=1;UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1")
   else()

@@ -173,6 +173,7 @@ static long header_vertices(const char *text)
 static void test_data_dir(const char *rel, int want_min_files)
 {
     char dir[1024], path[2048];
+    REQUIRE_SHARED(rel);
     tr_shared_path(dir, sizeof dir, rel);
     DIR *d = opendir(dir);
     if (!d) {
@@ -213,6 +214,7 @@ static void test_clasp_file(void)
     char path[1024];
     tr_error err;
     tr_curve c;
+    REQUIRE_SHARED("the KnotPlot simple clasp");
     tr_shared_path(path, sizeof path, "data/knotplot/simple_clasp.vect");
     REQUIRE_OK(tr_curve_read(path, TR_FORMAT_AUTO, &c, &err));
     if (c.nv == 0)

@@ -298,11 +298,41 @@ static double dist_to_polygon(const tr_curve *c, int k, const double *x)
     return best;
 }
 
+static void test_resample_circle(void)
+{
+    tr_error err;
+    tr_curve c, r;
+    /* smooth resampling of a coarse circle stays near the circle; the
+     * polygonal one cannot do better than the old edges' sagitta */
+    CHECK_OK(tr_make_circle(&c, 3.0, 24, &err));
+    size_t fine = 240;
+    tr_curve lin;
+    CHECK_OK(tr_resample(&c, &fine, &lin, &err));
+    CHECK_OK(tr_resample_smooth(&c, &fine, &r, &err));
+    if (r.nv && lin.nv) {
+        double elin = 0, esm = 0;
+        for (size_t i = 0; i < fine; i++) {
+            elin = fmax(elin, fabs(hypot(lin.x[3 * i], lin.x[3 * i + 1]) - 3));
+            esm = fmax(esm, fabs(hypot(r.x[3 * i], r.x[3 * i + 1]) - 3));
+        }
+        double sag = 3 * (1 - cos(PI / 24));
+        printf("circle 24 -> 240: polygonal error %.2e (sagitta %.2e), spline error %.2e, spread %.2e\n", elin, sag,
+               esm, edge_spread(&r, 0, NULL));
+        CHECK_NEAR(elin, sag, 0.05 * sag);
+        CHECK(esm < sag / 50);
+        CHECK(edge_spread(&r, 0, NULL) < 1e-12);
+    }
+    tr_curve_free(&lin);
+    tr_curve_free(&r);
+    tr_curve_free(&c);
+}
+
 static void test_resample(void)
 {
     tr_error err;
     char path[1024];
     tr_curve c, r;
+    REQUIRE_SHARED("resampling KnotPlot curves");
     /* an irregular closed KnotPlot trefoil, refined */
     tr_shared_path(path, sizeof path, "data/knotplot/3.1.vect");
     REQUIRE_OK(tr_curve_read(path, TR_FORMAT_AUTO, &c, &err));
@@ -345,30 +375,6 @@ static void test_resample(void)
     CHECK(tr_resample(&c, NULL, &r, &err) == TR_EINVAL);
     tr_curve_free(&c);
 
-    /* smooth resampling of a coarse circle stays near the circle; the
-     * polygonal one cannot do better than the old edges' sagitta */
-    CHECK_OK(tr_make_circle(&c, 3.0, 24, &err));
-    size_t fine = 240;
-    tr_curve lin;
-    CHECK_OK(tr_resample(&c, &fine, &lin, &err));
-    CHECK_OK(tr_resample_smooth(&c, &fine, &r, &err));
-    if (r.nv && lin.nv) {
-        double elin = 0, esm = 0;
-        for (size_t i = 0; i < fine; i++) {
-            elin = fmax(elin, fabs(hypot(lin.x[3 * i], lin.x[3 * i + 1]) - 3));
-            esm = fmax(esm, fabs(hypot(r.x[3 * i], r.x[3 * i + 1]) - 3));
-        }
-        double sag = 3 * (1 - cos(PI / 24));
-        printf("circle 24 -> 240: polygonal error %.2e (sagitta %.2e), spline error %.2e, spread %.2e\n", elin, sag,
-               esm, edge_spread(&r, 0, NULL));
-        CHECK_NEAR(elin, sag, 0.05 * sag);
-        CHECK(esm < sag / 50);
-        CHECK(edge_spread(&r, 0, NULL) < 1e-12);
-    }
-    tr_curve_free(&lin);
-    tr_curve_free(&r);
-    tr_curve_free(&c);
-
     /* smooth resampling of open ropes keeps their end vertices */
     tr_shared_path(path, sizeof path, "data/knotplot/simple_clasp.vect");
     REQUIRE_OK(tr_curve_read(path, TR_FORMAT_AUTO, &c, &err));
@@ -388,6 +394,7 @@ int main(void)
     test_torus();
     test_hopf();
     test_clasp();
+    test_resample_circle();
     test_resample();
     return tr_test_finish("test_generate");
 }

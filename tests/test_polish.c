@@ -147,6 +147,7 @@ static void polish_loose_figure_eight(void)
     tr_error err;
     char path[4096];
     tr_curve k, c;
+    REQUIRE_SHARED("polishing KnotPlot's 4_1");
     REQUIRE_OK(tr_curve_read(tr_shared_path(path, sizeof path, "data/knotplot/4.1.vect"), TR_FORMAT_AUTO, &k, &err));
     size_t n = 100;
     CHECK_OK(tr_resample(&k, &n, &c, &err));

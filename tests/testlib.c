@@ -51,6 +51,18 @@ int tr_test_finish(const char *name)
     return 0;
 }
 
+int tr_have_shared(const char *what)
+{
+    char path[4096];
+    FILE *f = fopen(tr_shared_path(path, sizeof path, "data/tightknot_ropelength.tsv"), "r");
+    if (f) {
+        fclose(f);
+        return 1;
+    }
+    printf("skipped, no reference data at %s: %s\n", TR_SHARED_DIR, what);
+    return 0;
+}
+
 const char *tr_shared_path(char *buf, size_t n, const char *rel)
 {
     snprintf(buf, n, "%s/%s", TR_SHARED_DIR, rel);

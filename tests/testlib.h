@@ -63,6 +63,17 @@ int tr_test_allclose(const double *got, const double *want, size_t n, double rto
 /* Prints "N passed, N failed"-style summary for this executable and returns its exit code. */
 int tr_test_finish(const char *name);
 
+/* 1 when the reference data (TR_SHARED_DIR/data, the project's ../shared)
+ * is there; else prints that the checks of `what` are skipped and returns 0.
+ * Checks against published values need it; a checkout without it still
+ * runs everything else. */
+int tr_have_shared(const char *what);
+#define REQUIRE_SHARED(what)                                                           \
+    do {                                                                               \
+        if (!tr_have_shared(what))                                                     \
+            return;                                                                    \
+    } while (0)
+
 /* Writes "dir/name" into buf; dir is TR_SHARED_DIR or TR_SOURCE_DIR. */
 const char *tr_shared_path(char *buf, size_t n, const char *rel);
 const char *tr_source_path(char *buf, size_t n, const char *rel);
