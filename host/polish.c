@@ -10,6 +10,7 @@
 #include "neighbour_search.h"
 #include "segdist.h"
 #include "thickness.h"
+#include "turning.h"
 #include "vec3.h"
 
 #ifndef M_PI
@@ -165,29 +166,6 @@ static double ineq_pen(double C, double lam, double mu, double *dphi)
     return -lam * lam / (2.0 * mu);
 }
 
-/* Turning-angle geometry at vertex i: t = tan(theta/2) and its gradients
- * with respect to p = x_i - x_prev and q = x_next - x_i (zero at a straight
- * vertex, where the rows are far from their bound). */
-static double turning(const double *p, const double *q, double lp, double lq, double *dtp, double *dtq)
-{
-    double cr[3];
-    v3_cross(cr, p, q);
-    double sn = v3_norm(cr), dt = v3_dot(p, q);
-    if (sn <= 1e-12 * lp * lq && dt > 0) {
-        memset(dtp, 0, 3 * sizeof *dtp);
-        memset(dtq, 0, 3 * sizeof *dtq);
-        return 0.0;
-    }
-    double t = sn / (lp * lq + dt);
-    double cs = dt / (lp * lq), si = sn / (lp * lq), k = 0.5 * (1.0 + t * t);
-    for (int a = 0; a < 3; a++) {
-        double ph = p[a] / lp, qh = q[a] / lq;
-        dtp[a] = k * (cs * ph - qh) / (lp * si);
-        dtq[a] = k * (cs * qh - ph) / (lq * si);
-    }
-    return t;
-}
-
 static double eval(void *vc, const double *x, double *g)
 {
     ctx *c = vc;
@@ -236,7 +214,7 @@ static double eval(void *vc, const double *x, double *g)
         v3_sub(p, x + 3 * i, x + 3 * ip);
         v3_sub(q, x + 3 * in, x + 3 * i);
         double lp = v3_norm(p), lq = v3_norm(q);
-        double t = turning(p, q, lp, lq, dtp, dtq);
+        double t = tr_turning_tan(p, q, lp, lq, dtp, dtq);
         if (t > 0)
             mrad = fmin(mrad, fmin(lp, lq) / (2.0 * t));
         double C1 = e0 * (lp - 2.0 * t), C2 = e0 * (lq - 2.0 * t), d1, d2;
@@ -306,7 +284,7 @@ static void update_multipliers(ctx *c, const double *x)
         v3_sub(p, x + 3 * i, x + 3 * ip);
         v3_sub(q, x + 3 * in, x + 3 * i);
         double lp = v3_norm(p), lq = v3_norm(q);
-        double t = turning(p, q, lp, lq, dtp, dtq);
+        double t = tr_turning_tan(p, q, lp, lq, dtp, dtq);
         c->lam_c1[i] = fmax(0.0, c->lam_c1[i] - mu * e0 * (lp - 2.0 * t));
         c->lam_c2[i] = fmax(0.0, c->lam_c2[i] - mu * e0 * (lq - 2.0 * t));
     }
