@@ -1,7 +1,9 @@
 /* tightrope measure FILE... [--json] [--struts OUT] [--per-component] [--strut-tol REL]
+ *                           [--kkt] [--kkt-band REL]
  *
  * Length, MinRad, shortest strut (dcsd), thickness, ropelength and the
- * paper's L_p, L_c, L_a of each curve file (thickness.h). Every file is read
+ * paper's L_p, L_c, L_a of each curve file (thickness.h), and with --kkt
+ * the KKT certificate of its tightness (kkt.h). Every file is read
  * before anything is measured or written, so bad input prints the reader's
  * one line, exits 2 and leaves no --struts file behind. */
 #include <math.h>
@@ -13,6 +15,7 @@
 #include "cli.h"
 #include "cli_args.h"
 #include "curve_io.h"
+#include "kkt.h"
 #include "text_file.h"
 #include "thickness.h"
 
@@ -24,13 +27,18 @@ static void usage(FILE *out)
 {
     fprintf(out,
             "usage: tightrope measure FILE... [--json] [--per-component] [--struts OUT] [--strut-tol REL]\n"
+            "                         [--kkt] [--kkt-band REL]\n"
             "  FILE            curve file (.vect, .tsv, KnotPlot x y z list)\n"
             "  --json          one JSON object per file (an array if several)\n"
             "  --per-component also measure each component on its own (always in --json)\n"
             "  --struts OUT    write the struts within REL of the shortest, and the MinRad\n"
             "                  vertex, in octrope's STRUTS format (one FILE only)\n"
-            "  --strut-tol REL relative tolerance for --struts (default %g)\n",
-            DEFAULT_STRUT_TOL);
+            "  --strut-tol REL relative tolerance for --struts (default %g)\n"
+            "  --kkt           also certify tightness: the KKT residual |g - J^T y| / |g|, the\n"
+            "                  part of the rope's tension no compressive strut or curvature\n"
+            "                  limit holds (0: critical, 1: nothing holds it)\n"
+            "  --kkt-band REL  constraints within REL of their bound may hold (default %g)\n",
+            DEFAULT_STRUT_TOL, TR_KKT_DEFAULT_BAND);
 }
 
 static void json_num(tr_text *t, const char *key, double v, int comma)
@@ -56,6 +64,27 @@ static void json_fields(tr_text *t, const tr_thickness *m)
     if (isfinite(m->dcsd))
         tr_text_printf(t, ", \"shortest_strut\": {\"edges\": [%zu, %zu], \"positions\": [%.17g, %.17g], \"length\": %.17g}",
                 m->shortest.ei, m->shortest.ej, m->shortest.si, m->shortest.sj, m->shortest.dist);
+}
+
+static void json_kkt(tr_text *t, const tr_kkt *k, double band)
+{
+    tr_text_printf(t, ", \"kkt\": {");
+    json_num(t, "residual", k->residual, 1);
+    json_num(t, "band", band, 1);
+    json_num(t, "radius", k->radius, 1);
+    json_num(t, "tension", k->force, 1);
+    tr_text_printf(t, "\"strut_rows\": %zu, \"strut_active\": %zu, \"minrad_rows\": %zu, \"minrad_active\": %zu, ",
+                   k->strut_rows, k->strut_active, k->minrad_rows, k->minrad_active);
+    json_num(t, "strut_force_max", k->strut_force_max, 1);
+    json_num(t, "optimality", k->optimality, 1);
+    tr_text_printf(t, "\"converged\": %s}", k->converged ? "true" : "false");
+}
+
+static void table_kkt(tr_text *t, const tr_kkt *k, double band)
+{
+    tr_text_printf(t, "KKT residual %.6e (band %g, radius %.15g: %zu/%zu struts and %zu/%zu MinRad rows hold; %s)\n",
+                   k->residual, band, k->radius, k->strut_active, k->strut_rows, k->minrad_active, k->minrad_rows,
+                   k->converged ? "multipliers optimal" : "an upper bound: multipliers not optimal");
 }
 
 static void json_string(tr_text *t, const char *s)
@@ -126,7 +155,9 @@ static int write_struts(const char *path, const tr_curve *c, const tr_thickness 
 
 int tr_cmd_measure(int argc, char **argv)
 {
-    int json = 0, per_comp = 0;
+    int json = 0, per_comp = 0, kkt = 0;
+    tr_kkt_params kp;
+    tr_kkt_params_default(&kp);
     const char *struts_path = NULL;
     double strut_tol = DEFAULT_STRUT_TOL;
     const char **files = calloc((size_t)argc + 1, sizeof *files);
@@ -150,6 +181,15 @@ int tr_cmd_measure(int argc, char **argv)
         } else if (!strcmp(a, "--strut-tol") && i + 1 < argc) {
             if (tr_arg_double(argv[++i], 0.0, HUGE_VAL, &strut_tol)) {
                 fprintf(stderr, "tightrope measure: --strut-tol wants a number >= 0, got '%s'\n", argv[i]);
+                free(files);
+                return 2;
+            }
+        } else if (!strcmp(a, "--kkt")) {
+            kkt = 1;
+        } else if (!strcmp(a, "--kkt-band") && i + 1 < argc) {
+            kkt = 1;
+            if (tr_arg_double(argv[++i], 0.0, 1.0, &kp.band)) {
+                fprintf(stderr, "tightrope measure: --kkt-band wants a number in [0, 1], got '%s'\n", argv[i]);
                 free(files);
                 return 2;
             }
@@ -201,6 +241,12 @@ int tr_cmd_measure(int argc, char **argv)
             status = 2;
             break;
         }
+        tr_kkt kr;
+        if (kkt && tr_kkt_certify(c, &kp, &kr, &err)) {
+            fprintf(stderr, "%s: %s\n", files[f], err.msg);
+            status = 2;
+            break;
+        }
         tr_thickness *pc = NULL;
         if (json || per_comp) {
             pc = calloc((size_t)c->ncomp, sizeof *pc);
@@ -223,6 +269,8 @@ int tr_cmd_measure(int argc, char **argv)
             json_string(&out, files[f]);
             tr_text_printf(&out, ", \"components\": %d, ", c->ncomp);
             json_fields(&out, &m);
+            if (kkt)
+                json_kkt(&out, &kr, kp.band);
             tr_text_printf(&out, ", \"per_component\": [");
             for (int k = 0; k < c->ncomp; k++) {
                 tr_text_printf(&out, "%s{\"component\": %d, \"closed\": %s, ", k ? ", " : "", k,
@@ -241,6 +289,8 @@ int tr_cmd_measure(int argc, char **argv)
                 snprintf(label, sizeof label, "comp %d", k);
                 table_row(&out, label, &pc[k]);
             }
+            if (kkt)
+                table_kkt(&out, &kr, kp.band);
             if (f + 1 < nfiles)
                 tr_text_printf(&out, "\n");
         }

@@ -3,8 +3,10 @@
  * Tightens a knot, link or clasp (engine.h), optionally through refinement
  * levels, and writes the result with its certificate: the thickness oracle's
  * numbers for the written curve (rescaled to thickness exactly 1 when no
- * vertex is constrained, so that ropelength = length), the residual, the
- * steps and the command line. SIGINT/SIGTERM stop the run at the next step,
+ * vertex is constrained, so that ropelength = length), the engine's
+ * residual, the KKT certificate of the written curve (kkt.h; by default up
+ * to KKT_AUTO_MAX_N vertices, where it takes seconds), the steps and the
+ * command line. SIGINT/SIGTERM stop the run at the next step,
  * write a last checkpoint (with --checkpoint) and the output, and exit 1. */
 #include <float.h>
 #include <limits.h>
@@ -20,12 +22,18 @@
 #include "curve_io.h"
 #include "engine.h"
 #include "generate.h"
+#include "kkt.h"
 #include "text_file.h"
 #include "thickness.h"
 
 /* The one piece of process state: raised by the signal handler, polled by
  * the engine between steps. */
 static volatile sig_atomic_t stop_requested = 0;
+
+/* The certificate's sparse factorisations cost ~0.1 s at N = 400, ~6 s at
+ * 1600 and ~1 min at 2400 on a 2-core machine (bench/RESULTS.md): above
+ * this it runs only when asked for (--kkt). */
+#define KKT_AUTO_MAX_N 2000
 
 static void on_signal(int sig)
 {
@@ -54,8 +62,12 @@ static void usage(FILE *out)
             "  --no-polish        skip the polish stage (a serial augmented-Lagrangian / L-BFGS\n"
             "                     minimisation on the host at the finest level, which by default\n"
             "                     takes the last 80%% of the finest level's time or runs when it jams)\n"
+            "  --kkt              certify the output (KKT residual) at any N; by default only\n"
+            "                     up to N = %d\n"
+            "  --no-kkt           never certify the output\n"
             "  --json             print a JSON summary on stdout\n"
-            "  --quiet            no progress line\n");
+            "  --quiet            no progress line\n",
+            KKT_AUTO_MAX_N);
 }
 
 typedef struct progress_ctx {
@@ -115,7 +127,7 @@ int tr_cmd_tighten(int argc, char **argv)
     long n = 0, refine_to = 0, steps = 0;
     double target = 0, residual = 1e-4, time_limit = 0, ckpt_every = 300;
     int residual_given = 0; /* the default residual is a stopping rule, not a goal */
-    int json = 0, quiet = 0, no_polish = 0;
+    int json = 0, quiet = 0, no_polish = 0, kkt = -1; /* -1: up to KKT_AUTO_MAX_N */
     static const char *valued[] = {"-o", "--output", "--n", "--refine-to", "--target", "--residual",
                                    "--steps", "--time-limit", "--checkpoint", "--checkpoint-every",
                                    "--resume", "--device"};
@@ -131,6 +143,10 @@ int tr_cmd_tighten(int argc, char **argv)
         }
         if (!strcmp(a, "--no-polish")) {
             no_polish = 1;
+            continue;
+        }
+        if (!strcmp(a, "--kkt") || !strcmp(a, "--no-kkt")) {
+            kkt = a[2] == 'k';
             continue;
         }
         if (!strcmp(a, "--quiet")) {
@@ -281,6 +297,13 @@ int tr_cmd_tighten(int argc, char **argv)
         rc = tr_thickness_measure(&fin, NULL, &th, NULL, &err);
         rescaled = 1;
     }
+    /* the certificate of what is written, computed on it alone */
+    tr_kkt kr = {0};
+    int certified = 0;
+    if (rc == TR_OK && why != TR_STOP_SIGNAL && (kkt == 1 || (kkt < 0 && fin.nv <= KKT_AUTO_MAX_N))) {
+        rc = tr_kkt_certify(&fin, NULL, &kr, &err);
+        certified = rc == TR_OK;
+    }
     tr_text cm = {0};
     char *comments = NULL;
     if (rc == TR_OK) {
@@ -292,6 +315,13 @@ int tr_cmd_tighten(int argc, char **argv)
                 th.vertices, th.length, th.minrad, th.dcsd, th.thickness, th.ropelength);
         tr_text_printf(&cm, "residual %.6g\nsteps %ld\nstop %s\n%s", p.residual, p.steps, tr_stop_reason_name(why),
                 rescaled ? "rescaled to thickness 1\n" : "");
+        if (certified)
+            tr_text_printf(&cm, "kkt_residual %.6e (band %g: %zu/%zu struts, %zu/%zu MinRad rows hold%s)\n", kr.residual,
+                           TR_KKT_DEFAULT_BAND, kr.strut_active, kr.strut_rows, kr.minrad_active, kr.minrad_rows,
+                           kr.converged ? "" : "; an upper bound");
+        else
+            tr_text_printf(&cm, "kkt_residual not computed (%s)\n",
+                           why == TR_STOP_SIGNAL ? "interrupted" : kkt == 0 ? "--no-kkt" : "N above the default limit; --kkt");
         if (p.polished)
             tr_text_printf(&cm, "polish %s: ropelength %.9f -> %.9f in %.2f s\n", p.polished > 0 ? "accepted" : "rejected",
                     p.polish_before, p.polish_after, p.polish_seconds);
@@ -320,6 +350,9 @@ int tr_cmd_tighten(int argc, char **argv)
         json_num("thickness", th.thickness, 1);
         json_num("ropelength", th.ropelength, 1);
         json_num("residual", p.residual, 1);
+        json_num("kkt_residual", certified ? kr.residual : NAN, 1);
+        if (certified)
+            printf("  \"kkt_converged\": %s,\n", kr.converged ? "true" : "false");
         json_num("elapsed_s", p.elapsed, 1);
         json_num("steps_per_s", p.steps_per_s, 0);
         printf("}\n");
@@ -328,6 +361,10 @@ int tr_cmd_tighten(int argc, char **argv)
                th.vertices, th.ropelength, th.length, th.thickness, th.minrad, th.dcsd);
         printf("  %ld steps in %.1f s, residual %.2e, stopped: %s\n", p.steps, p.elapsed, p.residual,
                tr_stop_reason_name(why));
+        if (certified)
+            printf("  KKT residual %.2e (%zu/%zu struts and %zu/%zu MinRad rows hold the tension%s)\n", kr.residual,
+                   kr.strut_active, kr.strut_rows, kr.minrad_active, kr.minrad_rows,
+                   kr.converged ? "" : "; an upper bound");
         if (p.polished)
             printf("  polish %s: ropelength %.6f -> %.6f in %.1f s\n", p.polished > 0 ? "accepted" : "rejected",
                    p.polish_before, p.polish_after, p.polish_seconds);

@@ -11,4 +11,4 @@ mkdir -p demo
 # T(2,3) at N = 400, tightened at N = 100, 200, 400 (each level polished) in 20 s
 ./build/tightrope make torus 2 3 --n 400 -o demo/trefoil-start.vect
 ./build/tightrope tighten demo/trefoil-start.vect -o demo/trefoil.vect --n 100 --refine-to 400 --time-limit 20
-./build/tightrope measure demo/trefoil.vect
+./build/tightrope measure --kkt demo/trefoil.vect

@@ -19,3 +19,14 @@ foreach(bad ${_measure_bad})
             -DSHARED=${TIGHTROPE_SHARED_DIR} -DWORK=${CMAKE_CURRENT_BINARY_DIR}/measure_bad_${_id}
             -P ${_measure_check})
 endforeach()
+# --kkt: a regular 101-gon certified at its own thickness (its MinRad) is
+# critical, residual ~1e-14 (test_kkt.c has the closed forms); a bad band is
+# refused with one line.
+set(_kkt_dir ${CMAKE_CURRENT_BINARY_DIR}/measure_kkt)
+tr_engine_test(cli_measure_kkt 0 DIR ${_kkt_dir}/ok ONLY "c.vect;m.txt" OUT ${_kkt_dir}/ok/m.txt
+  MATCH "KKT residual [0-9][.][0-9]+e-(1[0-9]|[2-9][0-9]) [(]band 1e-06, [^\n]*multipliers optimal[)]\n$"
+  CMD sh -c "'${_tr}' make circle --radius 5 --n 101 -o '${_kkt_dir}/ok/c.vect' && exec '${_tr}' measure --kkt '${_kkt_dir}/ok/c.vect' > '${_kkt_dir}/ok/m.txt'")
+tr_engine_test(cli_measure_kkt_json 0 DIR ${_kkt_dir}/json ONLY "c.vect;m.json" OUT ${_kkt_dir}/json/m.json
+  MATCH "\"kkt\": {\"residual\": [0-9][.][0-9]+e-(1[0-9]|[2-9][0-9]), \"band\": 1[.0-9]*e-05, [^}]*\"converged\": true}"
+  CMD sh -c "'${_tr}' make circle --radius 5 --n 101 -o '${_kkt_dir}/json/c.vect' && exec '${_tr}' measure --json --kkt-band 1e-5 '${_kkt_dir}/json/c.vect' > '${_kkt_dir}/json/m.json'")
+tr_engine_test(cli_measure_kkt_bad_band 2 CMD ${_tr} measure --kkt-band -1 ${CMAKE_CURRENT_SOURCE_DIR}/data/engine_overlap.tsv)
