@@ -130,6 +130,23 @@ void tr_constraint_project(const tr_constraint *k, double *x)
     }
 }
 
+void tr_constraint_project_motion(const tr_constraint *k, double *v)
+{
+    double d = v[0] * k->u[0] + v[1] * k->u[1] + v[2] * k->u[2];
+    switch (k->kind) {
+    case TR_CST_PLANE:
+        for (int a = 0; a < 3; a++)
+            v[a] -= d * k->u[a];
+        break;
+    case TR_CST_LINE:
+        for (int a = 0; a < 3; a++)
+            v[a] = d * k->u[a];
+        break;
+    default:
+        v[0] = v[1] = v[2] = 0.0;
+    }
+}
+
 double tr_constraint_violation(const tr_constraint *k, const double *x)
 {
     double y[3] = {x[0], x[1], x[2]};

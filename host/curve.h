@@ -62,6 +62,10 @@ int tr_curve_comp_of(const tr_curve *c, size_t i);
 /* Moves point x (3 doubles) to the nearest point satisfying constraint k. */
 void tr_constraint_project(const tr_constraint *k, double *x);
 
+/* Removes from a motion (or force) v the part constraint k forbids: the
+ * normal part on a plane, all but the direction on a line, all if fixed. */
+void tr_constraint_project_motion(const tr_constraint *k, double *v);
+
 /* Distance from x to the set that constraint k allows. */
 double tr_constraint_violation(const tr_constraint *k, const double *x);
 

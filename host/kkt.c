@@ -56,22 +56,8 @@ void tr_kkt_params_default(tr_kkt_params *p)
 
 static void project(const tr_curve *c, size_t i, double *v)
 {
-    if (!c->vcst || c->vcst[i] < 0)
-        return;
-    const tr_constraint *k = &c->cst[c->vcst[i]];
-    double d;
-    switch (k->kind) {
-    case TR_CST_PLANE:
-        d = v3_dot(v, k->u);
-        v3_axpy(v, -d, k->u);
-        break;
-    case TR_CST_LINE:
-        d = v3_dot(v, k->u);
-        v3_scale(v, d, k->u);
-        break;
-    default:
-        v[0] = v[1] = v[2] = 0.0;
-    }
+    if (c->vcst && c->vcst[i] >= 0)
+        tr_constraint_project_motion(&c->cst[c->vcst[i]], v);
 }
 
 static row *push(sys *s)
