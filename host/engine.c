@@ -679,7 +679,7 @@ int tr_engine_run(tr_engine *e, const tr_engine_limits *lim, tr_stop_reason *why
             stop = TR_STOP_RESIDUAL;
         else if (final_level && e->jammed)
             stop = TR_STOP_JAMMED;
-        int can_polish = e->prm.polish && e->polished == 0 && e->curve.ncst == 0;
+        int can_polish = e->prm.polish && e->polished == 0;
         if (final_level && can_polish &&
             (stop == TR_STOP_RESIDUAL || stop == TR_STOP_JAMMED ||
              (stop == TR_STOP_NONE && lim->time_limit > 0 &&
@@ -694,7 +694,7 @@ int tr_engine_run(tr_engine *e, const tr_engine_limits *lim, tr_stop_reason *why
             /* a coarse level has half the time left when it began; with
              * polish_coarse the engine gets the first half of that and the
              * polish the rest (it usually converges much sooner) */
-            int pc = e->prm.polish && e->prm.polish_coarse && e->curve.ncst == 0;
+            int pc = e->prm.polish && e->prm.polish_coarse;
             double coarse_res = lim->coarse_residual > 0 ? lim->coarse_residual : 1e-3;
             double used = now_s() - level_t0;
             if (e->jammed || (e->steps > 0 && e->residual < coarse_res) || (pc && e->polished != 0))

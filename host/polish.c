@@ -19,6 +19,11 @@
 
 #define NONE SIZE_MAX
 
+/* A constrained curve is taken, and given back, at thickness 1 within this
+ * (the augmented Lagrangian's violation tolerance, viol_tol, with room):
+ * the engine's settle then restores its exact constraint set. */
+#define CONSTRAINED_THICK_TOL 1e-8
+
 void tr_polish_params_default(tr_polish_params *p)
 {
     memset(p, 0, sizeof *p);
@@ -253,6 +258,13 @@ static double eval(void *vc, const double *x, double *g)
             g[3 * nb + k] -= t * n;
         }
     }
+    /* constrained vertices (clasp ends) move only as their constraint
+     * allows: L-BFGS steps are combinations of these gradients, so the
+     * iterates stay on the planes (up to rounding, snapped at the end) */
+    if (c->w.vcst)
+        for (size_t i = 0; i < nv; i++)
+            if (c->w.vcst[i] >= 0)
+                tr_constraint_project_motion(&c->w.cst[c->w.vcst[i]], g + 3 * i);
     c->last_dmin = dmin;
     c->last_minrad = mrad;
     c->viol_strut = vs;
@@ -375,23 +387,27 @@ static int polish_once(tr_curve *cv, const tr_polish_params *prm, tr_polish_stat
 {
     memset(st, 0, sizeof *st);
     double t0 = now_s();
-    if (cv->ncst > 0) {
-        st->skipped = 1;
-        return TR_OK;
-    }
     tr_thickness th0;
     int rc = tr_thickness_measure(cv, NULL, &th0, NULL, err);
     if (rc)
         return rc;
     if (!(th0.thickness > 0) || !isfinite(th0.thickness))
         return tr_fail(err, TR_EGEOMETRY, "polish: the curve has no finite positive thickness");
+    /* a constrained curve cannot be rescaled (its ends would leave their
+     * planes): it is polished as it is, at thickness 1, if it has that */
+    int constrained = cv->ncst > 0;
+    if (constrained && th0.thickness < 1.0 - CONSTRAINED_THICK_TOL) {
+        st->skipped = 1;
+        return TR_OK;
+    }
     st->ropelength_before = st->ropelength_after = th0.ropelength;
     ctx c;
     memset(&c, 0, sizeof c);
     c.p = prm;
     if ((rc = tr_curve_copy(&c.w, cv, err)))
         return rc;
-    scale(&c.w, 1.0 / th0.thickness);
+    if (!constrained)
+        scale(&c.w, 1.0 / th0.thickness);
     size_t nv = c.nv = c.w.nv;
     int nc = c.w.ncomp;
     c.next = malloc(nv * sizeof *c.next);
@@ -505,6 +521,9 @@ static int polish_once(tr_curve *cv, const tr_polish_params *prm, tr_polish_stat
     st->max_viol = viol;
     /* validate and rescale */
     memcpy(c.w.x, x, 3 * nv * sizeof *x);
+    for (size_t i = 0; constrained && i < nv; i++)
+        if (c.w.vcst[i] >= 0)
+            tr_constraint_project(&c.w.cst[c.w.vcst[i]], c.w.x + 3 * i);
     double dmin = 0, minrad = 0, edev = INFINITY;
     if ((rc = final_geometry(&c, &dmin, &minrad, &edev, err)))
         goto done;
@@ -521,10 +540,12 @@ static int polish_once(tr_curve *cv, const tr_polish_params *prm, tr_polish_stat
         st->why_rejected = "the polished curve has no finite positive thickness";
         goto done;
     }
-    scale(&c.w, 1.0 / thick);
-    if ((rc = tr_thickness_measure(&c.w, NULL, &th, NULL, err)))
-        goto done;
-    if (!(th.ropelength < th0.ropelength) || !(th.thickness >= 1.0 - 1e-12)) {
+    if (!constrained) {
+        scale(&c.w, 1.0 / thick);
+        if ((rc = tr_thickness_measure(&c.w, NULL, &th, NULL, err)))
+            goto done;
+    }
+    if (!(th.ropelength < th0.ropelength) || !(th.thickness >= 1.0 - (constrained ? CONSTRAINED_THICK_TOL : 1e-12))) {
         st->why_rejected = "the polished curve is not shorter";
         goto done;
     }

@@ -35,8 +35,12 @@
  * the smaller of the oracle's thickness and min(MinRad, shortest non-local
  * segment distance / 2), so it satisfies every constraint exactly.
  *
- * Curves with vertex constraints (clasp ends on planes) are not polished
- * (skipped = 1): rescaling would move them off their planes. */
+ * Curves with vertex constraints (clasp ends on planes) cannot be rescaled
+ * (the ends would leave their planes): the constrained vertices move only
+ * within their constraint (projected gradients, snapped at the end), the
+ * curve must come in at thickness 1 (within 1e-8; else skipped = 1) and the
+ * result is accepted, unscaled, if it is shorter and still at thickness 1
+ * within 1e-8. */
 #ifndef TR_POLISH_H
 #define TR_POLISH_H
 
@@ -75,7 +79,7 @@ typedef struct tr_polish_params {
 void tr_polish_params_default(tr_polish_params *p);
 
 typedef struct tr_polish_stats {
-    int skipped;        /* constrained vertices: nothing done */
+    int skipped;        /* constrained vertices below thickness 1: nothing done */
     int accepted;       /* the curve was replaced */
     int outer, inner_iters, evals, rebuilds; /* summed over the runs */
     int restarts;       /* augmented-Lagrangian runs made */
