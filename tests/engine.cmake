@@ -39,3 +39,9 @@ tr_engine_test(tighten_target_not_reached 1 DIR ${_eng_dir}/target ONLY "s.vect;
 tr_engine_test(tighten_json_resume 0 DIR ${_eng_dir}/resume ONLY "s.vect;t.vect;u.vect;ck.txt;json.txt" OUT ${_eng_dir}/resume/json.txt
   MATCH "^{\n  \"output\": [^\n]*\n  \"device\": \"serial reference[^\n]*\n  \"stop\": \"steps\",\n  \"N\": 72,\n  \"steps\": 16,\n"
   CMD sh -c "'${_tr}' make torus 2 3 --n 72 -o '${_eng_dir}/resume/s.vect' && '${_tr}' tighten '${_eng_dir}/resume/s.vect' -o '${_eng_dir}/resume/t.vect' --steps 8 --checkpoint '${_eng_dir}/resume/ck.txt' --quiet --device reference > /dev/null && exec '${_tr}' tighten --resume '${_eng_dir}/resume/ck.txt' -o '${_eng_dir}/resume/u.vect' --steps 16 --json --device reference > '${_eng_dir}/resume/json.txt'")
+# --residual is met by the certificate of the output when the engine jams:
+# the 2 x 40 clasp jams with the engine's own residual near 0.3 and a KKT
+# residual near 1e-4 after polish; asked for 1e-3 it exits 0 and says so.
+tr_engine_test(tighten_residual_kkt 0 DIR ${_eng_dir}/reskkt ONLY "c.vect;t.vect" OUT ${_eng_dir}/reskkt/t.vect
+  MATCH "\n# stop jammed\n# kkt_residual [0-9][.][0-9]+e-0[4-9] "
+  CMD sh -c "'${_tr}' make clasp --n 40 -o '${_eng_dir}/reskkt/c.vect' && exec '${_tr}' tighten '${_eng_dir}/reskkt/c.vect' -o '${_eng_dir}/reskkt/t.vect' --residual 1e-3 --quiet --device reference")
