@@ -166,11 +166,8 @@ static int build_rows(sys *s, tr_error *err)
         size_t ip = s->prev[i], in = s->next[i];
         if (ip == NONE || in == NONE)
             continue;
-        double p[3], q[3], dtp[3], dtq[3];
-        v3_sub(p, x + 3 * i, x + 3 * ip);
-        v3_sub(q, x + 3 * in, x + 3 * i);
-        double lp = v3_norm(p), lq = v3_norm(q);
-        double t = tr_turning_tan(p, q, lp, lq, dtp, dtq), r2 = 2.0 * s->radius;
+        double p[3], q[3], dtp[3], dtq[3], lp, lq;
+        double t = tr_vertex_turning(x, ip, i, in, p, q, &lp, &lq, dtp, dtq), r2 = 2.0 * s->radius;
         for (int side = 0; side < 2; side++) {
             double l = side ? lq : lp;
             if (t == 0.0 || !((l - r2 * t) / l < s->band))

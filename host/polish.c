@@ -215,11 +215,8 @@ static double eval(void *vc, const double *x, double *g)
         size_t ip = c->prev[i], in = c->next[i];
         if (ip == NONE || in == NONE)
             continue;
-        double p[3], q[3], dtp[3], dtq[3];
-        v3_sub(p, x + 3 * i, x + 3 * ip);
-        v3_sub(q, x + 3 * in, x + 3 * i);
-        double lp = v3_norm(p), lq = v3_norm(q);
-        double t = tr_turning_tan(p, q, lp, lq, dtp, dtq);
+        double p[3], q[3], dtp[3], dtq[3], lp, lq;
+        double t = tr_vertex_turning(x, ip, i, in, p, q, &lp, &lq, dtp, dtq);
         if (t > 0)
             mrad = fmin(mrad, fmin(lp, lq) / (2.0 * t));
         double C1 = e0 * (lp - 2.0 * t), C2 = e0 * (lq - 2.0 * t), d1, d2;
@@ -292,11 +289,8 @@ static void update_multipliers(ctx *c, const double *x)
         size_t ip = c->prev[i], in = c->next[i];
         if (ip == NONE || in == NONE)
             continue;
-        double p[3], q[3], dtp[3], dtq[3];
-        v3_sub(p, x + 3 * i, x + 3 * ip);
-        v3_sub(q, x + 3 * in, x + 3 * i);
-        double lp = v3_norm(p), lq = v3_norm(q);
-        double t = tr_turning_tan(p, q, lp, lq, dtp, dtq);
+        double p[3], q[3], dtp[3], dtq[3], lp, lq;
+        double t = tr_vertex_turning(x, ip, i, in, p, q, &lp, &lq, dtp, dtq);
         c->lam_c1[i] = fmax(0.0, c->lam_c1[i] - mu * e0 * (lp - 2.0 * t));
         c->lam_c2[i] = fmax(0.0, c->lam_c2[i] - mu * e0 * (lq - 2.0 * t));
     }

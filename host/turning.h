@@ -33,4 +33,16 @@ static inline double tr_turning_tan(const double *p, const double *q, double lp,
     return t;
 }
 
+/* The same at vertex i of coordinates x with neighbours ip and in: also
+ * writes the edges p, q and their lengths, which every MinRad row needs. */
+static inline double tr_vertex_turning(const double *x, size_t ip, size_t i, size_t in, double *p, double *q,
+                                       double *lp, double *lq, double *dtp, double *dtq)
+{
+    v3_sub(p, x + 3 * i, x + 3 * ip);
+    v3_sub(q, x + 3 * in, x + 3 * i);
+    *lp = v3_norm(p);
+    *lq = v3_norm(q);
+    return tr_turning_tan(p, q, *lp, *lq, dtp, dtq);
+}
+
 #endif
