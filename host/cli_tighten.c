@@ -324,8 +324,9 @@ int tr_cmd_tighten(int argc, char **argv)
             tr_text_printf(&cm, "kkt_residual not computed (%s)\n",
                            why == TR_STOP_SIGNAL ? "interrupted" : kkt == 0 ? "--no-kkt" : "N above the default limit; --kkt");
         if (p.polished)
-            tr_text_printf(&cm, "polish %s: ropelength %.9f -> %.9f in %.2f s\n", p.polished > 0 ? "accepted" : "rejected",
-                    p.polish_before, p.polish_after, p.polish_seconds);
+            tr_text_printf(&cm, "polish %s: ropelength %.9f -> %.9f in %.2f s%s%s%s\n", p.polished > 0 ? "accepted" : "rejected",
+                    p.polish_before, p.polish_after, p.polish_seconds, p.polish_why ? " (" : "",
+                    p.polish_why ? p.polish_why : "", p.polish_why ? ")" : "");
         comments = tr_text_take(&cm, NULL);
         if (!comments)
             rc = tr_fail(&err, TR_ENOMEM, "out of memory");
@@ -367,8 +368,9 @@ int tr_cmd_tighten(int argc, char **argv)
                    kr.strut_active, kr.strut_rows, kr.minrad_active, kr.minrad_rows,
                    kr.converged ? "" : "; an upper bound");
         if (p.polished)
-            printf("  polish %s: ropelength %.6f -> %.6f in %.1f s\n", p.polished > 0 ? "accepted" : "rejected",
-                   p.polish_before, p.polish_after, p.polish_seconds);
+            printf("  polish %s: ropelength %.6f -> %.6f in %.1f s%s%s%s\n", p.polished > 0 ? "accepted" : "rejected",
+                   p.polish_before, p.polish_after, p.polish_seconds, p.polish_why ? " (" : "",
+                   p.polish_why ? p.polish_why : "", p.polish_why ? ")" : "");
     }
     if (why == TR_STOP_SIGNAL)
         fprintf(stderr, "tightrope tighten: interrupted; %s%s%swrote %s\n", ckpt ? "checkpoint " : "",

@@ -33,6 +33,7 @@ struct tr_engine {
     long steps_at_t0;
     int polished; /* 0: not yet; 1: accepted; -1: ran and kept the engine's curve */
     double polish_before, polish_after, polish_seconds;
+    const char *polish_why;
 };
 
 static double now_s(void)
@@ -321,6 +322,7 @@ void tr_engine_get_progress(const tr_engine *e, tr_engine_progress *p)
     p->polish_before = e->polish_before;
     p->polish_after = e->polish_after;
     p->polish_seconds = e->polish_seconds;
+    p->polish_why = e->polish_why;
 }
 
 int tr_engine_get_curve(tr_engine *e, tr_curve *out, tr_error *err)
@@ -618,6 +620,7 @@ static int run_polish(tr_engine *e, double seconds, double target, volatile sig_
     e->polish_before = ps.ropelength_before;
     e->polish_after = ps.ropelength_after;
     e->polish_seconds = ps.seconds;
+    e->polish_why = ps.skipped ? "below thickness 1 with constrained vertices" : ps.why_rejected;
     e->polished = ps.accepted ? 1 : -1;
     if (!ps.accepted) {
         free(keep);
@@ -649,16 +652,26 @@ restore:
     fill_state(e, &m);
     e->polished = -1;
     e->polish_after = e->polish_before;
+    e->polish_why = "the engine could not settle the polished curve";
     return TR_OK;
 }
 
 /* ---- the run loop with levels, stops, checkpoints, progress ---- */
+
+#define STALL_STEPS 200
+#define STALL_REL 1e-5
 
 int tr_engine_run(tr_engine *e, const tr_engine_limits *lim, tr_stop_reason *why, tr_error *err)
 {
     int rc;
     double t_last_ckpt = now_s(), t_last_prog = 0.0;
     double level_t0 = now_s();
+    /* Without a time limit to share out, a level is polished (and a coarse
+     * one refined) once the engine stalls: less than STALL_REL shorter over
+     * STALL_STEPS steps. The projection engine crawls long before it jams
+     * (the 2 x 100 clasp: 8800 steps, 100 s, where polish then needs 2 s). */
+    long stall_step = e->steps;
+    double stall_len = INFINITY;
     double time_left_at_level = lim->time_limit > 0 ? lim->time_limit - (e->elapsed_base + now_s() - e->t0) : 0;
     *why = TR_STOP_NONE;
     for (;;) {
@@ -666,6 +679,12 @@ int tr_engine_run(tr_engine *e, const tr_engine_limits *lim, tr_stop_reason *why
         tr_engine_get_progress(e, &p);
         int final_level = lim->refine_to == 0 || e->curve.nv / (size_t)e->curve.ncomp >= lim->refine_to;
         tr_stop_reason stop = TR_STOP_NONE;
+        int stalled = 0;
+        if (lim->time_limit <= 0 && e->steps - stall_step >= STALL_STEPS) {
+            stalled = !(p.ropelength < stall_len * (1.0 - STALL_REL));
+            stall_len = p.ropelength;
+            stall_step = e->steps;
+        }
         int level_done = 0;
         if (lim->stop && *lim->stop)
             stop = TR_STOP_SIGNAL;
@@ -681,7 +700,7 @@ int tr_engine_run(tr_engine *e, const tr_engine_limits *lim, tr_stop_reason *why
             stop = TR_STOP_JAMMED;
         int can_polish = e->prm.polish && e->polished == 0;
         if (final_level && can_polish &&
-            (stop == TR_STOP_RESIDUAL || stop == TR_STOP_JAMMED ||
+            (stop == TR_STOP_RESIDUAL || stop == TR_STOP_JAMMED || (stop == TR_STOP_NONE && stalled) ||
              (stop == TR_STOP_NONE && lim->time_limit > 0 &&
               now_s() - level_t0 >= (1.0 - e->prm.polish_share) * time_left_at_level))) {
             double left = lim->time_limit > 0 ? lim->time_limit - p.elapsed : 0.0;
@@ -697,7 +716,7 @@ int tr_engine_run(tr_engine *e, const tr_engine_limits *lim, tr_stop_reason *why
             int pc = e->prm.polish && e->prm.polish_coarse;
             double coarse_res = lim->coarse_residual > 0 ? lim->coarse_residual : 1e-3;
             double used = now_s() - level_t0;
-            if (e->jammed || (e->steps > 0 && e->residual < coarse_res) || (pc && e->polished != 0))
+            if (e->jammed || stalled || (e->steps > 0 && e->residual < coarse_res) || (pc && e->polished != 0))
                 level_done = 1;
             if (lim->time_limit > 0 && used > (pc ? 0.25 : 0.5) * time_left_at_level)
                 level_done = 1;
@@ -724,6 +743,8 @@ int tr_engine_run(tr_engine *e, const tr_engine_limits *lim, tr_stop_reason *why
             if ((rc = tr_engine_refine(e, next, err)))
                 return rc;
             level_t0 = now_s();
+            stall_step = e->steps;
+            stall_len = INFINITY;
             time_left_at_level = lim->time_limit > 0 ? lim->time_limit - (e->elapsed_base + now_s() - e->t0) : 0;
             continue;
         }

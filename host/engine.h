@@ -82,6 +82,7 @@ typedef struct tr_engine_progress {
     int polished;      /* 1: the polish stage ran and was accepted; -1: ran, rejected */
     double polish_before, polish_after; /* oracle ropelength around it */
     double polish_seconds;
+    const char *polish_why; /* static text: why polish kept the engine's curve (NULL otherwise) */
 } tr_engine_progress;
 
 typedef struct tr_engine_limits {

@@ -38,9 +38,9 @@
  * Curves with vertex constraints (clasp ends on planes) cannot be rescaled
  * (the ends would leave their planes): the constrained vertices move only
  * within their constraint (projected gradients, snapped at the end), the
- * curve must come in at thickness 1 (within 1e-8; else skipped = 1) and the
- * result is accepted, unscaled, if it is shorter and still at thickness 1
- * within 1e-8. */
+ * curve must come in at thickness 1 (within 1e-3; else skipped = 1) and the
+ * result is accepted, unscaled, if it is shorter (length / thickness) and
+ * at thickness 1 within 1e-6. */
 #ifndef TR_POLISH_H
 #define TR_POLISH_H
 
