@@ -1,5 +1,5 @@
 /* tightrope measure FILE... [--json] [--struts OUT] [--per-component] [--strut-tol REL]
- *                           [--kkt] [--kkt-band REL]
+ *                           [--kkt] [--kkt-band REL] [--kkt-forces OUT]
  *
  * Length, MinRad, shortest strut (dcsd), thickness, ropelength and the
  * paper's L_p, L_c, L_a of each curve file (thickness.h), and with --kkt
@@ -27,7 +27,7 @@ static void usage(FILE *out)
 {
     fprintf(out,
             "usage: tightrope measure FILE... [--json] [--per-component] [--struts OUT] [--strut-tol REL]\n"
-            "                         [--kkt] [--kkt-band REL]\n"
+            "                         [--kkt] [--kkt-band REL] [--kkt-forces OUT]\n"
             "  FILE            curve file (.vect, .tsv, KnotPlot x y z list)\n"
             "  --json          one JSON object per file (an array if several)\n"
             "  --per-component also measure each component on its own (always in --json)\n"
@@ -37,7 +37,9 @@ static void usage(FILE *out)
             "  --kkt           also certify tightness: the KKT residual |g - J^T y| / |g|, the\n"
             "                  part of the rope's tension no compressive strut or curvature\n"
             "                  limit holds (0: critical, 1: nothing holds it)\n"
-            "  --kkt-band REL  constraints within REL of their bound may hold (default %g)\n",
+            "  --kkt-band REL  constraints within REL of their bound may hold (default %g)\n"
+            "  --kkt-forces OUT  write, per vertex, the tension and the part of it nothing\n"
+            "                  holds (CSV; one FILE only): where a curve is not critical\n",
             DEFAULT_STRUT_TOL, TR_KKT_DEFAULT_BAND);
 }
 
@@ -85,6 +87,30 @@ static void table_kkt(tr_text *t, const tr_kkt *k, double band)
     tr_text_printf(t, "KKT residual %.6e (band %g, radius %.15g: %zu/%zu struts and %zu/%zu MinRad rows hold; %s)\n",
                    k->residual, band, k->radius, k->strut_active, k->strut_rows, k->minrad_active, k->minrad_rows,
                    k->converged ? "multipliers optimal" : "an upper bound: multipliers not optimal");
+}
+
+/* One row per vertex: where the tension is and what of it nothing holds. */
+static int write_kkt_forces(const char *path, const char *file, const tr_curve *c, const double *g,
+                            const double *r, tr_error *err)
+{
+    tr_text t = {0};
+    tr_text_printf(&t, "# tightrope measure --kkt-forces %s: tension g and unresolved force r = g - J^T y per vertex\n",
+                   file);
+    tr_text_printf(&t, "component,vertex,tension,unresolved,unresolved_x,unresolved_y,unresolved_z\n");
+    for (int k = 0; k < c->ncomp; k++)
+        for (size_t i = c->start[k]; i < c->start[k + 1]; i++) {
+            const double *gi = g + 3 * i, *ri = r + 3 * i;
+            tr_text_printf(&t, "%d,%zu,%.10e,%.10e,%.10e,%.10e,%.10e\n", k, i - c->start[k],
+                           sqrt(gi[0] * gi[0] + gi[1] * gi[1] + gi[2] * gi[2]),
+                           sqrt(ri[0] * ri[0] + ri[1] * ri[1] + ri[2] * ri[2]), ri[0], ri[1], ri[2]);
+        }
+    if (t.oom) {
+        free(t.s);
+        return tr_fail(err, TR_ENOMEM, "out of memory formatting the KKT forces");
+    }
+    int rc = tr_write_file_atomic(path, t.s, t.n, err);
+    free(t.s);
+    return rc;
 }
 
 static void json_string(tr_text *t, const char *s)
@@ -158,7 +184,7 @@ int tr_cmd_measure(int argc, char **argv)
     int json = 0, per_comp = 0, kkt = 0;
     tr_kkt_params kp;
     tr_kkt_params_default(&kp);
-    const char *struts_path = NULL;
+    const char *struts_path = NULL, *forces_path = NULL;
     double strut_tol = DEFAULT_STRUT_TOL;
     const char **files = calloc((size_t)argc + 1, sizeof *files);
     int nfiles = 0;
@@ -184,6 +210,9 @@ int tr_cmd_measure(int argc, char **argv)
                 free(files);
                 return 2;
             }
+        } else if (!strcmp(a, "--kkt-forces") && i + 1 < argc) {
+            kkt = 1;
+            forces_path = argv[++i];
         } else if (!strcmp(a, "--kkt")) {
             kkt = 1;
         } else if (!strcmp(a, "--kkt-band") && i + 1 < argc) {
@@ -202,8 +231,8 @@ int tr_cmd_measure(int argc, char **argv)
             files[nfiles++] = a;
         }
     }
-    if (nfiles == 0 || (struts_path && nfiles != 1)) {
-        fprintf(stderr, nfiles ? "tightrope measure: --struts takes exactly one FILE\n"
+    if (nfiles == 0 || ((struts_path || forces_path) && nfiles != 1)) {
+        fprintf(stderr, nfiles ? "tightrope measure: --struts and --kkt-forces take exactly one FILE\n"
                                : "tightrope measure: no FILE given\n");
         usage(stderr);
         free(files);
@@ -242,9 +271,26 @@ int tr_cmd_measure(int argc, char **argv)
             break;
         }
         tr_kkt kr;
-        if (kkt && tr_kkt_certify(c, &kp, &kr, &err)) {
+        double *kg = NULL, *kres = NULL;
+        if (forces_path && (!(kg = malloc(3 * c->nv * sizeof *kg)) || !(kres = malloc(3 * c->nv * sizeof *kres)))) {
+            free(kg);
+            fprintf(stderr, "tightrope measure: out of memory\n");
+            status = 1;
+            break;
+        }
+        if (kkt && tr_kkt_certify_forces(c, &kp, &kr, kg, kres, &err)) {
             fprintf(stderr, "%s: %s\n", files[f], err.msg);
+            free(kg);
+            free(kres);
             status = 2;
+            break;
+        }
+        int frc = forces_path ? write_kkt_forces(forces_path, files[f], c, kg, kres, &err) : TR_OK;
+        free(kg);
+        free(kres);
+        if (frc) {
+            fprintf(stderr, "%s\n", err.msg);
+            status = 2; /* cannot write an output: like bad input, see cli.h */
             break;
         }
         tr_thickness *pc = NULL;

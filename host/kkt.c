@@ -393,6 +393,12 @@ static void sys_free(sys *s, work *k)
 
 int tr_kkt_certify(const tr_curve *c, const tr_kkt_params *prm, tr_kkt *out, tr_error *err)
 {
+    return tr_kkt_certify_forces(c, prm, out, NULL, NULL, err);
+}
+
+int tr_kkt_certify_forces(const tr_curve *c, const tr_kkt_params *prm, tr_kkt *out, double *tension,
+                          double *unresolved, tr_error *err)
+{
     tr_kkt_params dp;
     if (!prm) {
         tr_kkt_params_default(&dp);
@@ -459,6 +465,10 @@ int tr_kkt_certify(const tr_curve *c, const tr_kkt_params *prm, tr_kkt *out, tr_
     double g2 = 0.0;
     for (size_t i = 0; i < nx; i++)
         g2 += k.g[i] * k.g[i];
+    if (tension)
+        memcpy(tension, k.g, nx * sizeof *tension);
+    if (unresolved) /* nothing holds anything until the multipliers say so */
+        memcpy(unresolved, k.g, nx * sizeof *unresolved);
     out->force = sqrt(g2);
     /* KKT: grad L = sum lambda_r grad C_r with lambda_r >= 0 on the
      * inequality rows, i.e. g = sum lambda_r (-grad C_r): the tension pulls
@@ -553,6 +563,8 @@ int tr_kkt_certify(const tr_curve *c, const tr_kkt_params *prm, tr_kkt *out, tr_
     }
     n2 = resolve(&s, &k, y, NULL);
     out->residual = sqrt(n2 / g2);
+    if (unresolved)
+        memcpy(unresolved, k.rx, nx * sizeof *unresolved);
     for (size_t r = 0; r < nr; r++) {
         if (!(y[r] > 0.0))
             continue;

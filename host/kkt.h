@@ -63,4 +63,11 @@ typedef struct tr_kkt {
 
 int tr_kkt_certify(const tr_curve *c, const tr_kkt_params *p, tr_kkt *out, tr_error *err);
 
+/* The same, and where: tension (3 nv) gets g, the projected tension at
+ * every vertex, and unresolved (3 nv) the part of it no row holds, r(y) in
+ * vertex space (either may be NULL). A curve that is not critical shows
+ * where: |unresolved_i| against |tension_i| (measure --kkt-forces). */
+int tr_kkt_certify_forces(const tr_curve *c, const tr_kkt_params *p, tr_kkt *out, double *tension,
+                          double *unresolved, tr_error *err);
+
 #endif

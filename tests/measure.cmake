@@ -30,3 +30,10 @@ tr_engine_test(cli_measure_kkt_json 0 DIR ${_kkt_dir}/json ONLY "c.vect;m.json" 
   MATCH "\"kkt\": {\"residual\": [0-9][.][0-9]+e-(1[0-9]|[2-9][0-9]), \"band\": 1[.0-9]*e-05, [^}]*\"converged\": true}"
   CMD sh -c "'${_tr}' make circle --radius 5 --n 101 -o '${_kkt_dir}/json/c.vect' && exec '${_tr}' measure --json --kkt-band 1e-5 '${_kkt_dir}/json/c.vect' > '${_kkt_dir}/json/m.json'")
 tr_engine_test(cli_measure_kkt_bad_band 2 CMD ${_tr} measure --kkt-band -1 ${CMAKE_CURRENT_SOURCE_DIR}/data/engine_overlap.tsv)
+# --kkt-forces: per vertex, the pull of a regular 101-gon, 2 sin(pi/101) =
+# 0.0621997..., and nothing left over; two files are refused.
+tr_engine_test(cli_measure_kkt_forces 0 DIR ${_kkt_dir}/forces ONLY "c.vect;f.csv" OUT ${_kkt_dir}/forces/f.csv
+  MATCH "\ncomponent,vertex,tension,unresolved,unresolved_x,unresolved_y,unresolved_z\n0,0,6[.]21997[0-9]+e-02,[0-9][.][0-9]+e-1[3-9],"
+  CMD sh -c "'${_tr}' make circle --radius 5 --n 101 -o '${_kkt_dir}/forces/c.vect' && exec '${_tr}' measure --kkt-forces '${_kkt_dir}/forces/f.csv' '${_kkt_dir}/forces/c.vect' > /dev/null")
+add_test(NAME cli_measure_kkt_forces_two_files COMMAND sh -c
+  "'$<TARGET_FILE:tightrope>' measure --kkt-forces '${_kkt_dir}/never.csv' '${CMAKE_CURRENT_SOURCE_DIR}/data/engine_overlap.tsv' '${CMAKE_CURRENT_SOURCE_DIR}/data/engine_overlap.tsv' 2>/dev/null; test $? -eq 2 && test ! -e '${_kkt_dir}/never.csv'")

@@ -24,6 +24,9 @@
  * inside and (sum y) / sqrt(m) on the common length: a small linear least
  * squares, solved here directly by its normal equations.
  *
+ * The per-vertex forces (tr_kkt_certify_forces) of the loose polygon: the
+ * pull 2 sin(pi/N) at every vertex, of which N / (G + N) is left.
+ *
  * Certified at its own thickness (radius unset) a scaled tight polygon is
  * tight again: the residual does not depend on the scale. */
 #include <math.h>
@@ -32,6 +35,7 @@
 #include "kkt.h"
 #include "testlib.h"
 #include "thickness.h"
+#include "vec3.h"
 
 #ifndef M_PI
 #define M_PI 3.14159265358979323846
@@ -130,6 +134,15 @@ static void test_tight_polygon(void)
     double s = 2.0 * sin(M_PI / (double)n), G = (double)n * s * s;
     CHECK_NEAR(k.residual, sqrt(loose_residual2_part(n) / G), 1e-12);
     CHECK(k.converged);
+    /* where: every vertex keeps the share (1 - y) = N / (G + N) of its pull */
+    double gv[3 * 101], rv[3 * 101];
+    CHECK_OK(tr_kkt_certify_forces(&c, &p, &k, gv, rv, &err));
+    double worst = 0.0;
+    for (size_t i = 0; i < n; i++) {
+        CHECK_NEAR(v3_norm(gv + 3 * i), s, 1e-14);
+        worst = fmax(worst, fabs(v3_norm(rv + 3 * i) - s * (double)n / (G + (double)n)));
+    }
+    CHECK(worst < 1e-12);
 
     /* at its own thickness (1.1) the scaled polygon is tight again */
     CHECK_OK(tr_kkt_certify(&c, NULL, &k, &err));
