@@ -22,6 +22,10 @@
  * curvature of the least squares that matters, far above rounding. */
 #define KKT_BETA 1e-10
 
+/* Rows dropped from the free set are pinned at 0 in its factor (one solve
+ * each) up to this many, then the factor is rebuilt. */
+#define KKT_MAX_PINS 256
+
 enum { ROW_EDGE, ROW_MINRAD, ROW_STRUT };
 
 /* One constraint row: its gradient touches at most four vertices. */
@@ -249,7 +253,7 @@ typedef struct work {
     double *w, *p, *q, *z, *yn;
     double *scale;    /* 1 / |row| before the rows were normalised */
     unsigned char *in; /* row in the free set */
-    size_t *fidx, *rowptr, *col; /* the free rows as a sparse matrix */
+    size_t *fidx, *fpos, nf, *rowptr, *col; /* the factored free rows as a sparse matrix */
     double *val, *uval;
     int *ucol;
 } work;
@@ -281,17 +285,19 @@ static double resolve_walk(const sys *s, work *k, const double *y, double alpha)
     return resolve(s, k, k->p, NULL);
 }
 
-/* Least squares on the free set F, from y (warm start): proximal-point
- * iterations z += (J_F W^-1 J_F^T + beta I)^-1 J_F r(z), one sparse factor
- * for all of them (rowchol.h). beta makes the factor exist although the
- * struts of a tight knot are dependent; the iteration removes its bias on
- * every direction the rows can resolve. Returns the number of solves. */
-static int solve_free(const sys *s, work *k, const double *y, double *z, int *solves, tr_error *err)
+/* The sparse factor of the free set F (the rows with in[r]) as it stands:
+ * fidx lists them, fpos maps a row to its place in the factor. */
+static int factor_free(const sys *s, work *k, tr_rowchol **f, tr_error *err)
 {
     size_t nr = s->nr, nf = 0, nz = 0;
-    for (size_t r = 0; r < nr; r++)
-        if (k->in[r])
+    for (size_t r = 0; r < nr; r++) {
+        k->fpos[r] = NONE;
+        if (k->in[r]) {
+            k->fpos[r] = nf;
             k->fidx[nf++] = r;
+        }
+    }
+    k->nf = nf;
     k->rowptr[0] = 0;
     for (size_t i = 0; i < nf; i++) {
         const row *q = &s->r[k->fidx[i]];
@@ -307,21 +313,34 @@ static int solve_free(const sys *s, work *k, const double *y, double *z, int *so
     }
     tr_rowsys a = {.nr = nf, .ncols = 3 * s->nv, .rowptr = k->rowptr, .col = k->col, .val = k->val,
                    .nu = s->ncomp, .ucol = k->ucol, .uval = k->uval};
-    tr_rowchol *f;
-    int rc = tr_rowchol_factor(&f, &a, KKT_BETA, err);
-    if (rc)
-        return rc;
+    tr_rowchol_free(*f);
+    *f = NULL;
+    return tr_rowchol_factor(f, &a, KKT_BETA, err);
+}
+
+/* Least squares on the free set, from y (warm start): proximal-point
+ * iterations z += (J_F W^-1 J_F^T + beta I)^-1 J_F r(z) with the factor of
+ * factor_free; rows dropped from F since then are pinned at 0 in it
+ * (rowchol.h). beta makes the factor exist although the struts of a tight
+ * knot are dependent; the iteration removes its bias on every direction
+ * the rows can resolve. */
+static int ls_free(const sys *s, work *k, tr_rowchol *f, const double *y, double *z, int *solves, tr_error *err)
+{
+    size_t nr = s->nr, nf = k->nf;
+    int rc = TR_OK;
     memcpy(z, y, nr * sizeof *z);
     double n2 = resolve(s, k, z, k->w);
     for (int it = 0; it < 100; it++) {
         for (size_t i = 0; i < nf; i++)
-            k->q[i] = k->w[k->fidx[i]];
+            k->q[i] = k->in[k->fidx[i]] ? k->w[k->fidx[i]] : 0.0;
         if ((rc = tr_rowchol_solve(f, k->q, k->q, err)))
             break;
         ++*solves;
         memcpy(k->p, z, nr * sizeof *z);
         double dz2 = 0.0, z2 = 0.0;
         for (size_t i = 0; i < nf; i++) {
+            if (!k->in[k->fidx[i]])
+                continue;
             k->p[k->fidx[i]] += k->q[i];
             dz2 += k->q[i] * k->q[i];
             z2 += z[k->fidx[i]] * z[k->fidx[i]];
@@ -335,7 +354,6 @@ static int solve_free(const sys *s, work *k, const double *y, double *z, int *so
         if (small)
             break;
     }
-    tr_rowchol_free(f);
     return rc;
 }
 
@@ -384,6 +402,7 @@ static void sys_free(sys *s, work *k)
     free(k->yn);
     free(k->in);
     free(k->fidx);
+    free(k->fpos);
     free(k->rowptr);
     free(k->col);
     free(k->val);
@@ -410,6 +429,7 @@ int tr_kkt_certify_forces(const tr_curve *c, const tr_kkt_params *prm, tr_kkt *o
     sys s = {.c = c, .nv = c->nv, .ncomp = c->ncomp, .band = prm->band};
     work k = {0};
     double *y = NULL;
+    tr_rowchol *fac = NULL;
     int rc = TR_OK;
     s.radius = prm->radius;
     if (!(s.radius > 0.0)) {
@@ -437,6 +457,7 @@ int tr_kkt_certify_forces(const tr_curve *c, const tr_kkt_params *prm, tr_kkt *o
     k.yn = malloc((nr + 1) * sizeof *k.yn);
     k.in = malloc(nr + 1);
     k.fidx = malloc((nr + 1) * sizeof *k.fidx);
+    k.fpos = malloc((nr + 1) * sizeof *k.fpos);
     k.rowptr = malloc((nr + 1) * sizeof *k.rowptr);
     k.col = malloc((12 * nr + 1) * sizeof *k.col);
     k.val = malloc((12 * nr + 1) * sizeof *k.val);
@@ -444,7 +465,7 @@ int tr_kkt_certify_forces(const tr_curve *c, const tr_kkt_params *prm, tr_kkt *o
     k.ucol = malloc((nr + 1) * sizeof *k.ucol);
     y = calloc(nr + 1, sizeof *y);
     if (!k.g || !k.vx || !k.rx || !k.vb || !k.rb || !k.w || !k.p || !k.q || !k.z || !k.scale || !k.yn ||
-        !k.in || !k.fidx || !k.rowptr || !k.col || !k.val || !k.uval || !k.ucol || !y) {
+        !k.in || !k.fidx || !k.fpos || !k.rowptr || !k.col || !k.val || !k.uval || !k.ucol || !y) {
         rc = tr_fail(err, TR_ENOMEM, "out of memory (KKT solve)");
         goto done;
     }
@@ -512,8 +533,10 @@ int tr_kkt_certify_forces(const tr_curve *c, const tr_kkt_params *prm, tr_kkt *o
         for (size_t r = 0; r < nr; r++)
             k.in[r] = s.r[r].kind == ROW_EDGE || y[r] > 0.0 || k.w[r] > tol;
         double n2old = n2;
+        if ((rc = factor_free(&s, &k, &fac, err)))
+            goto done;
         for (int inner = 0; inner < 1000; inner++) {
-            if ((rc = solve_free(&s, &k, y, k.yn, &out->solves, err)))
+            if ((rc = ls_free(&s, &k, fac, y, k.yn, &out->solves, err)))
                 goto done;
             /* Two candidates: Lawson and Hanson's walk from y towards the
              * free set's minimiser until the first multiplier reaches 0 (the
@@ -538,11 +561,20 @@ int tr_kkt_certify_forces(const tr_curve *c, const tr_kkt_params *prm, tr_kkt *o
                 if (s.r[r].kind != ROW_EDGE && k.yn[r] < 0.0 && (clipped || y[r] <= 1e-14 * fabs(k.yn[r]))) {
                     y[r] = 0.0;
                     k.in[r] = 0;
-                    dropped = 1;
+                    dropped++;
                 }
             }
             if (!dropped)
                 break;
+            /* a few dropped rows are pinned in the factor; many, refactored */
+            if (tr_rowchol_pinned(fac) + (size_t)dropped > KKT_MAX_PINS) {
+                if ((rc = factor_free(&s, &k, &fac, err)))
+                    goto done;
+            } else {
+                for (size_t r = 0; r < nr; r++)
+                    if (!k.in[r] && k.fpos[r] != NONE && (rc = tr_rowchol_pin(fac, k.fpos[r], err)))
+                        goto done;
+            }
         }
         n2 = resolve(&s, &k, y, NULL);
         int progress = n2 < n2old * (1.0 - 1e-12);
@@ -575,6 +607,7 @@ int tr_kkt_certify_forces(const tr_curve *c, const tr_kkt_params *prm, tr_kkt *o
             out->minrad_active++;
     }
 done:
+    tr_rowchol_free(fac);
     free(y);
     sys_free(&s, &k);
     return rc;

@@ -15,6 +15,11 @@ struct tr_rowchol {
     double *uval;
     double *KU; /* nr x nu, column-major: (A A^T + beta I)^-1 U */
     double *S;  /* nu x nu Cholesky factor (lower) of I + U^T KU */
+    /* pins: rows held at 0 (tr_rowchol_pin) */
+    size_t np, capp;
+    size_t *pin;
+    double *MP; /* nr x np, column-major: N^-1 e_pin (N the whole matrix) */
+    double *LP; /* capp x capp, lower: Cholesky of (N^-1)[pin, pin] */
 };
 
 static int chol_fail(tr_rowchol *f, tr_error *err, const char *what)
@@ -139,7 +144,8 @@ fail:
     return rc;
 }
 
-int tr_rowchol_solve(tr_rowchol *f, const double *v, double *z, tr_error *err)
+/* z = N^-1 v, N = A A^T + U U^T + beta I, pins ignored. */
+static int full_solve(tr_rowchol *f, const double *v, double *z, tr_error *err)
 {
     int rc = ksolve(f, v, z, err);
     if (rc || f->nu == 0)
@@ -173,6 +179,91 @@ int tr_rowchol_solve(tr_rowchol *f, const double *v, double *z, tr_error *err)
     return TR_OK;
 }
 
+int tr_rowchol_solve(tr_rowchol *f, const double *v, double *z, tr_error *err)
+{
+    int rc = full_solve(f, v, z, err);
+    if (rc || f->np == 0)
+        return rc;
+    /* z -= N^-1 E lambda with (E^T N^-1 E) lambda = E^T z: then z_pin = 0 */
+    size_t n = f->np;
+    double *lam = malloc(n * sizeof *lam);
+    if (!lam)
+        return tr_fail(err, TR_ENOMEM, "out of memory (KKT solve)");
+    for (size_t i = 0; i < n; i++) {
+        double a = z[f->pin[i]];
+        for (size_t k = 0; k < i; k++)
+            a -= f->LP[i * f->capp + k] * lam[k];
+        lam[i] = a / f->LP[i * f->capp + i];
+    }
+    for (size_t i = n; i-- > 0;) {
+        for (size_t k = i + 1; k < n; k++)
+            lam[i] -= f->LP[k * f->capp + i] * lam[k];
+        lam[i] /= f->LP[i * f->capp + i];
+    }
+    for (size_t k = 0; k < n; k++) {
+        const double *col = f->MP + k * f->nr;
+        for (size_t r = 0; r < f->nr; r++)
+            z[r] -= col[r] * lam[k];
+    }
+    for (size_t k = 0; k < n; k++)
+        z[f->pin[k]] = 0.0; /* exactly, not to rounding */
+    free(lam);
+    return TR_OK;
+}
+
+size_t tr_rowchol_pinned(const tr_rowchol *f)
+{
+    return f->np;
+}
+
+int tr_rowchol_pin(tr_rowchol *f, size_t j, tr_error *err)
+{
+    if (j >= f->nr)
+        return tr_fail(err, TR_EINVAL, "KKT certificate: pin of row %zu of %zu", j, f->nr);
+    for (size_t k = 0; k < f->np; k++)
+        if (f->pin[k] == j)
+            return TR_OK;
+    if (f->np == f->capp) {
+        size_t nc = f->capp ? 2 * f->capp : 16;
+        size_t *pin = realloc(f->pin, nc * sizeof *pin);
+        if (pin)
+            f->pin = pin;
+        double *mp = pin ? realloc(f->MP, nc * f->nr * sizeof *mp) : NULL;
+        if (mp)
+            f->MP = mp;
+        double *lp = mp ? calloc(nc * nc, sizeof *lp) : NULL;
+        if (!lp)
+            return tr_fail(err, TR_ENOMEM, "out of memory (KKT pins)");
+        for (size_t a = 0; a < f->np; a++)
+            memcpy(lp + a * nc, f->LP + a * f->capp, f->np * sizeof *lp);
+        free(f->LP);
+        f->LP = lp;
+        f->capp = nc;
+    }
+    double *u = f->MP + f->np * f->nr;
+    memset(u, 0, f->nr * sizeof *u);
+    u[j] = 1.0;
+    int rc = full_solve(f, u, u, err);
+    if (rc)
+        return rc;
+    /* append to the Cholesky factor of (N^-1)[pin, pin]: row l = L^-1 s, d */
+    size_t n = f->np;
+    double *row = f->LP + n * f->capp, d = u[j];
+    for (size_t i = 0; i < n; i++) {
+        double a = u[f->pin[i]];
+        for (size_t k = 0; k < i; k++)
+            a -= f->LP[i * f->capp + k] * row[k];
+        row[i] = a / f->LP[i * f->capp + i];
+        d -= row[i] * row[i];
+    }
+    if (!(d > 0.0))
+        return tr_fail(err, TR_EGEOMETRY, "KKT certificate: pinned rows are dependent");
+    row[n] = sqrt(d);
+    f->pin[n] = j;
+    f->np = n + 1;
+    return TR_OK;
+}
+
 void tr_rowchol_free(tr_rowchol *f)
 {
     if (!f)
@@ -184,5 +275,8 @@ void tr_rowchol_free(tr_rowchol *f)
     free(f->uval);
     free(f->KU);
     free(f->S);
+    free(f->pin);
+    free(f->MP);
+    free(f->LP);
     free(f);
 }

@@ -32,8 +32,18 @@ typedef struct tr_rowsys {
 } tr_rowsys;
 
 int tr_rowchol_factor(tr_rowchol **out, const tr_rowsys *a, double beta, tr_error *err);
-/* z = (A A^T + U U^T + beta I)^-1 v; v and z have nr entries and may alias. */
+/* z = (A A^T + U U^T + beta I)^-1 v; v and z have nr entries and may alias.
+ * With pinned rows: the solution of the same system with z_j = 0 on every
+ * pinned j (a bordered system: one Lagrange multiplier per pin). */
 int tr_rowchol_solve(tr_rowchol *f, const double *v, double *z, tr_error *err);
+
+/* Pins row j at 0 in every later solve: as if the row had been left out of
+ * the factor, for one solve now and a dense update of the pins' small
+ * Cholesky factor, instead of a new sparse factorisation. Meant for a few
+ * rows at a time (the active-set method drops them one by one); the caller
+ * refactors when many are pinned. */
+int tr_rowchol_pin(tr_rowchol *f, size_t j, tr_error *err);
+size_t tr_rowchol_pinned(const tr_rowchol *f);
 void tr_rowchol_free(tr_rowchol *f);
 
 #endif
