@@ -30,10 +30,10 @@
  * the engine between steps. */
 static volatile sig_atomic_t stop_requested = 0;
 
-/* The certificate's sparse factorisations cost ~0.1 s at N = 400, ~6 s at
- * 1600 and ~1 min at 2400 on a 2-core machine (bench/RESULTS.md): above
- * this it runs only when asked for (--kkt). */
-#define KKT_AUTO_MAX_N 2000
+/* The certificate costs ~0.05 s at N = 400, ~1.2 s at 1600 and ~12 s at
+ * 2400 on a 2-core machine (bench/RESULTS.md), growing faster than N^2:
+ * above this it runs only when asked for (--kkt). */
+#define KKT_AUTO_MAX_N 2400
 
 static void on_signal(int sig)
 {
