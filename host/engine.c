@@ -10,6 +10,7 @@
 #include "polish.h"
 #include "refine_lowpass.h"
 #include "text_file.h"
+#include "thickness.h"
 
 #ifndef M_PI
 #define M_PI 3.14159265358979323846
@@ -34,6 +35,11 @@ struct tr_engine {
     int polished; /* 0: not yet; 1: accepted; -1: ran and kept the engine's curve */
     double polish_before, polish_after, polish_seconds;
     const char *polish_why;
+    /* The polished curve itself, kept when settling it onto the engine's
+     * constraint set cost ropelength (the oracle's, which is scale free):
+     * until the engine takes another step it is the curve handed out. */
+    double *polish_x;
+    long polish_steps;
 };
 
 static double now_s(void)
@@ -252,6 +258,7 @@ void tr_engine_destroy(tr_engine *e)
     tr_curve_free(&e->curve);
     free(e->gap);
     free(e->ebar);
+    free(e->polish_x);
     free(e);
 }
 
@@ -330,7 +337,11 @@ int tr_engine_get_curve(tr_engine *e, tr_curve *out, tr_error *err)
     int rc = e->be.ops->download(e->be.state, e->curve.x, NULL, err);
     if (rc)
         return rc;
-    return tr_curve_copy(out, &e->curve, err);
+    if ((rc = tr_curve_copy(out, &e->curve, err)))
+        return rc;
+    if (e->polish_x && e->steps == e->polish_steps)
+        memcpy(out->x, e->polish_x, 3 * out->nv * sizeof *out->x);
+    return TR_OK;
 }
 
 int tr_engine_refine(tr_engine *e, size_t n, tr_error *err)
@@ -350,6 +361,8 @@ int tr_engine_refine(tr_engine *e, size_t n, tr_error *err)
     /* resampling may bring strands slightly closer than 2 (never near
      * crossing): the correction pushes them back out */
     e->polished = 0;
+    free(e->polish_x);
+    e->polish_x = NULL;
     rc = settle(e, "the refined curve", 0.25, err);
     if (rc == TR_EGEOMETRY)
         return tr_fail_wrap(err, TR_ETOPOLOGY, "refining to %zu vertices", n);
@@ -587,6 +600,34 @@ fail:
     return rc;
 }
 
+/* After a polish was settled: if the settled curve measures longer (oracle
+ * ropelength) than the polished one in e->curve.x, keep the polished
+ * coordinates for tr_engine_get_curve. scratch: 3 nv doubles. */
+static int keep_if_settle_lost(tr_engine *e, double polished_rl, double *scratch, tr_error *err)
+{
+    size_t nx = 3 * e->curve.nv;
+    free(e->polish_x);
+    e->polish_x = NULL;
+    double *px = malloc(nx * sizeof *px);
+    if (!px)
+        return tr_fail(err, TR_ENOMEM, "out of memory");
+    memcpy(px, e->curve.x, nx * sizeof *px);
+    int rc = e->be.ops->download(e->be.state, scratch, NULL, err);
+    tr_thickness th;
+    if (rc == TR_OK) {
+        memcpy(e->curve.x, scratch, nx * sizeof *scratch);
+        rc = tr_thickness_measure(&e->curve, NULL, &th, NULL, err);
+    }
+    if (rc == TR_OK && th.ropelength > polished_rl * (1.0 + 1e-12)) {
+        e->polish_x = px;
+        e->polish_steps = e->steps;
+        e->polish_after = polished_rl;
+        return TR_OK;
+    }
+    free(px);
+    return rc;
+}
+
 /* The polish stage: download, polish on the host, upload and settle onto
  * the engine's exact constraint set (equal edges to 1e-9). The polished
  * curve is at thickness 1 with every constraint satisfied, so settle moves
@@ -631,6 +672,14 @@ static int run_polish(tr_engine *e, double seconds, double target, volatile sig_
     e->contacts_valid = 0;
     if ((rc = settle(e, "the polished curve", 0.0, err)))
         goto restore;
+    /* settling moves the polished curve by its own small violations, but
+     * where the curvature limit holds along a stretch (132 MinRad rows of
+     * the N = 2400 trefoil) it can cost more ropelength than polish gained:
+     * then the polished curve is kept to hand out */
+    if ((rc = keep_if_settle_lost(e, ps.ropelength_after, keep, err))) {
+        free(keep);
+        return rc;
+    }
     free(keep);
     e->h = e->ebar[0];
     e->jammed = 0;
