@@ -104,13 +104,7 @@ static int write_kkt_forces(const char *path, const char *file, const tr_curve *
                            sqrt(gi[0] * gi[0] + gi[1] * gi[1] + gi[2] * gi[2]),
                            sqrt(ri[0] * ri[0] + ri[1] * ri[1] + ri[2] * ri[2]), ri[0], ri[1], ri[2]);
         }
-    if (t.oom) {
-        free(t.s);
-        return tr_fail(err, TR_ENOMEM, "out of memory formatting the KKT forces");
-    }
-    int rc = tr_write_file_atomic(path, t.s, t.n, err);
-    free(t.s);
-    return rc;
+    return tr_text_write_atomic(&t, path, err);
 }
 
 static void json_string(tr_text *t, const char *s)
@@ -170,13 +164,7 @@ static int write_struts(const char *path, const tr_curve *c, const tr_thickness 
         int k = tr_curve_comp_of(c, m->minrad_vertex);
         tr_text_printf(&t, "%d %zu %.17g %.17g \n", k, m->minrad_vertex - c->start[k], m->minrad, 0.0);
     }
-    if (t.oom) {
-        free(t.s);
-        return tr_fail(err, TR_ENOMEM, "out of memory formatting struts");
-    }
-    int rc = tr_write_file_atomic(path, t.s, t.n, err);
-    free(t.s);
-    return rc;
+    return tr_text_write_atomic(&t, path, err);
 }
 
 int tr_cmd_measure(int argc, char **argv)

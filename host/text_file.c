@@ -173,6 +173,17 @@ void tr_text_printf(tr_text *t, const char *fmt, ...)
     }
 }
 
+int tr_text_write_atomic(tr_text *t, const char *path, tr_error *err)
+{
+    size_t n;
+    char *s = tr_text_take(t, &n);
+    if (!s)
+        return tr_fail(err, TR_ENOMEM, "out of memory formatting %s", path);
+    int rc = tr_write_file_atomic(path, s, n, err);
+    free(s);
+    return rc;
+}
+
 char *tr_text_take(tr_text *t, size_t *len)
 {
     char *s = t->s;

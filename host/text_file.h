@@ -37,4 +37,8 @@ void tr_text_printf(tr_text *t, const char *fmt, ...)
 /* Hands the string to the caller (NULL after a failure, also freed). */
 char *tr_text_take(tr_text *t, size_t *len);
 
+/* Writes the string to path atomically (tr_write_file_atomic) and frees
+ * it; a formatting failure is TR_ENOMEM naming path, and writes nothing. */
+int tr_text_write_atomic(tr_text *t, const char *path, tr_error *err);
+
 #endif
