@@ -69,8 +69,17 @@
  *
  * CANDIDATE CONTACTS (find_contacts)
  *   The list holds exactly the edge pairs (a, b), a < b, both existing, with
- *       not excluded(a, b)  and  tr_segment_distance(...) < cutoff,
- *   sorted by (a, b) ascending. excluded(a, b): same component k and
+ *       not excluded(a, b)  and  d = tr_segment_distance(x[a], x[next a],
+ *       x[b], x[next b], &s, &t) < cutoff  and, when 0 < tilt < 1,
+ *       tr_segment_nearly_normal(the same four points, s, t, d, tilt)
+ *   (host/segdist.h: the connector within tilt of both edges' normal
+ *   planes), sorted by (a, b) ascending. Why the tilt: at large N every
+ *   vertex has ~cutoff/ebar partners on each strand it runs beside, so the
+ *   plain cutoff list grows like N^2 (REFERENCE.md 7.4); the struts that
+ *   matter are local minima of the distance along both strands, whose
+ *   connector lies in the normal slab or wedge of each edge, and those pass
+ *   once tilt >= sin(largest turning angle). Pairs a step may slide into
+ *   are covered by the engine's allowance and its check after the step. excluded(a, b): same component k and
  *   g < exclude_gap[k], where g = |a - b| on an open component and
  *   min(|a - b|, n_k - |a - b|) on a closed one (n_k = vertices of k);
  *   exclude_gap[k] >= 2 always (edges sharing a vertex are excluded).
@@ -182,6 +191,8 @@
 
 typedef struct tr_contact_params {
     double cutoff;          /* list pairs with segment distance < cutoff (2 + skin) */
+    double tilt;            /* and, if 0 < tilt < 1, nearly normal to both edges
+                               (see CANDIDATE CONTACTS); 0 or >= 1: no such test */
     const int *exclude_gap; /* ncomp entries, each >= 2 */
 } tr_contact_params;
 

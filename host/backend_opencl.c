@@ -342,7 +342,7 @@ static int cl_find_contacts(void *sp, const tr_contact_params *prm, tr_contact_s
     s->np = 0;
     TR_CL_CHECK(clEnqueueWriteBuffer(s->ctx.queue, s->gap, CL_FALSE, 0, (size_t)s->ncomp * sizeof(int),
                                      prm->exclude_gap, 0, NULL, NULL));
-    TR_TRY(tr_cl_grid_build(&s->grid, &s->ctx, &s->red, &s->topo, s->x, 1, prm->cutoff, s->gap, err));
+    TR_TRY(tr_cl_grid_build(&s->grid, &s->ctx, &s->red, &s->topo, s->x, 1, prm->cutoff, prm->tilt, s->gap, err));
     int cap = s->grid.cap;
     TR_TRY(run(s, K_pairs_upper, (size_t)nv, err, A(s->grid.count), A(s->grid.list), A(cap),
                A(s->topo.next), A(nv), A(s->up), A(s->first), END));

@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "backend.h"
+#include "neighbour_search.h"
 #include "segdist.h"
 #include "vec3.h"
 
@@ -47,6 +48,10 @@ typedef struct ref_state {
     double *cgq, *cdeb; /* curvature rows: second gradient vector, dC/debar */
     double *pd, *z;     /* preconditioner diagonal, preconditioned residual (rows) */
     double *po, *tw[5]; /* edge-row off-diagonal, tridiagonal work (nv) */
+    /* neighbour search: a tree over the edges of a curve that views x */
+    tr_curve view;
+    tr_nsearch ns;
+    int ns_built;
 } ref_state;
 
 static void ref_destroy(void *sp)
@@ -61,6 +66,8 @@ static void ref_destroy(void *sp)
                     s->tw[0], s->tw[1], s->tw[2], s->tw[3], s->tw[4]};
     for (size_t i = 0; i < sizeof ptrs / sizeof ptrs[0]; i++)
         free(ptrs[i]);
+    if (s->ns_built)
+        tr_nsearch_free(&s->ns);
     free(s);
 }
 
@@ -266,120 +273,67 @@ static int ensure_rows(ref_state *s, tr_error *err)
     return TR_OK;
 }
 
+/* One candidate from the tree: the exact tests of backend.h. */
+typedef struct contact_walk {
+    ref_state *s;
+    const tr_contact_params *prm;
+    double mind;
+} contact_walk;
+
+static int contact_pair(void *ctx, size_t ei, size_t ej, double *cutoff)
+{
+    (void)cutoff;
+    contact_walk *w = ctx;
+    ref_state *s = w->s;
+    size_t a = s->ns.ea[ej], b = s->ns.ea[ei]; /* ej < ei, so a < b */
+    if (excluded(s, a, b, w->prm->exclude_gap))
+        return 0;
+    const double *a0 = s->x + 3 * a, *a1 = s->x + 3 * (size_t)s->next[a];
+    const double *b0 = s->x + 3 * b, *b1 = s->x + 3 * (size_t)s->next[b];
+    double ss, tt;
+    double d = tr_segment_distance(a0, a1, b0, b1, &ss, &tt);
+    double tilt = w->prm->tilt;
+    if (!(d < w->prm->cutoff) ||
+        (tilt > 0.0 && tilt < 1.0 && !tr_segment_nearly_normal(a0, a1, b0, b1, ss, tt, d, tilt)))
+        return 0;
+    if (push_pair(s, a, b) != TR_OK)
+        return 1;
+    if (d < w->mind)
+        w->mind = d;
+    return 0;
+}
+
+/* The tree over the edges (host/neighbour_search.h) is built once, refitted
+ * per search; with a tilt its slab test keeps the walk linear in N. */
 static int ref_find_contacts(void *sp, const tr_contact_params *prm, tr_contact_stats *out,
                              tr_error *err)
 {
     ref_state *s = sp;
-    size_t nv = s->nv;
     s->np = 0;
-    double lmax = 0.0, lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
-    double *mid = s->H; /* 3 nv scratch */
-    for (size_t a = 0; a < nv; a++) {
-        if (s->next[a] < 0)
-            continue;
-        const double *p = s->x + 3 * a, *q = s->x + 3 * (size_t)s->next[a];
-        double l = sqrt(v3_dist2(p, q));
-        if (l > lmax)
-            lmax = l;
-        for (int k = 0; k < 3; k++) {
-            mid[3 * a + k] = 0.5 * (p[k] + q[k]);
-            if (mid[3 * a + k] < lo[k])
-                lo[k] = mid[3 * a + k];
-            if (mid[3 * a + k] > hi[k])
-                hi[k] = mid[3 * a + k];
-        }
+    int rc;
+    if (!s->ns_built) {
+        s->view = (tr_curve){.nv = s->nv, .x = s->x, .ncomp = s->ncomp, .start = s->start, .closed = s->closed};
+        if ((rc = tr_nsearch_build(&s->ns, &s->view, err)))
+            return rc;
+        s->ns_built = 1;
+    } else {
+        tr_nsearch_refit(&s->ns);
     }
-    /* segment distance >= midpoint distance - (la + lb)/2 */
-    double reach = prm->cutoff + lmax;
-    double cell = reach;
-    if (!(cell > 0.0) || !isfinite(lo[0]))
-        cell = 1.0;
-    size_t dim[3];
-    size_t ncell = 1;
-    for (int k = 0; k < 3; k++) {
-        double span = isfinite(lo[k]) ? hi[k] - lo[k] : 0.0;
-        double d = floor(span / cell) + 1.0;
-        if (d > 256.0)
-            d = 256.0;
-        dim[k] = (size_t)d;
-        ncell *= dim[k];
+    int gmin = 0;
+    for (int k = 0; k < s->ncomp; k++) {
+        int g = prm->exclude_gap[k] < 2 ? 2 : prm->exclude_gap[k];
+        gmin = k == 0 || g < gmin ? g : gmin;
     }
-    double csz[3];
-    for (int k = 0; k < 3; k++)
-        csz[k] = isfinite(lo[k]) && dim[k] > 1 ? fmax(cell, (hi[k] - lo[k]) / (double)dim[k]) : cell;
-    size_t *cstart = calloc(ncell + 1, sizeof *cstart);
-    size_t *cellof = malloc((nv ? nv : 1) * sizeof *cellof);
-    size_t *order = malloc((nv ? nv : 1) * sizeof *order);
-    pair_key *keys = NULL;
-    int rc = TR_OK;
-    if (!cstart || !cellof || !order) {
-        rc = tr_fail(err, TR_ENOMEM, "out of memory in the neighbour search");
-        goto done;
+    contact_walk w = {.s = s, .prm = prm, .mind = INFINITY};
+    double pad = prm->tilt > 0.0 && prm->tilt < 1.0 ? prm->tilt * prm->cutoff : -1.0;
+    if (tr_nsearch_pairs_slab(&s->ns, prm->cutoff, (size_t)gmin, pad, contact_pair, &w)) {
+        s->np = 0;
+        return tr_fail(err, TR_ENOMEM, "out of memory for contact pairs");
     }
-    for (size_t a = 0; a < nv; a++) {
-        if (s->next[a] < 0)
-            continue;
-        size_t ci[3];
-        for (int k = 0; k < 3; k++) {
-            double f = floor((mid[3 * a + k] - lo[k]) / csz[k]);
-            ci[k] = f < 0 ? 0 : (f >= (double)dim[k] ? dim[k] - 1 : (size_t)f);
-        }
-        cellof[a] = (ci[2] * dim[1] + ci[1]) * dim[0] + ci[0];
-        cstart[cellof[a] + 1]++;
-    }
-    for (size_t c = 0; c < ncell; c++)
-        cstart[c + 1] += cstart[c];
-    {
-        size_t *cur = malloc((ncell + 1) * sizeof *cur);
-        if (!cur) {
-            rc = tr_fail(err, TR_ENOMEM, "out of memory in the neighbour search");
-            goto done;
-        }
-        memcpy(cur, cstart, (ncell + 1) * sizeof *cur);
-        for (size_t a = 0; a < nv; a++)
-            if (s->next[a] >= 0)
-                order[cur[cellof[a]]++] = a;
-        free(cur);
-    }
-    double mind = INFINITY;
-    for (size_t a = 0; a < nv; a++) {
-        if (s->next[a] < 0)
-            continue;
-        size_t c = cellof[a];
-        size_t cx = c % dim[0], cy = (c / dim[0]) % dim[1], cz = c / (dim[0] * dim[1]);
-        for (int dz = -1; dz <= 1; dz++)
-            for (int dy = -1; dy <= 1; dy++)
-                for (int dxx = -1; dxx <= 1; dxx++) {
-                    ptrdiff_t X = (ptrdiff_t)cx + dxx, Y = (ptrdiff_t)cy + dy, Z = (ptrdiff_t)cz + dz;
-                    if (X < 0 || Y < 0 || Z < 0 || X >= (ptrdiff_t)dim[0] || Y >= (ptrdiff_t)dim[1] ||
-                        Z >= (ptrdiff_t)dim[2])
-                        continue;
-                    size_t cc = ((size_t)Z * dim[1] + (size_t)Y) * dim[0] + (size_t)X;
-                    for (size_t m = cstart[cc]; m < cstart[cc + 1]; m++) {
-                        size_t b = order[m];
-                        if (b <= a || excluded(s, a, b, prm->exclude_gap))
-                            continue;
-                        if (v3_dist2(mid + 3 * a, mid + 3 * b) >= reach * reach)
-                            continue;
-                        double ss, tt;
-                        double d = tr_segment_distance(s->x + 3 * a, s->x + 3 * (size_t)s->next[a],
-                                                       s->x + 3 * b, s->x + 3 * (size_t)s->next[b], &ss,
-                                                       &tt);
-                        if (d < prm->cutoff) {
-                            if (push_pair(s, a, b) != TR_OK) {
-                                rc = tr_fail(err, TR_ENOMEM, "out of memory for contact pairs");
-                                goto done;
-                            }
-                            if (d < mind)
-                                mind = d;
-                        }
-                    }
-                }
-    }
-    keys = malloc((s->np ? s->np : 1) * sizeof *keys);
+    pair_key *keys = malloc((s->np ? s->np : 1) * sizeof *keys);
     if (!keys) {
-        rc = tr_fail(err, TR_ENOMEM, "out of memory for contact pairs");
-        goto done;
+        s->np = 0;
+        return tr_fail(err, TR_ENOMEM, "out of memory for contact pairs");
     }
     for (size_t p = 0; p < s->np; p++) {
         keys[p].a = s->pa[p];
@@ -390,18 +344,14 @@ static int ref_find_contacts(void *sp, const tr_contact_params *prm, tr_contact_
         s->pa[p] = keys[p].a;
         s->pb[p] = keys[p].b;
     }
+    free(keys);
     rc = build_csr(s, err);
     if (rc == TR_OK)
         rc = ensure_rows(s, err);
     if (rc == TR_OK && out) {
         out->pairs = s->np;
-        out->min_dist = mind;
+        out->min_dist = w.mind;
     }
-done:
-    free(keys);
-    free(cstart);
-    free(cellof);
-    free(order);
     if (rc != TR_OK)
         s->np = 0;
     return rc;

@@ -91,8 +91,8 @@ cleanup:
 }
 
 int tr_cl_grid_build(tr_cl_grid *g, const tr_cl_ctx *ctx, tr_cl_reduce *red,
-                     const tr_cl_topology *t, cl_mem x, int edges, double r, cl_mem gap,
-                     tr_error *err)
+                     const tr_cl_topology *t, cl_mem x, int edges, double r, double tilt,
+                     cl_mem gap, tr_error *err)
 {
     int rc = TR_OK;
     cl_int e = CL_SUCCESS;
@@ -216,20 +216,21 @@ int tr_cl_grid_build(tr_cl_grid *g, const tr_cl_ctx *ctx, tr_cl_reduce *red,
         ARG(g->pairs, 7, t->comp_closed);
         ARG(g->pairs, 8, gap);
         ARG(g->pairs, 9, r);
-        ARG(g->pairs, 10, g->keybuf);
-        ARG(g->pairs, 11, g->cell_start);
-        ARG(g->pairs, 12, g->cell_end);
-        ARG(g->pairs, 13, s[0]);
-        ARG(g->pairs, 14, s[2]);
-        ARG(g->pairs, 15, s[4]);
-        ARG(g->pairs, 16, inv_h);
-        ARG(g->pairs, 17, nx);
-        ARG(g->pairs, 18, ny);
-        ARG(g->pairs, 19, nz);
-        ARG(g->pairs, 20, g->cap);
-        ARG(g->pairs, 21, g->count);
-        ARG(g->pairs, 22, g->list);
-        ARG(g->pairs, 23, g->overflow);
+        ARG(g->pairs, 10, tilt);
+        ARG(g->pairs, 11, g->keybuf);
+        ARG(g->pairs, 12, g->cell_start);
+        ARG(g->pairs, 13, g->cell_end);
+        ARG(g->pairs, 14, s[0]);
+        ARG(g->pairs, 15, s[2]);
+        ARG(g->pairs, 16, s[4]);
+        ARG(g->pairs, 17, inv_h);
+        ARG(g->pairs, 18, nx);
+        ARG(g->pairs, 19, ny);
+        ARG(g->pairs, 20, nz);
+        ARG(g->pairs, 21, g->cap);
+        ARG(g->pairs, 22, g->count);
+        ARG(g->pairs, 23, g->list);
+        ARG(g->pairs, 24, g->overflow);
         TR_TRY(launch(ctx, g->pairs, (size_t)n, err));
         TR_CL_CHECK(clEnqueueReadBuffer(ctx->queue, g->overflow, CL_TRUE, 0, sizeof flag, &flag, 0,
                                         NULL, NULL));

@@ -29,11 +29,13 @@ int tr_cl_grid_init(tr_cl_grid *g, const tr_cl_ctx *ctx, cl_program prog, int n,
 void tr_cl_grid_free(tr_cl_grid *g);
 
 /* Rebuilds the lists for coordinates x. edges: 1 for segment-segment
- * distances between edges, 0 for vertex-vertex distances. Reads back eight
+ * distances between edges, 0 for vertex-vertex distances; tilt (edges only,
+ * 0 < tilt < 1, else no test): keep only pairs nearly normal to both edges,
+ * as backend.h's candidate list. Reads back eight
  * box scalars and one overflow flag; grows the lists and repeats when an item
  * has more than cap partners. */
 int tr_cl_grid_build(tr_cl_grid *g, const tr_cl_ctx *ctx, tr_cl_reduce *red,
-                     const tr_cl_topology *t, cl_mem x, int edges, double r, cl_mem gap,
-                     tr_error *err);
+                     const tr_cl_topology *t, cl_mem x, int edges, double r, double tilt,
+                     cl_mem gap, tr_error *err);
 
 #endif

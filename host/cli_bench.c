@@ -66,6 +66,7 @@ typedef struct bench_ctx {
     tr_engine_params prm;
     int *gap;
     int search; /* 0: --no-search, the contact list stays empty */
+    double tilt; /* the engine's contact tilt for this curve and a full tension move */
 } bench_ctx;
 
 static int one_step(tr_backend *b, const bench_ctx *bc, double h, int *cg, tr_error *err)
@@ -89,7 +90,7 @@ static int one_step(tr_backend *b, const bench_ctx *bc, double h, int *cg, tr_er
 
 static int contacts(tr_backend *b, const bench_ctx *bc, size_t *pairs, tr_error *err)
 {
-    tr_contact_params cp = {.cutoff = 2.0 + bc->prm.skin, .exclude_gap = bc->gap};
+    tr_contact_params cp = {.cutoff = 2.0 + bc->prm.skin, .tilt = bc->tilt, .exclude_gap = bc->gap};
     tr_contact_stats cs = {0, INFINITY};
     int rc = bc->search ? b->ops->find_contacts(b->state, &cp, &cs, err) : TR_OK;
     if (pairs)
@@ -364,6 +365,7 @@ int tr_cmd_bench(int argc, char **argv)
         int gap = (int)ceil(3.141592653589793 / (tr_curve_length(&c) / (double)c.nv));
         bc.gap = &gap;
         double h = tr_curve_length(&c) / (double)c.nv; /* the engine starts with h = ebar */
+        bc.tilt = tr_engine_contact_tilt(&bc.prm, h, bc.prm.max_move);
         /* the reference's state after the validation step */
         double *ref_x = malloc(3 * c.nv * sizeof *ref_x);
         tr_backend rb;

@@ -25,6 +25,8 @@ struct tr_engine {
     double *ebar;   /* scratch, ncomp */
     int contacts_valid;
     double disp_acc; /* max vertex motion summed since the contact list was built */
+    double disp_est; /* the per-step motion the contact list's tilt allows for */
+    tr_contact_stats contacts; /* of the last rebuild */
     double h;
     long steps, rejected;
     double length, residual, min_strut, minrad, edge_dev;
@@ -53,6 +55,8 @@ void tr_engine_params_default(tr_engine_params *p)
 {
     memset(p, 0, sizeof *p);
     p->skin = 0.1;
+    p->tilt_edges = 4.0;
+    p->tilt_motion = 2.0;
     p->max_move = 0.03;
     p->guard_move = 0.06;
     p->smooth_passes = 8;
@@ -104,6 +108,12 @@ const char *tr_stop_reason_name(tr_stop_reason r)
     }
 }
 
+double tr_engine_contact_tilt(const tr_engine_params *p, double ebar_max, double disp)
+{
+    double t = p->tilt_edges * ebar_max + p->tilt_motion * disp;
+    return t > 0.0 && t < 1.0 ? t : 1.0;
+}
+
 static int measure(tr_engine *e, tr_measure *m, tr_error *err)
 {
     int rc = e->be.ops->measure(e->be.state, m, NULL, e->ebar, err);
@@ -124,9 +134,13 @@ static int rebuild_contacts(tr_engine *e, int recompute_gap, tr_error *err)
             e->gap[k] = g < 2.0 ? 2 : (g > 1e9 ? 1000000000 : (int)g);
         }
     }
-    tr_contact_params cp = {.cutoff = 2.0 + e->prm.skin, .exclude_gap = e->gap};
-    tr_contact_stats cs;
-    int rc = e->be.ops->find_contacts(e->be.state, &cp, &cs, err);
+    double emax = 0.0;
+    for (int k = 0; k < e->curve.ncomp; k++)
+        emax = fmax(emax, e->ebar[k]);
+    tr_contact_params cp = {.cutoff = 2.0 + e->prm.skin,
+                            .tilt = tr_engine_contact_tilt(&e->prm, emax, e->disp_est),
+                            .exclude_gap = e->gap};
+    int rc = e->be.ops->find_contacts(e->be.state, &cp, &e->contacts, err);
     if (rc)
         return rc;
     e->contacts_valid = 1;
@@ -178,6 +192,7 @@ static int settle(tr_engine *e, const char *what, double overlap_ok, tr_error *e
             (rc = measure(e, &m, err)))
             return rc;
         e->disp_acc += m.max_disp;
+        e->disp_est = m.max_disp;
         if (m.min_strut < e->prm.correct.strut_dist - 0.5)
             return tr_fail(err, TR_ETOPOLOGY, "%s: equalising the edges brought strands to %.4g apart",
                            what, m.min_strut);
@@ -270,9 +285,8 @@ int tr_engine_step(tr_engine *e, int *accepted, tr_error *err)
     const tr_backend_ops *op = e->be.ops;
     int rc;
     *accepted = 0;
-    if (!e->contacts_valid || e->disp_acc + e->prm.guard_move > 0.5 * e->prm.skin)
-        if ((rc = rebuild_contacts(e, 1, err)))
-            return rc;
+    if (!e->contacts_valid && (rc = rebuild_contacts(e, 1, err)))
+        return rc;
     tr_tension_params tp = {.h = e->h, .max_move = e->prm.max_move, .smooth_passes = e->prm.smooth_passes,
                             .project = e->prm.project ? &e->prm.proj : NULL};
     tr_tension_stats ts;
@@ -285,8 +299,28 @@ int tr_engine_step(tr_engine *e, int *accepted, tr_error *err)
              m.max_disp <= e->prm.guard_move &&
              m.min_strut >= e->prm.correct.strut_dist - 10.0 * e->prm.accept_viol &&
              m.min_minrad >= e->prm.correct.minrad * (1.0 - e->prm.minrad_tol) && isfinite(m.length);
+    /* The list this step ran on holds the struts a step of the last one's
+     * size can reach; a bigger slide may have carried a contact out of it.
+     * So the list is rebuilt at the new state, for the next step, and its
+     * shortest strut (every local minimum of the distance is in it) must
+     * hold too. */
+    if (ok) {
+        double keep = e->disp_est;
+        e->disp_est = m.max_disp;
+        if ((rc = rebuild_contacts(e, 1, err)))
+            return rc;
+        if (!(e->contacts.min_dist >= e->prm.correct.strut_dist - 10.0 * e->prm.accept_viol)) {
+            ok = 0;
+            e->contacts_valid = 0;
+            e->disp_est = fmax(keep, m.max_disp);
+        }
+    }
     if (!ok) {
         if ((rc = op->restore(e->be.state, err)))
+            return rc;
+        /* a list built at the rejected state is rebuilt now, so that a
+         * checkpoint taken here resumes on the very list this run uses */
+        if (!e->contacts_valid && (rc = rebuild_contacts(e, 1, err)))
             return rc;
         e->rejected++;
         e->h *= e->prm.shrink;
@@ -300,7 +334,6 @@ int tr_engine_step(tr_engine *e, int *accepted, tr_error *err)
     (void)dl;
     e->residual = ts.smooth2 > 0 ? sqrt(ts.free2 / ts.smooth2) : 0.0;
     fill_state(e, &m);
-    e->disp_acc += m.max_disp;
     e->steps++;
     e->jammed = 0;
     e->h = fmin(e->h * e->prm.grow, e->prm.h_max);
@@ -388,7 +421,7 @@ int tr_engine_checkpoint_write(tr_engine *e, const char *path, tr_error *err)
     tr_text_printf(&b, "ncomp %d\n", c->ncomp);
     for (int k = 0; k < c->ncomp; k++)
         tr_text_printf(&b, "comp %zu %d %a %d\n", tr_comp_nv(c, k), c->closed[k], e->ebar[k], e->gap[k]);
-    tr_text_printf(&b, "state %ld %ld %a %a %a %a %a %d\n", e->steps, e->rejected, e->h, e->disp_acc,
+    tr_text_printf(&b, "state %ld %ld %a %a %a %a %a %d\n", e->steps, e->rejected, e->h, e->disp_est,
               p.elapsed, e->residual, e->length, e->jammed);
     tr_text_printf(&b, "ncst %d\n", c->ncst);
     for (int q = 0; q < c->ncst; q++) {
@@ -490,7 +523,7 @@ int tr_engine_resume(tr_engine **out, const char *path, const char *device,
         if (sscanf(ln, "state %ld %ld %63s %63s %63s %63s %63s %d", &e->steps, &e->rejected, h, da, el, rs,
                    le, &e->jammed) != 8)
             BAD("expected the 'state' line");
-        if (!parse_finite(h, &e->h) || !parse_finite(da, &e->disp_acc) ||
+        if (!parse_finite(h, &e->h) || !parse_finite(da, &e->disp_est) || !(e->disp_est >= 0) ||
             !parse_finite(el, &e->elapsed_base) || !parse_finite(rs, &e->residual) ||
             !parse_finite(le, &e->length) || !(e->h > 0) || e->steps < 0 || e->rejected < 0)
             BAD("bad number in the 'state' line");
@@ -560,10 +593,9 @@ int tr_engine_resume(tr_engine **out, const char *path, const char *device,
     /* the list is rebuilt with the saved exclusion gaps: pairs it adds beyond
      * the uninterrupted run's list are inactive and contribute exact zeros */
     {
-        double acc = e->disp_acc;
+        memcpy(e->ebar, ebar, (size_t)ncomp * sizeof *ebar);
         if ((rc = rebuild_contacts(e, 0, err)))
             goto fail;
-        e->disp_acc = acc;
         tr_measure m;
         if ((rc = measure(e, &m, err)))
             goto fail;

@@ -11,14 +11,19 @@
  *   length went down, no vertex moved more than guard_move, the shortest
  *   non-local distance stayed >= 2 (within tolerance) and MinRad >= 1
  *   (within tolerance); otherwise the state is restored and h halved.
+ *   After those tests the contact list is rebuilt at the new state, and
+ *   its shortest strut must hold as well (the list the step ran on may have
+ *   lost a contact that slid further than the list's tilt allowed for).
  * Why no strand can pass (the knot never changes): between two accepted
  * states every vertex moves at most guard_move < 1/2 along a straight line,
  * so the distance of any two non-excluded segments changes by at most
- * 2 guard_move < 1 while it started >= 2 - tol; pairs outside the candidate
- * list started >= 2 + skin - 2 (motion since the list was built), and the list
- * is rebuilt before that motion reaches skin/2; excluded pairs lie within
- * arclength pi of each other on a curve of curvature <= 1, which cannot
- * self-intersect there. */
+ * 2 guard_move < 1 while it started >= 2 - tol: at an accepted state the
+ * closest non-excluded pair is either a local minimum of the distance along
+ * both strands, whose strut is within the list's tilt of both normal planes
+ * (tilt >= 4 ebar >= the largest turning angle while MinRad >= 1/2), so it
+ * was in the list just checked, or it borders the excluded arc, and such
+ * pairs lie arclength ~pi apart on a curve of curvature <= 1, hence about 2
+ * apart (Schur's comparison); excluded pairs cannot self-intersect there. */
 #ifndef TR_ENGINE_H
 #define TR_ENGINE_H
 
@@ -31,6 +36,13 @@
 
 typedef struct tr_engine_params {
     double skin;           /* contact list cutoff = 2 + skin */
+    /* The contact list keeps only pairs whose strut is within a tilt of both
+     * edges' normal planes (backend.h), tilt = tilt_edges * (longest edge) +
+     * tilt_motion * (the last step's largest vertex motion), capped at 1 (no
+     * test): the first term holds every local minimum of the distance while
+     * MinRad >= 1/2, the second the pairs a step like the last one can slide
+     * into; it keeps the list linear in N. */
+    double tilt_edges, tilt_motion;
     double max_move;       /* per-vertex cap of the tension move */
     double guard_move;     /* reject a step that moved any vertex further */
     int smooth_passes;     /* low-pass passes on the tension force */
@@ -53,6 +65,9 @@ typedef struct tr_engine_params {
 } tr_engine_params;
 
 void tr_engine_params_default(tr_engine_params *p);
+
+/* The contact list tilt for the given longest edge and per-step motion. */
+double tr_engine_contact_tilt(const tr_engine_params *p, double ebar_max, double disp);
 
 typedef enum tr_stop_reason {
     TR_STOP_NONE = 0,

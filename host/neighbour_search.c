@@ -210,6 +210,8 @@ typedef struct query_edge {
     double tprev[3];   /* v_i - v_{i-1} */
     double atprev[3];
     double tt;         /* |t|^2 */
+    double tl;         /* |t| */
+    double pad;        /* TR_NSEARCH_SLAB: how far the slab reaches past each end */
     int last;          /* last edge of an open component: no "front" */
 } query_edge;
 
@@ -248,12 +250,30 @@ static inline int box_may_be_critical(const query_edge *q, const double *m, cons
     return 1;
 }
 
+/* Can a box hold a point y with (y - p).t/|t| in [-pad, |t| + pad]? */
+static inline int box_may_be_in_slab(const query_edge *q, const double *m, const double *r)
+{
+    double tmin, tmax;
+    box_project(m, r, q->p, q->t, q->at, &tmin, &tmax);
+    double reach = q->pad * q->tl;
+    return tmax >= -reach && tmin <= q->tt + reach;
+}
+
+static inline int box_may_match(const query_edge *q, unsigned flags, const double *m, const double *r)
+{
+    if (flags & TR_NSEARCH_SLAB)
+        return box_may_be_in_slab(q, m, r);
+    if (flags & TR_NSEARCH_CRITICAL)
+        return box_may_be_critical(q, m, r);
+    return 1;
+}
+
 typedef struct stack_entry {
     uint32_t id;
     double d2;
 } stack_entry;
 
-static void query_setup(const tr_nsearch *s, size_t i, query_edge *q)
+static void query_setup(const tr_nsearch *s, size_t i, double pad, query_edge *q)
 {
     const double *x = s->c->x;
     edge_centre_half(s, i, q->m, q->r);
@@ -265,6 +285,8 @@ static void query_setup(const tr_nsearch *s, size_t i, query_edge *q)
         q->atprev[a] = fabs(q->tprev[a]);
     }
     q->tt = v3_dot(q->t, q->t);
+    q->tl = sqrt(q->tt);
+    q->pad = pad;
     int k = s->ecomp[i];
     q->last = !s->c->closed[k] && i + 1 == s->estart[k + 1];
 }
@@ -282,7 +304,7 @@ static int query_leaf(const tr_nsearch *s, const query_edge *q, size_t i, size_t
         double cut = *cutoff * (1.0 + PRUNE_SLACK);
         if (box_dist2(q->m, q->r, em, er) > cut * cut)
             continue;
-        if ((flags & TR_NSEARCH_CRITICAL) && !box_may_be_critical(q, em, er))
+        if (!box_may_match(q, flags, em, er))
             continue;
         int rc = fn(ctx, i, j, cutoff);
         if (rc)
@@ -316,11 +338,11 @@ static int push_children(const tr_nsearch *s, const node_t *n, const double *m, 
 
 /* One query edge walks the tree from the root, partners j < jend. */
 static int query_edge_walk(const tr_nsearch *s, size_t i, size_t jend, size_t min_gap, unsigned flags,
-                           double *cutoff, tr_pair_fn fn, void *ctx)
+                           double pad, double *cutoff, tr_pair_fn fn, void *ctx)
 {
     stack_entry stack[STACK_DEPTH];
     query_edge q;
-    query_setup(s, i, &q);
+    query_setup(s, i, pad, &q);
     int k = s->ecomp[i];
     int sp = 0;
     stack[sp].id = 0;
@@ -338,7 +360,7 @@ static int query_edge_walk(const tr_nsearch *s, size_t i, size_t jend, size_t mi
         size_t b = n->b < jend ? n->b : jend;
         if (n->comp == k && range_excluded(s, k, i, i, n->a, b, min_gap))
             continue;
-        if ((flags & TR_NSEARCH_CRITICAL) && !box_may_be_critical(&q, n->m, n->r))
+        if (!box_may_match(&q, flags, n->m, n->r))
             continue;
         if (n->left == 0) {
             int rc = query_leaf(s, &q, i, jend, n, min_gap, flags, cutoff, fn, ctx);
@@ -358,8 +380,10 @@ static int query_edge_walk(const tr_nsearch *s, size_t i, size_t jend, size_t mi
  *   (y - p0).u in [min_k (p_k - p0).u - w, max_k ((p_k - p0).u + l_k) + w],
  *   w = (D + l_max) max_k |u - tau_k|,
  * because (y - p_k).tau_k is in [0, l_k] on edge k's slab (and <= 0 <= the
- * previous edge's along its wedge) and |y - p_k| <= D + l_k. Returns 0 if the
- * run cannot be treated so (a fold-back), else fills lo, hi. */
+ * previous edge's along its wedge) and |y - p_k| <= D + l_k. With
+ * TR_NSEARCH_SLAB each edge's slab reaches pad further at both ends, and so
+ * does the run's. Returns 0 if the run cannot be treated so (a fold-back),
+ * else fills lo, hi. */
 typedef struct block_query {
     double m[3], r[3]; /* box of the run */
     const double *p0;
@@ -367,7 +391,7 @@ typedef struct block_query {
     double lo, hi;
 } block_query;
 
-static int block_setup(const tr_nsearch *s, const node_t *leaf, double D, block_query *bq)
+static int block_setup(const tr_nsearch *s, const node_t *leaf, double D, double pad, block_query *bq)
 {
     const double *x = s->c->x;
     bq->m[0] = leaf->m[0], bq->m[1] = leaf->m[1], bq->m[2] = leaf->m[2];
@@ -411,8 +435,8 @@ static int block_setup(const tr_nsearch *s, const node_t *leaf, double D, block_
     }
     double wdt = (D + lmax) * dmax;
     double slack = 1e-10 * (L + lmax + D);
-    bq->lo = lo - wdt - slack;
-    bq->hi = open_end ? INFINITY : hi + wdt + slack;
+    bq->lo = lo - wdt - pad - slack;
+    bq->hi = open_end ? INFINITY : hi + wdt + pad + slack;
     return 1;
 }
 
@@ -432,12 +456,12 @@ typedef struct leaf_list {
  * that may hold a partner of any of its edges, then tests each edge of the
  * run against those leaves only. */
 static int query_block(const tr_nsearch *s, const node_t *leaf, size_t min_gap, unsigned flags,
-                       double *cutoff, tr_pair_fn fn, void *ctx, leaf_list *cand)
+                       double pad, double *cutoff, tr_pair_fn fn, void *ctx, leaf_list *cand)
 {
     block_query bq;
-    if (!block_setup(s, leaf, *cutoff, &bq)) {
+    if (!block_setup(s, leaf, *cutoff, pad, &bq)) {
         for (size_t i = leaf->a; i < leaf->b; i++) {
-            int rc = query_edge_walk(s, i, i, min_gap, flags, cutoff, fn, ctx);
+            int rc = query_edge_walk(s, i, i, min_gap, flags, pad, cutoff, fn, ctx);
             if (rc)
                 return rc;
         }
@@ -480,7 +504,7 @@ static int query_block(const tr_nsearch *s, const node_t *leaf, size_t min_gap, 
         if (i == 0)
             continue;
         query_edge q;
-        query_setup(s, i, &q);
+        query_setup(s, i, pad, &q);
         int k = s->ecomp[i];
         for (size_t c = 0; c < cand->n; c++) {
             const node_t *n = &s->node[cand->id[c]];
@@ -492,7 +516,7 @@ static int query_block(const tr_nsearch *s, const node_t *leaf, size_t min_gap, 
             size_t b = n->b < i ? n->b : i;
             if (n->comp == k && range_excluded(s, k, i, i, n->a, b, min_gap))
                 continue;
-            if ((flags & TR_NSEARCH_CRITICAL) && !box_may_be_critical(&q, n->m, n->r))
+            if (!box_may_match(&q, flags, n->m, n->r))
                 continue;
             int rc = query_leaf(s, &q, i, i, n, min_gap, flags, cutoff, fn, ctx);
             if (rc)
@@ -502,8 +526,8 @@ static int query_block(const tr_nsearch *s, const node_t *leaf, size_t min_gap, 
     return 0;
 }
 
-int tr_nsearch_pairs(const tr_nsearch *s, double *cutoff, size_t min_gap, unsigned flags,
-                     tr_pair_fn fn, void *ctx)
+static int pairs_walk(const tr_nsearch *s, double *cutoff, size_t min_gap, unsigned flags, double pad,
+                      tr_pair_fn fn, void *ctx)
 {
     if (s->ne < 2)
         return 0;
@@ -516,16 +540,31 @@ int tr_nsearch_pairs(const tr_nsearch *s, double *cutoff, size_t min_gap, unsign
         const node_t *leaf = &s->node[id];
         if (leaf->left != 0)
             continue;
-        if ((flags & TR_NSEARCH_CRITICAL) && isfinite(*cutoff) && leaf->comp >= 0 && leaf->b - leaf->a > 1) {
-            rc = query_block(s, leaf, min_gap, flags, cutoff, fn, ctx, &cand);
+        if ((flags & (TR_NSEARCH_CRITICAL | TR_NSEARCH_SLAB)) && isfinite(*cutoff) && leaf->comp >= 0 &&
+            leaf->b - leaf->a > 1) {
+            rc = query_block(s, leaf, min_gap, flags, pad, cutoff, fn, ctx, &cand);
         } else {
             for (size_t i = leaf->a; i < leaf->b && rc == 0; i++)
                 if (i > 0)
-                    rc = query_edge_walk(s, i, i, min_gap, flags, cutoff, fn, ctx);
+                    rc = query_edge_walk(s, i, i, min_gap, flags, pad, cutoff, fn, ctx);
         }
     }
     free(cand.id);
     return rc;
+}
+
+int tr_nsearch_pairs(const tr_nsearch *s, double *cutoff, size_t min_gap, unsigned flags,
+                     tr_pair_fn fn, void *ctx)
+{
+    return pairs_walk(s, cutoff, min_gap, flags & ~(unsigned)TR_NSEARCH_SLAB, 0.0, fn, ctx);
+}
+
+int tr_nsearch_pairs_slab(const tr_nsearch *s, double cutoff, size_t min_gap, double pad, tr_pair_fn fn,
+                          void *ctx)
+{
+    if (!(pad >= 0.0) || !isfinite(cutoff))
+        return pairs_walk(s, &cutoff, min_gap, 0, 0.0, fn, ctx);
+    return pairs_walk(s, &cutoff, min_gap, TR_NSEARCH_SLAB, pad, fn, ctx);
 }
 
 int tr_nsearch_edge(const tr_nsearch *s, size_t i, double *cutoff, size_t min_gap, unsigned flags,
@@ -533,7 +572,7 @@ int tr_nsearch_edge(const tr_nsearch *s, size_t i, double *cutoff, size_t min_ga
 {
     if (i >= s->ne)
         return 0;
-    return query_edge_walk(s, i, s->ne, min_gap, flags, cutoff, fn, ctx);
+    return query_edge_walk(s, i, s->ne, min_gap, flags & ~(unsigned)TR_NSEARCH_SLAB, 0.0, cutoff, fn, ctx);
 }
 
 int tr_nsearch_pairs_brute(const tr_nsearch *s, double *cutoff, size_t min_gap, unsigned flags,

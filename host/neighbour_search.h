@@ -50,7 +50,9 @@ enum {
      * vertex, unless it is the last edge of an open component) or wholly
      * outside the normal slab and the normal wedge at its start vertex
      * (REFERENCE.md 2.2). The callback must still do the exact test. */
-    TR_NSEARCH_CRITICAL = 1u
+    TR_NSEARCH_CRITICAL = 1u,
+    /* Internal to tr_nsearch_pairs_slab (ignored elsewhere). */
+    TR_NSEARCH_SLAB = 2u
 };
 
 /* Called for each candidate pair ei > ej; may lower *cutoff. Returns 0 to go
@@ -72,6 +74,20 @@ int tr_nsearch_excluded(const tr_nsearch *s, size_t ei, size_t ej, size_t min_ga
  * callback's final value. */
 int tr_nsearch_pairs(const tr_nsearch *s, double *cutoff, size_t min_gap, unsigned flags,
                      tr_pair_fn fn, void *ctx);
+
+/* Every pair (ei > ej), not excluded, whose edge boxes are within cutoff
+ * and where edge j's box meets the slab of edge i stretched by pad at both
+ * ends: {y : (y - p_i).u_i in [-pad, |e_i| + pad]} (p_i its start vertex, u_i
+ * its direction). A pair whose closest-point connector c satisfies
+ * |c.u_i| <= pad (as for a strut that is nearly normal to edge i) always
+ * passes, so with pad = tilt * cutoff this finds the nearly doubly-normal
+ * pairs of a tight curve in time linear in N: the slab cuts each nearby
+ * strand in a few edges, whereas all pairs within a fixed cutoff grow like
+ * N^2 once the edges are much shorter than the cutoff. The cutoff stays
+ * fixed (the callback's changes are ignored); pad < 0 (or NaN) means no
+ * slab, only the cutoff. */
+int tr_nsearch_pairs_slab(const tr_nsearch *s, double cutoff, size_t min_gap, double pad, tr_pair_fn fn,
+                          void *ctx);
 
 /* The partners j != i (on both sides) of one edge i, with the same tests:
  * fn gets (i, j) in that order. The thickness oracle uses a few of these to

@@ -51,4 +51,30 @@ static inline double tr_segment_distance(const double *p0, const double *p1, con
     return sqrt(dx * dx + dy * dy + dz * dz);
 }
 
+/* Is the closest-point connector c = P(s) - Q(t) (s, t, d as returned by
+ * tr_segment_distance) within `tilt` (a sine) of both segments' normal
+ * planes: |c.d1| <= tilt d |d1| and |c.d2| <= tilt d |d2|? A strut of a
+ * tight rope is normal to both strands (a local minimum of the distance
+ * along both has c in the normal slab or wedge of each edge, so it passes
+ * once tilt >= the sine of the largest turning angle); this is what lets
+ * the contact list skip the many nearly parallel pairs within the cutoff. */
+static inline int tr_segment_nearly_normal(const double *p0, const double *p1, const double *q0,
+                                           const double *q1, double s, double t, double d, double tilt)
+{
+    double d1[3], d2[3], r[3];
+    for (int k = 0; k < 3; k++) {
+        d1[k] = p1[k] - p0[k];
+        d2[k] = q1[k] - q0[k];
+        r[k] = p0[k] - q0[k];
+    }
+    double cx = r[0] + s * d1[0] - t * d2[0];
+    double cy = r[1] + s * d1[1] - t * d2[1];
+    double cz = r[2] + s * d1[2] - t * d2[2];
+    double ca = cx * d1[0] + cy * d1[1] + cz * d1[2];
+    double cb = cx * d2[0] + cy * d2[1] + cz * d2[2];
+    double la = sqrt(d1[0] * d1[0] + d1[1] * d1[1] + d1[2] * d1[2]);
+    double lb = sqrt(d2[0] * d2[0] + d2[1] * d2[1] + d2[2] * d2[2]);
+    return fabs(ca) <= tilt * d * la && fabs(cb) <= tilt * d * lb;
+}
+
 #endif

@@ -112,11 +112,15 @@ inline int grid_excluded(__global const int *comp, __global const int *pos,
 /* For item i: partners j with distance < r (segment-segment for edges,
  * point-point for vertices), not excluded, in increasing j; count[i] is the
  * full number even when it exceeds cap (then *overflow is set and the host
- * enlarges the lists). */
+ * enlarges the lists). For edges with 0 < tilt < 1 only the pairs whose
+ * closest-point connector is within tilt of both normal planes
+ * (tr_segment_nearly_normal). Edge pairs are evaluated lower index first,
+ * as the reference does, so that item i and item j decide alike. */
 __kernel void grid_pairs(__global const real *x, __global const int *next, const int n,
                          const int edges, __global const int *comp, __global const int *pos,
                          __global const int *comp_n, __global const int *comp_closed,
-                         __global const int *gap, const real r, __global const ulong *keys,
+                         __global const int *gap, const real r, const real tilt,
+                         __global const ulong *keys,
                          __global const int *cell_start, __global const int *cell_end,
                          const real lox, const real loy, const real loz, const real inv_h,
                          const int nx, const int ny, const int nz, const int cap,
@@ -148,13 +152,19 @@ __kernel void grid_pairs(__global const real *x, __global const int *next, const
                         continue;
                     real3 b0 = vload3(j, x);
                     real d;
+                    int keep = 1;
                     if (edges) {
                         real ss, tt;
-                        d = tr_segment_distance(a0, a1, b0, vload3(next[j], x), &ss, &tt);
+                        real3 b1 = vload3(next[j], x);
+                        real3 l0 = i < j ? a0 : b0, l1 = i < j ? a1 : b1;
+                        real3 h0 = i < j ? b0 : a0, h1 = i < j ? b1 : a1;
+                        d = tr_segment_distance(l0, l1, h0, h1, &ss, &tt);
+                        if (tilt > 0.0 && tilt < 1.0 && d < r)
+                            keep = tr_segment_nearly_normal(l0, l1, h0, h1, ss, tt, d, tilt);
                     } else {
                         d = tr_norm3(a0 - b0);
                     }
-                    if (d < r) {
+                    if (d < r && keep) {
                         if (m < cap) {
                             /* insertion keeps the list in increasing j */
                             int k = m;

@@ -104,6 +104,65 @@ int main(void)
     CHECK_NEAR(cs.min_dist, brute_min, 0);
     CHECK(cs.pairs > 0);
 
+    /* With a tilt the list is exactly the brute-force set of pairs within
+     * the cutoff whose strut is nearly normal to both edges, and that set
+     * holds every local minimum of the distance along both strands (from
+     * the full distance table) once the tilt reaches the sine of the largest
+     * turning angle (backend.h's claim, tested at that very bound). */
+    {
+        size_t n = c.nv;
+        double sin_max = 0.0;
+        for (size_t i = 0; i < n; i++) {
+            double u[3], w[3], x[3];
+            v3_sub(u, c.x + 3 * i, c.x + 3 * ((i + n - 1) % n));
+            v3_sub(w, c.x + 3 * ((i + 1) % n), c.x + 3 * i);
+            v3_cross(x, u, w);
+            sin_max = fmax(sin_max, v3_norm(x) / (v3_norm(u) * v3_norm(w)));
+        }
+        tr_contact_params ct = cp;
+        ct.tilt = sin_max * (1.0 + 1e-9);
+        tr_contact_stats cst2;
+        CHECK_OK(op->find_contacts(be.state, &ct, &cst2, &err));
+        double *dt = malloc(n * n * sizeof *dt);
+        for (size_t a = 0; a < n; a++)
+            for (size_t b = 0; b < n; b++) {
+                double s, t;
+                dt[a * n + b] = tr_segment_distance(c.x + 3 * a, c.x + 3 * ((a + 1) % n), c.x + 3 * b,
+                                                    c.x + 3 * ((b + 1) % n), &s, &t);
+            }
+        size_t kept = 0, minima = 0, minima_kept = 0;
+        double min_kept = INFINITY, min_local = INFINITY;
+        for (size_t a = 0; a < n; a++)
+            for (size_t b = a + 1; b < n; b++) {
+                size_t g = b - a < n - (b - a) ? b - a : n - (b - a);
+                const double *a0 = c.x + 3 * a, *a1 = c.x + 3 * ((a + 1) % n);
+                const double *b0 = c.x + 3 * b, *b1 = c.x + 3 * ((b + 1) % n);
+                double s, t, d = tr_segment_distance(a0, a1, b0, b1, &s, &t);
+                if (g < (size_t)gap[0] || !(d < cp.cutoff))
+                    continue;
+                int normal = tr_segment_nearly_normal(a0, a1, b0, b1, s, t, d, ct.tilt);
+                if (normal) {
+                    kept++;
+                    min_kept = fmin(min_kept, d);
+                }
+                size_t ap = (a + n - 1) % n, an = (a + 1) % n, bp = (b + n - 1) % n, bn = (b + 1) % n;
+                if (d <= dt[ap * n + b] && d <= dt[an * n + b] && d <= dt[a * n + bp] && d <= dt[a * n + bn]) {
+                    minima++;
+                    minima_kept += (size_t)normal;
+                    min_local = fmin(min_local, d);
+                }
+            }
+        printf("contacts: %zu plain, %zu with tilt %.3f (brute %zu), %zu local minima, %zu kept\n",
+               cs.pairs, cst2.pairs, ct.tilt, kept, minima, minima_kept);
+        CHECK(cst2.pairs == kept);
+        CHECK(cst2.pairs < cs.pairs);
+        CHECK(minima > 0 && minima_kept == minima);
+        CHECK_NEAR(cst2.min_dist, min_kept, 0);
+        CHECK_NEAR(cst2.min_dist, min_local, 0);
+        free(dt);
+        CHECK_OK(op->find_contacts(be.state, &cp, &cs, &err));
+    }
+
     /* tension: predicted decrease matches the actual one for a tiny step
      * (F = -grad L), relative error O(h) */
     CHECK_OK(op->save(be.state, &err));

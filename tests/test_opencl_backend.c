@@ -143,6 +143,19 @@ static void ops_case(const char *name, const tr_curve *c, double cutoff, int cg_
     compare1(w, csd.min_dist, csr.min_dist, 0.0);
     if (csr.pairs != csd.pairs)
         fprintf(stderr, "%s: %zu pairs on the device, %zu in the reference\n", w, csd.pairs, csr.pairs);
+    /* the engine's tilted list (the same definition, evaluated alike) */
+    {
+        tr_contact_params ct = cp;
+        ct.tilt = 0.1;
+        tr_contact_stats ctr, ctd;
+        CHECK_OK(R->find_contacts(rs, &ct, &ctr, &err));
+        CHECK_OK(D->find_contacts(ds, &ct, &ctd, &err));
+        CHECK(ctr.pairs == ctd.pairs && ctr.pairs <= csr.pairs);
+        snprintf(w, sizeof w, "%s n=%zu tilted contacts min", name, c->nv);
+        compare1(w, ctd.min_dist, ctr.min_dist, 0.0);
+        CHECK_OK(R->find_contacts(rs, &cp, &csr, &err));
+        CHECK_OK(D->find_contacts(ds, &cp, &csd, &err));
+    }
 
     /* force evaluation: per-vertex arithmetic identical, so positions agree
      * bit for bit; the stats are sums (tree vs sequential): n eps relative */

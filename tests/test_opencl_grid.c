@@ -10,6 +10,7 @@
 
 #include "cl_grid.h"
 #include "curve.h"
+#include "segdist.h"
 #include "testlib.h"
 
 #define TR_PI 3.14159265358979323846
@@ -94,7 +95,7 @@ static double seg_dist_slow(const double *p0, const double *p1, const double *q0
 }
 
 static void run_case(const tr_cl_ctx *ctx, cl_program prog, int kind, size_t n, int edges,
-                     double r, int K, int cap)
+                     double r, double tilt, int K, int cap)
 {
     tr_error err;
     tr_curve c;
@@ -116,7 +117,7 @@ static void run_case(const tr_cl_ctx *ctx, cl_program prog, int kind, size_t n, 
     int gaps[2] = {K, K};
     cl_mem gap = clCreateBuffer(ctx->context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof gaps,
                                 gaps, &e);
-    int rc = tr_cl_grid_build(&grid, ctx, &red, &topo, x, edges, r, gap, &err);
+    int rc = tr_cl_grid_build(&grid, ctx, &red, &topo, x, edges, r, tilt, gap, &err);
     CHECK_OK(rc);
     if (rc != TR_OK)
         fprintf(stderr, "%s\n", err.msg);
@@ -156,6 +157,16 @@ static void run_case(const tr_cl_ctx *ctx, cl_program prog, int kind, size_t n, 
                 double d = edges ? seg_dist_slow(a, c.x + 3 * next[i], b, c.x + 3 * next[j])
                                  : sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) +
                                         (a[2] - b[2]) * (a[2] - b[2]));
+                if (edges && tilt > 0.0 && tilt < 1.0) {
+                    /* backend.h's definition, lower edge first */
+                    int lo = i < j ? i : j, hi = i < j ? j : i;
+                    const double *l0 = c.x + 3 * lo, *l1 = c.x + 3 * next[lo];
+                    const double *h0 = c.x + 3 * hi, *h1 = c.x + 3 * next[hi];
+                    double s, t;
+                    d = tr_segment_distance(l0, l1, h0, h1, &s, &t);
+                    if (d < r && !tr_segment_nearly_normal(l0, l1, h0, h1, s, t, d, tilt))
+                        continue;
+                }
                 if (d < r)
                     want[m++] = j;
             }
@@ -168,6 +179,9 @@ static void run_case(const tr_cl_ctx *ctx, cl_program prog, int kind, size_t n, 
                     kind, nv, edges, i, cnt[i], m);
     }
     CHECK(bad == 0);
+    if (tilt > 0.0)
+        CHECK(total > 0); /* the tilted case has pairs to agree on */
+    printf("kind %d n %zu edges %d r %g tilt %g: %ld pairs\n", kind, n, edges, r, tilt, total);
     if (cap < 4 && total > 0)
         CHECK(grid.cap > cap); /* an overflow grew the lists */
     free(want), free(cnt), free(list);
@@ -195,9 +209,9 @@ int main(void)
         return 1;
     }
     /* smallest legal curves: a triangle, two triangles, two 2-vertex ropes */
-    run_case(&ctx, prog, 0, 3, 1, 10.0, 2, 16);
-    run_case(&ctx, prog, 1, 6, 1, 10.0, 2, 16);
-    run_case(&ctx, prog, 2, 4, 1, 10.0, 2, 16);
+    run_case(&ctx, prog, 0, 3, 1, 10.0, 0.0, 2, 16);
+    run_case(&ctx, prog, 1, 6, 1, 10.0, 0.0, 2, 16);
+    run_case(&ctx, prog, 2, 4, 1, 10.0, 0.0, 2, 16);
     const size_t sizes[] = {64, 1021, 1024};
     for (int kind = 0; kind < 3; kind++)
         for (size_t s = 0; s < 3; s++)
@@ -205,10 +219,14 @@ int main(void)
                 /* cutoff 2.2 with exclusion of ~pi/e index neighbours, as the engine uses */
                 size_t n = sizes[s];
                 int K = (int)ceil(TR_PI / (20.0 / (double)n));
-                run_case(&ctx, prog, kind, n, edges, 2.2, K, 8);
+                run_case(&ctx, prog, kind, n, edges, 2.2, 0.0, K, 8);
             }
+    /* the engine's tilted list: only struts nearly normal to both edges */
+    for (int kind = 0; kind < 2; kind++)
+        run_case(&ctx, prog, kind, 1024, 1, 2.2, 0.05, (int)ceil(TR_PI / (20.0 / 1024.0)), 8);
+    run_case(&ctx, prog, 0, 1021, 1, 2.5, 0.05, 30, 8);
     /* overflow: lists that start too short are grown and the result is the same */
-    run_case(&ctx, prog, 0, 1021, 1, 2.5, 30, 1);
+    run_case(&ctx, prog, 0, 1021, 1, 2.5, 0.0, 30, 1);
     clReleaseProgram(prog);
     tr_cl_ctx_close(&ctx);
     return tr_test_finish("test_opencl_grid");

@@ -7,7 +7,9 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "generate.h"
 #include "neighbour_search.h"
+#include "segdist.h"
 #include "testlib.h"
 #include "thickness.h"
 
@@ -419,8 +421,68 @@ static void test_index_exclusion(void)
     tr_curve_free(&c);
 }
 
+/* Pairs within the cutoff whose strut is within `tilt` of both normal
+ * planes (the engine's contact list), counted from whatever is offered. */
+typedef struct tilt_count {
+    const tr_nsearch *ns;
+    double cutoff, tilt;
+    size_t offered, kept;
+} tilt_count;
+
+static int count_tilted(void *ctx, size_t ei, size_t ej, double *cutoff)
+{
+    (void)cutoff;
+    tilt_count *t = ctx;
+    const double *x = t->ns->c->x;
+    const double *a0 = x + 3 * t->ns->ea[ej], *a1 = x + 3 * t->ns->eb[ej];
+    const double *b0 = x + 3 * t->ns->ea[ei], *b1 = x + 3 * t->ns->eb[ei];
+    double s, u;
+    double d = tr_segment_distance(a0, a1, b0, b1, &s, &u);
+    t->offered++;
+    if (d < t->cutoff && tr_segment_nearly_normal(a0, a1, b0, b1, s, u, d, t->tilt))
+        t->kept++;
+    return 0;
+}
+
+/* The slab walk must offer every nearly normal pair the brute force finds
+ * (its pruning is conservative), on a closed knot and an open rope, while
+ * offering few more candidates than it keeps (brute force offers all). */
+static void test_slab_search(void)
+{
+    tr_error err;
+    tr_curve c;
+    CHECK_OK(tr_make_torus(&c, 2, 3, 1500, &err));
+    for (int open = 0; open <= 1; open++) {
+        c.closed[0] = (unsigned char)!open;
+        tr_nsearch ns;
+        CHECK_OK(tr_nsearch_build(&ns, &c, &err));
+        double tilts[] = {0.02, 0.2};
+        for (int k = 0; k < 2; k++) {
+            tilt_count slab = {.ns = &ns, .cutoff = 4.0, .tilt = tilts[k]};
+            tilt_count brute = slab;
+            CHECK_OK(tr_nsearch_pairs_slab(&ns, 4.0, 12, tilts[k] * 4.0, count_tilted, &slab));
+            double cut = 4.0;
+            CHECK_OK(tr_nsearch_pairs_brute(&ns, &cut, 12, 0, count_tilted, &brute));
+            printf("slab search (%s, tilt %.2f): %zu of %zu offered kept, brute %zu of %zu\n",
+                   open ? "open" : "closed", tilts[k], slab.kept, slab.offered, brute.kept, brute.offered);
+            CHECK(brute.kept > 0);
+            CHECK(slab.kept == brute.kept);
+            CHECK(slab.offered < 3 * slab.kept + ns.ne); /* pruned close to what is kept */
+        }
+        /* without a slab (pad < 0) it is the plain cutoff search */
+        tilt_count all = {.ns = &ns, .cutoff = 4.0, .tilt = 1.0}, ball = all;
+        CHECK_OK(tr_nsearch_pairs_slab(&ns, 4.0, 12, -1.0, count_tilted, &all));
+        double cut = 4.0;
+        CHECK_OK(tr_nsearch_pairs(&ns, &cut, 12, 0, count_tilted, &ball));
+        CHECK(all.kept == ball.kept && all.offered == ball.offered);
+        tr_nsearch_free(&ns);
+    }
+    tr_curve_free(&c);
+}
+
 int main(void)
 {
+    test_slab_search();
     test_regular_polygons();
     test_perpendicular_segments();
     test_normal_wedge();
