@@ -1,7 +1,7 @@
 /* tightrope bench [--device SPEC]... [--n LIST] [--steps K] [--json]
  *
  * Throughput of the tightening step on each device: for every N a torus-knot
- * trefoil T(2,3) with N vertices; per device one validation step against the
+ * trefoil T(2,3) with N vertices (or --start FILE resampled to N); per device one validation step against the
  * serial reference on the same state (a device that disagrees is reported
  * and not timed), one untimed warm-up step, then timed steps and timed
  * neighbour searches. Per-kernel device times come from a separate profiled
@@ -25,7 +25,9 @@
 #include "backend_opencl.h"
 #include "cl_device.h"
 #include "cli.h"
+#include "curve_io.h"
 #include "engine.h"
+#include "refine_lowpass.h"
 #include "generate.h"
 
 #define MAX_DEV 8
@@ -259,16 +261,16 @@ static int parse_list(const char *s, size_t *out, int max)
 static void usage(FILE *f)
 {
     fprintf(f,
-            "usage: tightrope bench [--device SPEC]... [--n LIST] [--steps K] [--time S] [--json]\n"
+            "usage: tightrope bench [--device SPEC]... [--n LIST] [--start FILE] [--steps K] [--time S] [--json]\n"
             "  --device SPEC  reference, auto, P:D or a name part; repeatable (default: the\n"
             "                 reference and every usable OpenCL device)\n"
             "  --n LIST       vertex counts, e.g. 1e3,1e4,1e5 (default 1000,10000,100000)\n"
             "  --steps K      timed steps per device and N (default: about --time seconds)\n"
             "  --time S       target seconds of timed steps per device and N (default 2)\n"
             "  --no-kernels   skip the profiled per-kernel run\n"
-            "  --no-search    no neighbour search (empty contact list): the grid search is\n"
-            "                 quadratic in N for curves whose strands are within 2 of\n"
-            "                 each other over long stretches, too slow at N = 10^6\n"
+            "  --start FILE   start from this curve (e.g. a tight knot) resampled to each N\n"
+            "                 by a Fourier low-pass, instead of the torus knot T(2,3)\n"
+            "  --no-search    no neighbour search (empty contact list)\n"
             "  --json         one JSON object instead of the table\n");
 }
 
@@ -276,6 +278,7 @@ int tr_cmd_bench(int argc, char **argv)
 {
     const char *devs[MAX_DEV];
     int ndev = 0, json = 0, steps = 0, kernels = 1, search = 1;
+    const char *start = NULL;
     double target = 2.0;
     size_t ns[MAX_N] = {1000, 10000, 100000};
     int nn = 3;
@@ -302,6 +305,8 @@ int tr_cmd_bench(int argc, char **argv)
                 fprintf(stderr, "tightrope bench: bad --n list '%s' (e.g. 1e3,1e4)\n", argv[i]);
                 return 2;
             }
+        } else if (i + 1 < argc && !strcmp(a, "--start")) {
+            start = argv[++i];
         } else if (i + 1 < argc && !strcmp(a, "--steps")) {
             steps = atoi(argv[++i]);
             if (steps < 1 || steps > 100000) {
@@ -354,18 +359,32 @@ int tr_cmd_bench(int argc, char **argv)
         return 1;
     }
     int status = 0;
+    tr_curve start_curve;
+    if (start) {
+        tr_error err;
+        if (tr_curve_read(start, TR_FORMAT_AUTO, &start_curve, &err) != TR_OK) {
+            fprintf(stderr, "tightrope bench: %s\n", err.msg);
+            free(res);
+            return 1;
+        }
+    }
     for (int j = 0; j < nn; j++) {
         tr_curve c;
         tr_error err;
-        if (tr_make_torus(&c, 2, 3, ns[j], &err) != TR_OK) {
+        if ((start ? tr_refine_lowpass(&start_curve, ns[j], 0.5, 0.5, &c, &err)
+                   : tr_make_torus(&c, 2, 3, ns[j], &err)) != TR_OK) {
             fprintf(stderr, "tightrope bench: %s\n", err.msg);
+            if (start)
+                tr_curve_free(&start_curve);
             free(res);
             return 1;
         }
         int gap = (int)ceil(3.141592653589793 / (tr_curve_length(&c) / (double)c.nv));
         bc.gap = &gap;
         double h = tr_curve_length(&c) / (double)c.nv; /* the engine starts with h = ebar */
-        bc.tilt = tr_engine_contact_tilt(&bc.prm, h, bc.prm.max_move);
+        /* the engine's tilt after a step that moved vertices by one edge
+         * length (tighter steps move less, loose ones more) */
+        bc.tilt = tr_engine_contact_tilt(&bc.prm, h, h);
         /* the reference's state after the validation step */
         double *ref_x = malloc(3 * c.nv * sizeof *ref_x);
         tr_backend rb;
@@ -429,17 +448,17 @@ int tr_cmd_bench(int argc, char **argv)
         }
         printf("\n ]}\n");
     } else {
-        printf("%-58s %9s %6s %11s %11s %13s %8s %10s %8s\n", "device", "N", "steps", "step ms",
-               "steps/s", "vertex-st/s", "cg/step", "search ms", "vs ref");
+        printf("%-58s %9s %6s %11s %11s %13s %8s %10s %9s %8s\n", "device", "N", "steps", "step ms",
+               "steps/s", "vertex-st/s", "cg/step", "search ms", "pairs", "vs ref");
         for (int i = 0; i < ndev * nn; i++) {
             const result *r = &res[i];
             if (r->error[0]) {
                 printf("%-58.58s %9zu  %s\n", r->device, r->n, r->error);
                 continue;
             }
-            printf("%-58.58s %9zu %6d %11.3f %11.3f %13.4g %8.1f %10.2f %8.3g\n", r->device, r->n,
+            printf("%-58.58s %9zu %6d %11.3f %11.3f %13.4g %8.1f %10.2f %9zu %8.3g\n", r->device, r->n,
                    r->steps, 1e3 * r->step_med, 1.0 / r->step_med, (double)r->n / r->step_med,
-                   r->cg_per_step, 1e3 * r->contacts_s, r->ratio);
+                   r->cg_per_step, 1e3 * r->contacts_s, r->pairs, r->ratio);
         }
         for (int i = 0; i < ndev * nn; i++) {
             const result *r = &res[i];
@@ -470,8 +489,21 @@ int tr_cmd_bench(int argc, char **argv)
                        log(b->step_med / a->step_med) / log((double)b->n / (double)a->n));
             }
             printf("\n");
+            if (!search)
+                continue;
+            printf("%s: search time grows like N^p:", res[d].device);
+            for (int j = 1; j < nn; j++) {
+                const result *a = &res[(j - 1) * ndev + d], *b = &res[j * ndev + d];
+                if (a->error[0] || b->error[0] || !(a->contacts_s > 0) || !(b->contacts_s > 0))
+                    continue;
+                printf("  %zu->%zu p = %.2f", a->n, b->n,
+                       log(b->contacts_s / a->contacts_s) / log((double)b->n / (double)a->n));
+            }
+            printf("\n");
         }
     }
+    if (start)
+        tr_curve_free(&start_curve);
     free(res);
     return status;
 }

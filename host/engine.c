@@ -55,7 +55,7 @@ void tr_engine_params_default(tr_engine_params *p)
 {
     memset(p, 0, sizeof *p);
     p->skin = 0.1;
-    p->tilt_edges = 4.0;
+    p->tilt_edges = 2.0;
     p->tilt_motion = 2.0;
     p->max_move = 0.03;
     p->guard_move = 0.06;

@@ -20,7 +20,8 @@
  * 2 guard_move < 1 while it started >= 2 - tol: at an accepted state the
  * closest non-excluded pair is either a local minimum of the distance along
  * both strands, whose strut is within the list's tilt of both normal planes
- * (tilt >= 4 ebar >= the largest turning angle while MinRad >= 1/2), so it
+ * (tilt >= 2 ebar >= the largest turning angle 2 atan(ebar / (2 MinRad))
+ * while MinRad >= 1/2), so it
  * was in the list just checked, or it borders the excluded arc, and such
  * pairs lie arclength ~pi apart on a curve of curvature <= 1, hence about 2
  * apart (Schur's comparison); excluded pairs cannot self-intersect there. */

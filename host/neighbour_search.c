@@ -291,9 +291,25 @@ static void query_setup(const tr_nsearch *s, size_t i, double pad, query_edge *q
     q->last = !s->c->closed[k] && i + 1 == s->estart[k + 1];
 }
 
+/* TR_NSEARCH_SLAB prunes from both sides: besides edge j's box meeting
+ * edge i's slab, edge i's box must meet edge j's (a strand crossing edge i's
+ * normal plane at a steep angle lies in that plane's slab for a long way,
+ * but only near its closest point is the strut normal to it as well). The
+ * run slabs of all leaves are set up once per search for that. */
+typedef struct slab_index {
+    struct block_query *leaf; /* per node id; used for leaves */
+    unsigned char *ok;        /* the leaf's run slab could be formed */
+    double pad;
+} slab_index;
+
+static int edge_meets_slab_of(const tr_nsearch *s, const slab_index *si, size_t j, const double *m,
+                              const double *r);
+static int box_meets_leaf_slab(const slab_index *si, uint32_t id, const double *m, const double *r);
+
 /* The edges j < jend of one leaf against query edge i. */
 static int query_leaf(const tr_nsearch *s, const query_edge *q, size_t i, size_t jend, const node_t *n,
-                      size_t min_gap, unsigned flags, double *cutoff, tr_pair_fn fn, void *ctx)
+                      size_t min_gap, unsigned flags, const slab_index *si, double *cutoff, tr_pair_fn fn,
+                      void *ctx)
 {
     size_t b = n->b < jend ? n->b : jend;
     for (size_t j = n->a; j < b; j++) {
@@ -305,6 +321,8 @@ static int query_leaf(const tr_nsearch *s, const query_edge *q, size_t i, size_t
         if (box_dist2(q->m, q->r, em, er) > cut * cut)
             continue;
         if (!box_may_match(q, flags, em, er))
+            continue;
+        if (si && !edge_meets_slab_of(s, si, j, q->m, q->r))
             continue;
         int rc = fn(ctx, i, j, cutoff);
         if (rc)
@@ -338,7 +356,7 @@ static int push_children(const tr_nsearch *s, const node_t *n, const double *m, 
 
 /* One query edge walks the tree from the root, partners j < jend. */
 static int query_edge_walk(const tr_nsearch *s, size_t i, size_t jend, size_t min_gap, unsigned flags,
-                           double pad, double *cutoff, tr_pair_fn fn, void *ctx)
+                           double pad, const slab_index *si, double *cutoff, tr_pair_fn fn, void *ctx)
 {
     stack_entry stack[STACK_DEPTH];
     query_edge q;
@@ -363,7 +381,9 @@ static int query_edge_walk(const tr_nsearch *s, size_t i, size_t jend, size_t mi
         if (!box_may_match(&q, flags, n->m, n->r))
             continue;
         if (n->left == 0) {
-            int rc = query_leaf(s, &q, i, jend, n, min_gap, flags, cutoff, fn, ctx);
+            if (si && !box_meets_leaf_slab(si, stack[sp].id, q.m, q.r))
+                continue;
+            int rc = query_leaf(s, &q, i, jend, n, min_gap, flags, si, cutoff, fn, ctx);
             if (rc)
                 return rc;
             continue;
@@ -447,6 +467,40 @@ static int block_may_be_critical(const block_query *bq, const double *m, const d
     return pmax >= bq->lo && pmin <= bq->hi;
 }
 
+static int box_meets_leaf_slab(const slab_index *si, uint32_t id, const double *m, const double *r)
+{
+    return !si->ok[id] || block_may_be_critical(&si->leaf[id], m, r);
+}
+
+static int edge_meets_slab_of(const tr_nsearch *s, const slab_index *si, size_t j, const double *m,
+                              const double *r)
+{
+    query_edge qj;
+    query_setup(s, j, si->pad, &qj);
+    return box_may_be_in_slab(&qj, m, r);
+}
+
+static void slab_index_free(slab_index *si)
+{
+    free(si->leaf);
+    free(si->ok);
+}
+
+static int slab_index_build(const tr_nsearch *s, double D, double pad, slab_index *si)
+{
+    si->pad = pad;
+    si->leaf = malloc(s->nnodes * sizeof *si->leaf);
+    si->ok = calloc(s->nnodes, 1);
+    if (!si->leaf || !si->ok) {
+        slab_index_free(si);
+        return -1;
+    }
+    for (size_t id = 0; id < s->nnodes; id++)
+        if (s->node[id].left == 0 && s->node[id].comp >= 0)
+            si->ok[id] = (unsigned char)block_setup(s, &s->node[id], D, pad, &si->leaf[id]);
+    return 0;
+}
+
 typedef struct leaf_list {
     uint32_t *id;
     size_t n, cap;
@@ -456,12 +510,13 @@ typedef struct leaf_list {
  * that may hold a partner of any of its edges, then tests each edge of the
  * run against those leaves only. */
 static int query_block(const tr_nsearch *s, const node_t *leaf, size_t min_gap, unsigned flags,
-                       double pad, double *cutoff, tr_pair_fn fn, void *ctx, leaf_list *cand)
+                       double pad, const slab_index *si, double *cutoff, tr_pair_fn fn, void *ctx,
+                       leaf_list *cand)
 {
     block_query bq;
     if (!block_setup(s, leaf, *cutoff, pad, &bq)) {
         for (size_t i = leaf->a; i < leaf->b; i++) {
-            int rc = query_edge_walk(s, i, i, min_gap, flags, pad, cutoff, fn, ctx);
+            int rc = query_edge_walk(s, i, i, min_gap, flags, pad, si, cutoff, fn, ctx);
             if (rc)
                 return rc;
         }
@@ -486,6 +541,8 @@ static int query_block(const tr_nsearch *s, const node_t *leaf, size_t min_gap, 
         if (!block_may_be_critical(&bq, n->m, n->r))
             continue;
         if (n->left == 0) {
+            if (si && !box_meets_leaf_slab(si, stack[sp].id, bq.m, bq.r))
+                continue;
             if (cand->n == cand->cap) {
                 size_t cap = cand->cap ? 2 * cand->cap : 256;
                 uint32_t *g = realloc(cand->id, cap * sizeof *g);
@@ -518,7 +575,9 @@ static int query_block(const tr_nsearch *s, const node_t *leaf, size_t min_gap, 
                 continue;
             if (!box_may_match(&q, flags, n->m, n->r))
                 continue;
-            int rc = query_leaf(s, &q, i, i, n, min_gap, flags, cutoff, fn, ctx);
+            if (si && !box_meets_leaf_slab(si, cand->id[c], q.m, q.r))
+                continue;
+            int rc = query_leaf(s, &q, i, i, n, min_gap, flags, si, cutoff, fn, ctx);
             if (rc)
                 return rc;
         }
@@ -535,6 +594,12 @@ static int pairs_walk(const tr_nsearch *s, double *cutoff, size_t min_gap, unsig
      * cutoff is finite and the run lies on one component; before that, and
      * without the critical-point pruning, each edge walks the tree itself. */
     leaf_list cand = {0};
+    slab_index si_store = {0}, *si = NULL;
+    if ((flags & TR_NSEARCH_SLAB) && isfinite(*cutoff)) {
+        if (slab_index_build(s, *cutoff, pad, &si_store))
+            return -1;
+        si = &si_store;
+    }
     int rc = 0;
     for (size_t id = 0; id < s->nnodes && rc == 0; id++) {
         const node_t *leaf = &s->node[id];
@@ -542,14 +607,16 @@ static int pairs_walk(const tr_nsearch *s, double *cutoff, size_t min_gap, unsig
             continue;
         if ((flags & (TR_NSEARCH_CRITICAL | TR_NSEARCH_SLAB)) && isfinite(*cutoff) && leaf->comp >= 0 &&
             leaf->b - leaf->a > 1) {
-            rc = query_block(s, leaf, min_gap, flags, pad, cutoff, fn, ctx, &cand);
+            rc = query_block(s, leaf, min_gap, flags, pad, si, cutoff, fn, ctx, &cand);
         } else {
             for (size_t i = leaf->a; i < leaf->b && rc == 0; i++)
                 if (i > 0)
-                    rc = query_edge_walk(s, i, i, min_gap, flags, pad, cutoff, fn, ctx);
+                    rc = query_edge_walk(s, i, i, min_gap, flags, pad, si, cutoff, fn, ctx);
         }
     }
     free(cand.id);
+    if (si)
+        slab_index_free(si);
     return rc;
 }
 
@@ -572,7 +639,8 @@ int tr_nsearch_edge(const tr_nsearch *s, size_t i, double *cutoff, size_t min_ga
 {
     if (i >= s->ne)
         return 0;
-    return query_edge_walk(s, i, s->ne, min_gap, flags & ~(unsigned)TR_NSEARCH_SLAB, 0.0, cutoff, fn, ctx);
+    return query_edge_walk(s, i, s->ne, min_gap, flags & ~(unsigned)TR_NSEARCH_SLAB, 0.0, NULL, cutoff, fn,
+                           ctx);
 }
 
 int tr_nsearch_pairs_brute(const tr_nsearch *s, double *cutoff, size_t min_gap, unsigned flags,

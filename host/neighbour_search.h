@@ -77,10 +77,12 @@ int tr_nsearch_pairs(const tr_nsearch *s, double *cutoff, size_t min_gap, unsign
 
 /* Every pair (ei > ej), not excluded, whose edge boxes are within cutoff
  * and where edge j's box meets the slab of edge i stretched by pad at both
- * ends: {y : (y - p_i).u_i in [-pad, |e_i| + pad]} (p_i its start vertex, u_i
- * its direction). A pair whose closest-point connector c satisfies
- * |c.u_i| <= pad (as for a strut that is nearly normal to edge i) always
- * passes, so with pad = tilt * cutoff this finds the nearly doubly-normal
+ * ends, {y : (y - p_i).u_i in [-pad, |e_i| + pad]} (p_i its start vertex, u_i
+ * its direction), and edge i's box meets edge j's slab likewise (the test is
+ * also made for whole leaves, by the slab along a leaf's chord). A pair
+ * whose closest-point connector c satisfies |c.u_i| <= pad and |c.u_j| <=
+ * pad (a strut nearly normal to both edges) always passes, so with pad =
+ * tilt * cutoff this finds the nearly doubly-normal
  * pairs of a tight curve in time linear in N: the slab cuts each nearby
  * strand in a few edges, whereas all pairs within a fixed cutoff grow like
  * N^2 once the edges are much shorter than the cutoff. The cutoff stays
