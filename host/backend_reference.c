@@ -48,6 +48,12 @@ typedef struct ref_state {
     double *cgq, *cdeb; /* curvature rows: second gradient vector, dC/debar */
     double *pd, *z;     /* preconditioner diagonal, preconditioned residual (rows) */
     double *po, *tw[5]; /* edge-row off-diagonal, tridiagonal work (nv) */
+    /* inside cg_solve: the active strut rows (ascending) and the per-vertex
+     * strut adjacency restricted to them, so that CG iterations skip the
+     * many inactive rows of a long list (they hold exact zeros: skipping
+     * them changes no sum) */
+    int compact;
+    size_t nact, *act, *aadj_start, *aadj, act_cap, aadj_cap;
     /* neighbour search: a tree over the edges of a curve that views x */
     tr_curve view;
     tr_nsearch ns;
@@ -63,7 +69,7 @@ static void ref_destroy(void *sp)
                     s->ebar_s, s->pj, s->pu, s->vcst, s->cst, s->pa, s->pb, s->adj_start, s->adj,
                     s->F, s->G, s->H, s->dx, s->debar, s->rC, s->rgrad, s->rs, s->rt, s->ract,
                     s->y, s->r, s->p, s->q, s->b, s->cgq, s->cdeb, s->pd, s->z, s->po,
-                    s->tw[0], s->tw[1], s->tw[2], s->tw[3], s->tw[4]};
+                    s->tw[0], s->tw[1], s->tw[2], s->tw[3], s->tw[4], s->act, s->aadj_start, s->aadj};
     for (size_t i = 0; i < sizeof ptrs / sizeof ptrs[0]; i++)
         free(ptrs[i]);
     if (s->ns_built)
@@ -488,8 +494,10 @@ static void apply_JT(ref_state *s, const tr_correct_params *prm, const double *y
         }
         if (nx >= 0 && s->ract[nv + (size_t)nx])
             v3_axpy(g, y[nv + (size_t)nx], s->rgrad + 3 * (nv + (size_t)nx));
-        for (size_t m = s->adj_start[i]; m < s->adj_start[i + 1]; m++) {
-            size_t p = s->adj[m] / 4, slot = s->adj[m] % 4, r = 2 * nv + p;
+        const size_t *adj = s->compact ? s->aadj : s->adj;
+        const size_t *adj_start = s->compact ? s->aadj_start : s->adj_start;
+        for (size_t m = adj_start[i]; m < adj_start[i + 1]; m++) {
+            size_t p = adj[m] / 4, slot = adj[m] % 4, r = 2 * nv + p;
             if (!s->ract[r])
                 continue;
             double c = slot == 0 ? 1.0 - s->rs[p] : slot == 1 ? s->rs[p] : slot == 2 ? -(1.0 - s->rt[p]) : -s->rt[p];
@@ -537,7 +545,9 @@ static void apply_J(ref_state *s, const tr_correct_params *prm, const double *y,
             v += ga[k] * dp[k] + (gb[k] - ga[k]) * di[k] - gb[k] * dn[k];
         out[r] = v + s->cdeb[i] * s->debar[s->comp[i]] + prm->reg * y[r];
     }
-    for (size_t p = 0; p < s->np; p++) {
+    size_t nloop = s->compact ? s->nact : s->np;
+    for (size_t l = 0; l < nloop; l++) {
+        size_t p = s->compact ? s->act[l] : l;
         size_t r = 2 * nv + p;
         if (!s->ract[r]) {
             out[r] = 0.0;
@@ -553,12 +563,65 @@ static void apply_J(ref_state *s, const tr_correct_params *prm, const double *y,
     }
 }
 
-static double dot_rows(const double *a, const double *b, size_t n)
+static double dot_rows(const ref_state *st, const double *a, const double *b, size_t n)
 {
     double s = 0.0;
-    for (size_t i = 0; i < n; i++)
+    if (!st->compact) {
+        for (size_t i = 0; i < n; i++)
+            s += a[i] * b[i];
+        return s;
+    }
+    for (size_t i = 0; i < 2 * st->nv; i++)
         s += a[i] * b[i];
+    for (size_t l = 0; l < st->nact; l++) {
+        size_t r = 2 * st->nv + st->act[l];
+        s += a[r] * b[r];
+    }
     return s;
+}
+
+/* The rows a compacted CG touches: every edge and curvature row, then the
+ * active strut rows in list order. */
+static size_t row_at(const ref_state *s, size_t l)
+{
+    return l < 2 * s->nv ? l : 2 * s->nv + s->act[l - 2 * s->nv];
+}
+
+/* Builds act / aadj from ract (see ref_state). */
+static int compact_rows(ref_state *s)
+{
+    size_t nv = s->nv, na = 0, nadj = 0;
+    for (size_t p = 0; p < s->np; p++)
+        na += s->ract[2 * nv + p];
+    if (na > s->act_cap || !s->act) {
+        size_t *g = realloc(s->act, (na ? na : 1) * sizeof *g);
+        if (!g)
+            return -1;
+        s->act = g;
+        s->act_cap = na;
+    }
+    if (!s->aadj_start && !(s->aadj_start = malloc((nv + 1) * sizeof *s->aadj_start)))
+        return -1;
+    size_t need = 4 * na;
+    if (need > s->aadj_cap || !s->aadj) {
+        size_t *g = realloc(s->aadj, (need ? need : 1) * sizeof *g);
+        if (!g)
+            return -1;
+        s->aadj = g;
+        s->aadj_cap = need;
+    }
+    s->nact = 0;
+    for (size_t p = 0; p < s->np; p++)
+        if (s->ract[2 * nv + p])
+            s->act[s->nact++] = p;
+    for (size_t i = 0; i < nv; i++) {
+        s->aadj_start[i] = nadj;
+        for (size_t m = s->adj_start[i]; m < s->adj_start[i + 1]; m++)
+            if (s->ract[2 * nv + s->adj[m] / 4])
+                s->aadj[nadj++] = s->adj[m];
+    }
+    s->aadj_start[nv] = nadj;
+    return 0;
 }
 
 static double proj_norm2(const ref_state *s, size_t v, const double *g, double c)
@@ -632,9 +695,11 @@ static void precond_setup(ref_state *s, const tr_correct_params *prm)
  * the edge rows, solved exactly; every other row divided by its diagonal. */
 static void precond_apply(ref_state *s, const double *r, double *z)
 {
-    size_t nv = s->nv, nr = 2 * nv + s->np;
-    for (size_t q = nv; q < nr; q++)
+    size_t nv = s->nv, nr = s->compact ? 2 * nv + s->nact : 2 * nv + s->np;
+    for (size_t l = nv; l < nr; l++) {
+        size_t q = s->compact ? row_at(s, l) : l;
         z[q] = s->ract[q] ? r[q] / s->pd[q] : 0.0;
+    }
     /* the row of an open rope's last vertex has no edge and no block entry:
      * zero, or realloc'd garbage (possibly NaN) reaches p and the dot products */
     for (size_t q = 0; q < nv; q++)
@@ -685,27 +750,34 @@ static int cg_solve(ref_state *s, const tr_correct_params *prm)
     }
     precond_apply(s, s->r, s->z);
     memcpy(s->p, s->z, nr * sizeof *s->p);
-    double rr0 = dot_rows(s->r, s->r, nr), rr = rr0, rz = dot_rows(s->r, s->z, nr);
+    /* out of memory for the compaction only costs speed */
+    s->compact = compact_rows(s) == 0;
+    size_t nl = s->compact ? 2 * s->nv + s->nact : nr;
+    double rr0 = dot_rows(s, s->r, s->r, nr), rr = rr0, rz = dot_rows(s, s->r, s->z, nr);
     int k;
     for (k = 0; k < prm->max_cg; k++) {
         if (rr <= prm->cg_rtol * prm->cg_rtol * rr0)
             break;
         apply_JT(s, prm, s->p);
         apply_J(s, prm, s->p, s->q);
-        double pq = dot_rows(s->p, s->q, nr);
+        double pq = dot_rows(s, s->p, s->q, nr);
         double alpha = rz / pq;
-        for (size_t r = 0; r < nr; r++) {
+        for (size_t l = 0; l < nl; l++) {
+            size_t r = s->compact ? row_at(s, l) : l;
             s->y[r] += alpha * s->p[r];
             s->r[r] -= alpha * s->q[r];
         }
-        rr = dot_rows(s->r, s->r, nr);
+        rr = dot_rows(s, s->r, s->r, nr);
         precond_apply(s, s->r, s->z);
-        double rz1 = dot_rows(s->r, s->z, nr);
+        double rz1 = dot_rows(s, s->r, s->z, nr);
         double beta = rz1 / rz;
-        for (size_t r = 0; r < nr; r++)
+        for (size_t l = 0; l < nl; l++) {
+            size_t r = s->compact ? row_at(s, l) : l;
             s->p[r] = s->z[r] + beta * s->p[r];
+        }
         rz = rz1;
     }
+    s->compact = 0;
     return k;
 }
 

@@ -68,7 +68,7 @@ typedef struct bench_ctx {
     tr_engine_params prm;
     int *gap;
     int search; /* 0: --no-search, the contact list stays empty */
-    double tilt; /* the engine's contact tilt for this curve and a full tension move */
+    double cutoff, tilt; /* the engine's contact list for this curve (see below) */
 } bench_ctx;
 
 static int one_step(tr_backend *b, const bench_ctx *bc, double h, int *cg, tr_error *err)
@@ -92,7 +92,7 @@ static int one_step(tr_backend *b, const bench_ctx *bc, double h, int *cg, tr_er
 
 static int contacts(tr_backend *b, const bench_ctx *bc, size_t *pairs, tr_error *err)
 {
-    tr_contact_params cp = {.cutoff = 2.0 + bc->prm.skin, .tilt = bc->tilt, .exclude_gap = bc->gap};
+    tr_contact_params cp = {.cutoff = bc->cutoff, .tilt = bc->tilt, .exclude_gap = bc->gap};
     tr_contact_stats cs = {0, INFINITY};
     int rc = bc->search ? b->ops->find_contacts(b->state, &cp, &cs, err) : TR_OK;
     if (pairs)
@@ -384,7 +384,7 @@ int tr_cmd_bench(int argc, char **argv)
         double h = tr_curve_length(&c) / (double)c.nv; /* the engine starts with h = ebar */
         /* the engine's tilt after a step that moved vertices by one edge
          * length (tighter steps move less, loose ones more) */
-        bc.tilt = tr_engine_contact_tilt(&bc.prm, h, h);
+        tr_engine_contact_shape(&bc.prm, h, h, &bc.cutoff, &bc.tilt);
         /* the reference's state after the validation step */
         double *ref_x = malloc(3 * c.nv * sizeof *ref_x);
         tr_backend rb;

@@ -55,6 +55,8 @@ void tr_engine_params_default(tr_engine_params *p)
 {
     memset(p, 0, sizeof *p);
     p->skin = 0.1;
+    p->skin_min = 1e-3;
+    p->skin_motion = 4.0;
     p->tilt_edges = 2.0;
     p->tilt_motion = 2.0;
     p->max_move = 0.03;
@@ -108,10 +110,12 @@ const char *tr_stop_reason_name(tr_stop_reason r)
     }
 }
 
-double tr_engine_contact_tilt(const tr_engine_params *p, double ebar_max, double disp)
+void tr_engine_contact_shape(const tr_engine_params *p, double ebar_max, double disp, double *cutoff,
+                             double *tilt)
 {
     double t = p->tilt_edges * ebar_max + p->tilt_motion * disp;
-    return t > 0.0 && t < 1.0 ? t : 1.0;
+    *tilt = t > 0.0 && t < 1.0 ? t : 1.0;
+    *cutoff = p->correct.strut_dist + fmin(p->skin, fmax(p->skin_min, p->skin_motion * disp));
 }
 
 static int measure(tr_engine *e, tr_measure *m, tr_error *err)
@@ -137,9 +141,8 @@ static int rebuild_contacts(tr_engine *e, int recompute_gap, tr_error *err)
     double emax = 0.0;
     for (int k = 0; k < e->curve.ncomp; k++)
         emax = fmax(emax, e->ebar[k]);
-    tr_contact_params cp = {.cutoff = 2.0 + e->prm.skin,
-                            .tilt = tr_engine_contact_tilt(&e->prm, emax, e->disp_est),
-                            .exclude_gap = e->gap};
+    tr_contact_params cp = {.exclude_gap = e->gap};
+    tr_engine_contact_shape(&e->prm, emax, e->disp_est, &cp.cutoff, &cp.tilt);
     int rc = e->be.ops->find_contacts(e->be.state, &cp, &e->contacts, err);
     if (rc)
         return rc;

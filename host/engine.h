@@ -36,7 +36,10 @@
 #include "error.h"
 
 typedef struct tr_engine_params {
-    double skin;           /* contact list cutoff = 2 + skin */
+    /* contact list cutoff = 2 + min(skin, max(skin_min, skin_motion * the
+     * last step's largest vertex motion)): two strands close by at most twice
+     * that per step, and the list is rebuilt after every step */
+    double skin, skin_min, skin_motion;
     /* The contact list keeps only pairs whose strut is within a tilt of both
      * edges' normal planes (backend.h), tilt = tilt_edges * (longest edge) +
      * tilt_motion * (the last step's largest vertex motion), capped at 1 (no
@@ -67,8 +70,10 @@ typedef struct tr_engine_params {
 
 void tr_engine_params_default(tr_engine_params *p);
 
-/* The contact list tilt for the given longest edge and per-step motion. */
-double tr_engine_contact_tilt(const tr_engine_params *p, double ebar_max, double disp);
+/* The contact list's cutoff and tilt for the given longest edge and per-step
+ * motion (see skin and tilt_edges above). */
+void tr_engine_contact_shape(const tr_engine_params *p, double ebar_max, double disp, double *cutoff,
+                             double *tilt);
 
 typedef enum tr_stop_reason {
     TR_STOP_NONE = 0,
