@@ -384,7 +384,7 @@ int tr_cmd_bench(int argc, char **argv)
         double h = tr_curve_length(&c) / (double)c.nv; /* the engine starts with h = ebar */
         /* the engine's tilt after a step that moved vertices by one edge
          * length (tighter steps move less, loose ones more) */
-        tr_engine_contact_shape(&bc.prm, h, h, &bc.cutoff, &bc.tilt);
+        tr_engine_contact_shape(&bc.prm, h, 1.0, h, &bc.cutoff, &bc.tilt);
         /* the reference's state after the validation step */
         double *ref_x = malloc(3 * c.nv * sizeof *ref_x);
         tr_backend rb;

@@ -57,7 +57,7 @@ void tr_engine_params_default(tr_engine_params *p)
     p->skin = 0.1;
     p->skin_min = 1e-3;
     p->skin_motion = 4.0;
-    p->tilt_edges = 2.0;
+    p->tilt_edges = 1.25;
     p->tilt_motion = 2.0;
     p->max_move = 0.03;
     p->guard_move = 0.06;
@@ -110,10 +110,12 @@ const char *tr_stop_reason_name(tr_stop_reason r)
     }
 }
 
-void tr_engine_contact_shape(const tr_engine_params *p, double ebar_max, double disp, double *cutoff,
-                             double *tilt)
+void tr_engine_contact_shape(const tr_engine_params *p, double ebar_max, double minrad, double disp,
+                             double *cutoff, double *tilt)
 {
-    double t = p->tilt_edges * ebar_max + p->tilt_motion * disp;
+    /* turning angles are at most 2 atan(ebar / (2 MinRad)) <= ebar / MinRad */
+    double r = minrad < 1.0 ? fmax(minrad, 0.25) : 1.0;
+    double t = p->tilt_edges * ebar_max / r + p->tilt_motion * disp;
     *tilt = t > 0.0 && t < 1.0 ? t : 1.0;
     *cutoff = p->correct.strut_dist + fmin(p->skin, fmax(p->skin_min, p->skin_motion * disp));
 }
@@ -128,11 +130,12 @@ static int measure(tr_engine *e, tr_measure *m, tr_error *err)
 
 static int rebuild_contacts(tr_engine *e, int recompute_gap, tr_error *err)
 {
+    /* the tilt needs the longest edge and MinRad as of this state */
+    tr_measure m;
+    int rc = measure(e, &m, err);
+    if (rc)
+        return rc;
     if (recompute_gap) {
-        tr_measure m;
-        int rc = measure(e, &m, err);
-        if (rc)
-            return rc;
         for (int k = 0; k < e->curve.ncomp; k++) {
             double g = ceil(M_PI / e->ebar[k]);
             e->gap[k] = g < 2.0 ? 2 : (g > 1e9 ? 1000000000 : (int)g);
@@ -142,8 +145,8 @@ static int rebuild_contacts(tr_engine *e, int recompute_gap, tr_error *err)
     for (int k = 0; k < e->curve.ncomp; k++)
         emax = fmax(emax, e->ebar[k]);
     tr_contact_params cp = {.exclude_gap = e->gap};
-    tr_engine_contact_shape(&e->prm, emax, e->disp_est, &cp.cutoff, &cp.tilt);
-    int rc = e->be.ops->find_contacts(e->be.state, &cp, &e->contacts, err);
+    tr_engine_contact_shape(&e->prm, emax, m.min_minrad, e->disp_est, &cp.cutoff, &cp.tilt);
+    rc = e->be.ops->find_contacts(e->be.state, &cp, &e->contacts, err);
     if (rc)
         return rc;
     e->contacts_valid = 1;

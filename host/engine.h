@@ -20,8 +20,8 @@
  * 2 guard_move < 1 while it started >= 2 - tol: at an accepted state the
  * closest non-excluded pair is either a local minimum of the distance along
  * both strands, whose strut is within the list's tilt of both normal planes
- * (tilt >= 2 ebar >= the largest turning angle 2 atan(ebar / (2 MinRad))
- * while MinRad >= 1/2), so it
+ * (tilt >= 1.25 ebar / MinRad > the largest turning angle
+ * 2 atan(ebar / (2 MinRad))), so it
  * was in the list just checked, or it borders the excluded arc, and such
  * pairs lie arclength ~pi apart on a curve of curvature <= 1, hence about 2
  * apart (Schur's comparison); excluded pairs cannot self-intersect there. */
@@ -41,11 +41,12 @@ typedef struct tr_engine_params {
      * that per step, and the list is rebuilt after every step */
     double skin, skin_min, skin_motion;
     /* The contact list keeps only pairs whose strut is within a tilt of both
-     * edges' normal planes (backend.h), tilt = tilt_edges * (longest edge) +
-     * tilt_motion * (the last step's largest vertex motion), capped at 1 (no
-     * test): the first term holds every local minimum of the distance while
-     * MinRad >= 1/2, the second the pairs a step like the last one can slide
-     * into; it keeps the list linear in N. */
+     * edges' normal planes (backend.h), tilt = tilt_edges * (longest edge) /
+     * min(1, MinRad) + tilt_motion * (the last step's largest vertex
+     * motion), capped at 1 (no test): the first term is above the largest
+     * turning angle, 2 atan(ebar / (2 MinRad)) <= ebar / MinRad, so every
+     * local minimum of the distance is held; the second adds the pairs a
+     * step like the last one can slide into. It keeps the list linear in N. */
     double tilt_edges, tilt_motion;
     double max_move;       /* per-vertex cap of the tension move */
     double guard_move;     /* reject a step that moved any vertex further */
@@ -72,8 +73,8 @@ void tr_engine_params_default(tr_engine_params *p);
 
 /* The contact list's cutoff and tilt for the given longest edge and per-step
  * motion (see skin and tilt_edges above). */
-void tr_engine_contact_shape(const tr_engine_params *p, double ebar_max, double disp, double *cutoff,
-                             double *tilt);
+void tr_engine_contact_shape(const tr_engine_params *p, double ebar_max, double minrad, double disp,
+                             double *cutoff, double *tilt);
 
 typedef enum tr_stop_reason {
     TR_STOP_NONE = 0,
