@@ -587,29 +587,29 @@ static size_t row_at(const ref_state *s, size_t l)
     return l < 2 * s->nv ? l : 2 * s->nv + s->act[l - 2 * s->nv];
 }
 
+/* Makes *v hold at least n entries. */
+static int reserve_sizes(size_t **v, size_t *cap, size_t n)
+{
+    if (*v && n <= *cap)
+        return 0;
+    size_t *g = realloc(*v, (n ? n : 1) * sizeof *g);
+    if (!g)
+        return -1;
+    *v = g;
+    *cap = n;
+    return 0;
+}
+
 /* Builds act / aadj from ract (see ref_state). */
 static int compact_rows(ref_state *s)
 {
     size_t nv = s->nv, na = 0, nadj = 0;
     for (size_t p = 0; p < s->np; p++)
         na += s->ract[2 * nv + p];
-    if (na > s->act_cap || !s->act) {
-        size_t *g = realloc(s->act, (na ? na : 1) * sizeof *g);
-        if (!g)
-            return -1;
-        s->act = g;
-        s->act_cap = na;
-    }
+    if (reserve_sizes(&s->act, &s->act_cap, na) || reserve_sizes(&s->aadj, &s->aadj_cap, 4 * na))
+        return -1;
     if (!s->aadj_start && !(s->aadj_start = malloc((nv + 1) * sizeof *s->aadj_start)))
         return -1;
-    size_t need = 4 * na;
-    if (need > s->aadj_cap || !s->aadj) {
-        size_t *g = realloc(s->aadj, (need ? need : 1) * sizeof *g);
-        if (!g)
-            return -1;
-        s->aadj = g;
-        s->aadj_cap = need;
-    }
     s->nact = 0;
     for (size_t p = 0; p < s->np; p++)
         if (s->ract[2 * nv + p])

@@ -261,7 +261,8 @@ static int parse_list(const char *s, size_t *out, int max)
 static void usage(FILE *f)
 {
     fprintf(f,
-            "usage: tightrope bench [--device SPEC]... [--n LIST] [--start FILE] [--steps K] [--time S] [--json]\n"
+            "usage: tightrope bench [--device SPEC]... [--n LIST] [--start FILE] [--contacts C,T] [--steps K]\n"
+            "                      [--time S] [--json]\n"
             "  --device SPEC  reference, auto, P:D or a name part; repeatable (default: the\n"
             "                 reference and every usable OpenCL device)\n"
             "  --n LIST       vertex counts, e.g. 1e3,1e4,1e5 (default 1000,10000,100000)\n"
@@ -270,6 +271,9 @@ static void usage(FILE *f)
             "  --no-kernels   skip the profiled per-kernel run\n"
             "  --start FILE   start from this curve (e.g. a tight knot) resampled to each N\n"
             "                 by a Fourier low-pass, instead of the torus knot T(2,3)\n"
+            "  --contacts C,T the contact list's cutoff and tilt (default: the engine's for\n"
+            "                 a step that moves vertices one edge length; 2.1,1 is the\n"
+            "                 plain cutoff list of earlier versions)\n"
             "  --no-search    no neighbour search (empty contact list)\n"
             "  --json         one JSON object instead of the table\n");
 }
@@ -279,6 +283,7 @@ int tr_cmd_bench(int argc, char **argv)
     const char *devs[MAX_DEV];
     int ndev = 0, json = 0, steps = 0, kernels = 1, search = 1;
     const char *start = NULL;
+    double shape_cut = 0.0, shape_tilt = 0.0; /* 0: the engine's */
     double target = 2.0;
     size_t ns[MAX_N] = {1000, 10000, 100000};
     int nn = 3;
@@ -303,6 +308,14 @@ int tr_cmd_bench(int argc, char **argv)
             nn = parse_list(argv[++i], ns, MAX_N);
             if (nn <= 0) {
                 fprintf(stderr, "tightrope bench: bad --n list '%s' (e.g. 1e3,1e4)\n", argv[i]);
+                return 2;
+            }
+        } else if (i + 1 < argc && !strcmp(a, "--contacts")) {
+            char tail;
+            if (sscanf(argv[++i], "%lf,%lf%c", &shape_cut, &shape_tilt, &tail) != 2 || !(shape_cut > 2.0) ||
+                !(shape_cut < 100.0) || !(shape_tilt > 0.0) || !(shape_tilt <= 1.0)) {
+                fprintf(stderr, "tightrope bench: bad --contacts '%s' (CUTOFF,TILT: 2 < CUTOFF, 0 < TILT <= 1)\n",
+                        argv[i]);
                 return 2;
             }
         } else if (i + 1 < argc && !strcmp(a, "--start")) {
@@ -385,6 +398,10 @@ int tr_cmd_bench(int argc, char **argv)
         /* the engine's tilt after a step that moved vertices by one edge
          * length (tighter steps move less, loose ones more) */
         tr_engine_contact_shape(&bc.prm, h, 1.0, h, &bc.cutoff, &bc.tilt);
+        if (shape_cut > 0.0) {
+            bc.cutoff = shape_cut;
+            bc.tilt = shape_tilt;
+        }
         /* the reference's state after the validation step */
         double *ref_x = malloc(3 * c.nv * sizeof *ref_x);
         tr_backend rb;

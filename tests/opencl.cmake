@@ -20,6 +20,14 @@ set_tests_properties(cli_bench_small PROPERTIES ENVIRONMENT "${TR_TEST_ENV}"
   FAIL_REGULAR_EXPRESSION "\"valid\": false|\"error\"")
 add_test(NAME cli_bench_bad_n COMMAND ${_tr} bench --n 12,abc)
 set_tests_properties(cli_bench_bad_n PROPERTIES WILL_FAIL TRUE)
+# from a tight trefoil resampled to N: a tight curve has contacts to list
+add_test(NAME cli_bench_tight_start COMMAND ${_tr} bench --device reference --n 600 --steps 2 --no-kernels
+  --json --start ${CMAKE_SOURCE_DIR}/bench/data/trefoil_2400.vect)
+set_tests_properties(cli_bench_tight_start PROPERTIES
+  PASS_REGULAR_EXPRESSION "\"pairs\": [1-9][0-9]*" FAIL_REGULAR_EXPRESSION "\"error\"")
+add_test(NAME cli_bench_bad_contacts COMMAND ${_tr} bench --contacts 1.5,0.1)
+set_tests_properties(cli_bench_bad_contacts PROPERTIES
+  PASS_REGULAR_EXPRESSION "bad --contacts '1.5,0.1'")
 # Both edge-block solvers of the preconditioner on whatever device there is
 # (by default Thomas on CPU devices such as PoCL, PCR on GPUs), each against
 # the serial reference.
