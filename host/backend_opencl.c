@@ -11,12 +11,12 @@
 #include <string.h>
 
 #include "cl_error.h"
-#include "cl_grid.h"
+#include "cl_tree.h"
 #include "cl_reduce.h"
 #include "cl_topology.h"
 #include "vec3.h"
 
-/* Kernels this file launches itself (the reduction and grid modules hold their own). */
+/* Kernels this file launches itself (the reduction and tree modules hold their own). */
 #define KERNELS(X)                                                                            \
     X(tension_force) X(tension_smooth) X(tension_move) X(pairs_upper) X(scan_local)           \
     X(scan_sums) X(scan_add) X(pairs_write) X(contacts_csr) X(pairs_dist) X(rows_chain)       \
@@ -52,8 +52,8 @@ typedef struct cl_state {
     double prof_s[K_COUNT];
     long prof_n[K_COUNT];
     tr_cl_reduce red;
-    tr_cl_grid grid;
-    int grid_ready;
+    tr_cl_tree tree;
+    int tree_ready;
     tr_cl_topology topo;
     int nv, ncomp, saved;
     int *h_start, *h_ne;
@@ -108,8 +108,8 @@ static void cl_destroy(void *sp)
     for (int i = 0; i < K_COUNT; i++)
         if (s->k[i])
             clReleaseKernel(s->k[i]);
-    if (s->grid_ready)
-        tr_cl_grid_free(&s->grid);
+    if (s->tree_ready)
+        tr_cl_tree_free(&s->tree);
     tr_cl_reduce_free(&s->red);
     tr_cl_topology_free(&s->topo);
     if (s->prog)
@@ -342,9 +342,12 @@ static int cl_find_contacts(void *sp, const tr_contact_params *prm, tr_contact_s
     s->np = 0;
     TR_CL_CHECK(clEnqueueWriteBuffer(s->ctx.queue, s->gap, CL_FALSE, 0, (size_t)s->ncomp * sizeof(int),
                                      prm->exclude_gap, 0, NULL, NULL));
-    TR_TRY(tr_cl_grid_build(&s->grid, &s->ctx, &s->red, &s->topo, s->x, 1, prm->cutoff, prm->tilt, s->gap, err));
-    int cap = s->grid.cap;
-    TR_TRY(run(s, K_pairs_upper, (size_t)nv, err, A(s->grid.count), A(s->grid.list), A(cap),
+    int gmin = 0;
+    for (int k = 0; k < s->ncomp; k++)
+        gmin = k == 0 || prm->exclude_gap[k] < gmin ? prm->exclude_gap[k] : gmin;
+    TR_TRY(tr_cl_tree_search(&s->tree, &s->ctx, &s->topo, s->x, prm->cutoff, prm->tilt, s->gap, gmin, err));
+    int cap = s->tree.cap;
+    TR_TRY(run(s, K_pairs_upper, (size_t)nv, err, A(s->tree.count), A(s->tree.list), A(cap),
                A(s->topo.next), A(nv), A(s->up), A(s->first), END));
     /* exclusive scan of up into off[0..nv] */
     int groups = (int)(tr_cl_global((size_t)nv) / TR_CL_LOCAL);
@@ -369,9 +372,9 @@ static int cl_find_contacts(void *sp, const tr_contact_params *prm, tr_contact_s
         s->acap = 2 * cap;
         TR_TRY(buffer(s, &s->adj, (size_t)nv * (size_t)s->acap * sizeof(int), err));
     }
-    TR_TRY(run(s, K_pairs_write, (size_t)nv, err, A(s->grid.count), A(s->grid.list), A(cap),
+    TR_TRY(run(s, K_pairs_write, (size_t)nv, err, A(s->tree.count), A(s->tree.list), A(cap),
                A(s->first), A(s->off), A(nv), A(s->pa), A(s->pb), END));
-    TR_TRY(run(s, K_contacts_csr, (size_t)nv, err, A(s->grid.count), A(s->grid.list), A(cap),
+    TR_TRY(run(s, K_contacts_csr, (size_t)nv, err, A(s->tree.count), A(s->tree.list), A(cap),
                A(s->first), A(s->off), A(s->topo.next), A(s->topo.prev), A(nv), A(s->acap),
                A(s->adj), A(s->adjn), END));
     s->np = np;
@@ -833,8 +836,8 @@ static int open_on(const tr_device_choice *dev, const tr_curve *c, int profiling
         }
     }
     TR_TRY(tr_cl_reduce_init(&s->red, &s->ctx, s->prog, 3 * nv + 64, err));
-    TR_TRY(tr_cl_grid_init(&s->grid, &s->ctx, s->prog, (int)nv, 16, err));
-    s->grid_ready = 1;
+    TR_TRY(tr_cl_tree_init(&s->tree, &s->ctx, s->prog, c, 16, err));
+    s->tree_ready = 1;
     TR_TRY(tr_cl_topology_upload(&s->ctx, c, &s->topo, err));
 
     s->h_start = malloc((nc + 1) * sizeof(int));

@@ -156,6 +156,17 @@ int tr_nsearch_build(tr_nsearch *s, const tr_curve *c, tr_error *err)
     return TR_OK;
 }
 
+void tr_nsearch_node(const tr_nsearch *s, size_t id, size_t *a, size_t *b, int *comp, size_t *left,
+                     size_t *right)
+{
+    const node_t *n = &s->node[id];
+    *a = n->a;
+    *b = n->b;
+    *comp = n->comp;
+    *left = n->left;
+    *right = n->right;
+}
+
 int tr_nsearch_excluded(const tr_nsearch *s, size_t ei, size_t ej, size_t min_gap)
 {
     if (ei == ej)

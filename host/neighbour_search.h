@@ -97,6 +97,12 @@ int tr_nsearch_pairs_slab(const tr_nsearch *s, double cutoff, size_t min_gap, do
 int tr_nsearch_edge(const tr_nsearch *s, size_t i, double *cutoff, size_t min_gap, unsigned flags,
                     tr_pair_fn fn, void *ctx);
 
+/* The tree's layout, for a device copy (host/cl_tree.c): node id (0 is the
+ * root; children come after their parent) covers edges [a, b), all of
+ * component comp or comp -1; left == 0 marks a leaf. */
+void tr_nsearch_node(const tr_nsearch *s, size_t id, size_t *a, size_t *b, int *comp, size_t *left,
+                     size_t *right);
+
 /* The O(N^2) reference the tests compare tr_nsearch_pairs against: offers
  * every pair that is not excluded by index, ignoring boxes and flags. */
 int tr_nsearch_pairs_brute(const tr_nsearch *s, double *cutoff, size_t min_gap, unsigned flags,

@@ -1,0 +1,318 @@
+#include "cl_tree.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cl_error.h"
+#include "neighbour_search.h"
+
+#define ARG(k, i, v) TR_CL_CHECK(clSetKernelArg((k), (i), sizeof(v), &(v)))
+
+static void release(cl_mem *m)
+{
+    if (*m)
+        clReleaseMemObject(*m);
+    *m = NULL;
+}
+
+static int ints_buffer(const tr_cl_ctx *ctx, cl_mem *out, const int *v, size_t n, tr_error *err)
+{
+    int rc = TR_OK;
+    cl_int e = CL_SUCCESS;
+    TR_CL_CHECK((*out = clCreateBuffer(ctx->context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
+                                       (n ? n : 1) * sizeof(int), (void *)v, &e),
+                 e));
+cleanup:
+    return rc;
+}
+
+static int alloc_lists(tr_cl_tree *t, const tr_cl_ctx *ctx, int cap, tr_error *err)
+{
+    int rc = TR_OK;
+    cl_int e = CL_SUCCESS;
+    release(&t->list);
+    t->cap = cap;
+    TR_CL_CHECK((t->list = clCreateBuffer(ctx->context, CL_MEM_READ_WRITE,
+                                          (size_t)t->nv * (size_t)cap * sizeof(int), NULL, &e),
+                 e));
+cleanup:
+    return rc;
+}
+
+void tr_cl_tree_free(tr_cl_tree *t)
+{
+    cl_kernel *k[] = {&t->leaf_box, &t->inner_box, &t->leaf_slab, &t->pairs};
+    for (size_t i = 0; i < sizeof k / sizeof k[0]; i++)
+        if (*k[i])
+            clReleaseKernel(*k[i]);
+    cl_mem *m[] = {&t->tedge, &t->vedge,   &t->comp_estart, &t->node_a, &t->node_b, &t->node_comp,
+                   &t->left,  &t->right,   &t->leaf_id,     &t->level_id, &t->box, &t->slab,
+                   &t->count, &t->list,    &t->overflow};
+    for (size_t i = 0; i < sizeof m / sizeof m[0]; i++)
+        release(m[i]);
+    free(t->level_off);
+    memset(t, 0, sizeof *t);
+}
+
+/* Host arrays of the tree's layout, uploaded once. */
+typedef struct layout {
+    int *tedge, *vedge, *estart, *a, *b, *comp, *left, *right, *leaf, *level, *depth;
+} layout;
+
+static void layout_free(layout *l)
+{
+    int *p[] = {l->tedge, l->vedge, l->estart, l->a, l->b, l->comp, l->left, l->right, l->leaf, l->level, l->depth};
+    for (size_t i = 0; i < sizeof p / sizeof p[0]; i++)
+        free(p[i]);
+}
+
+/* Inner nodes ordered by depth, deepest first (a level's children are all
+ * deeper, so one launch per level refits bottom-up); level_off[L] starts
+ * level L of nlevels. */
+static int order_levels(tr_cl_tree *t, layout *l, const tr_nsearch *ns)
+{
+    int maxd = 0;
+    for (int id = 0; id < t->nnodes; id++) {
+        size_t a, b, lf, rt;
+        int comp;
+        tr_nsearch_node(ns, (size_t)id, &a, &b, &comp, &lf, &rt);
+        if (id == 0)
+            l->depth[0] = 0;
+        if (lf) {
+            l->depth[lf] = l->depth[id] + 1;
+            l->depth[rt] = l->depth[id] + 1;
+        }
+        maxd = l->depth[id] > maxd ? l->depth[id] : maxd;
+    }
+    t->nlevels = maxd + 1;
+    t->level_off = calloc((size_t)t->nlevels + 1, sizeof *t->level_off);
+    if (!t->level_off)
+        return -1;
+    int k = 0;
+    for (int d = maxd; d >= 0; d--) {
+        t->level_off[maxd - d] = k;
+        for (int id = 0; id < t->nnodes; id++)
+            if (l->depth[id] == d && l->left[id] != 0)
+                l->level[k++] = id;
+    }
+    t->level_off[t->nlevels] = k;
+    return 0;
+}
+
+int tr_cl_tree_init(tr_cl_tree *t, const tr_cl_ctx *ctx, cl_program prog, const tr_curve *c, int cap,
+                    tr_error *err)
+{
+    int rc = TR_OK;
+    cl_int e = CL_SUCCESS;
+    memset(t, 0, sizeof *t);
+    tr_nsearch ns;
+    layout l = {0};
+    if ((rc = tr_nsearch_build(&ns, c, err)))
+        return rc;
+    t->nv = (int)c->nv;
+    t->ne = (int)ns.ne;
+    t->nnodes = (int)ns.nnodes;
+    size_t nn = ns.nnodes ? ns.nnodes : 1, ne = ns.ne ? ns.ne : 1;
+    l.tedge = malloc(ne * sizeof(int));
+    l.vedge = malloc(c->nv * sizeof(int));
+    l.estart = malloc((size_t)(c->ncomp + 1) * sizeof(int));
+    l.a = malloc(nn * sizeof(int));
+    l.b = malloc(nn * sizeof(int));
+    l.comp = malloc(nn * sizeof(int));
+    l.left = malloc(nn * sizeof(int));
+    l.right = malloc(nn * sizeof(int));
+    l.leaf = malloc(nn * sizeof(int));
+    l.level = malloc(nn * sizeof(int));
+    l.depth = calloc(nn, sizeof(int));
+    if (!l.tedge || !l.vedge || !l.estart || !l.a || !l.b || !l.comp || !l.left || !l.right || !l.leaf ||
+        !l.level || !l.depth) {
+        rc = tr_fail(err, TR_ENOMEM, "out of memory for the device neighbour tree (%zu edges)", ns.ne);
+        goto cleanup;
+    }
+    for (size_t v = 0; v < c->nv; v++)
+        l.vedge[v] = -1;
+    for (size_t k = 0; k < ns.ne; k++) {
+        l.tedge[k] = (int)ns.ea[k];
+        l.vedge[ns.ea[k]] = (int)k;
+    }
+    for (int k = 0; k <= c->ncomp; k++)
+        l.estart[k] = (int)ns.estart[k];
+    for (int id = 0; id < t->nnodes; id++) {
+        size_t a, b, lf, rt;
+        tr_nsearch_node(&ns, (size_t)id, &a, &b, &l.comp[id], &lf, &rt);
+        l.a[id] = (int)a;
+        l.b[id] = (int)b;
+        l.left[id] = (int)lf;
+        l.right[id] = (int)rt;
+        if (!lf)
+            l.leaf[t->nleaf++] = id;
+    }
+    if (order_levels(t, &l, &ns)) {
+        rc = tr_fail(err, TR_ENOMEM, "out of memory for the device neighbour tree");
+        goto cleanup;
+    }
+    TR_TRY(ints_buffer(ctx, &t->tedge, l.tedge, ns.ne, err));
+    TR_TRY(ints_buffer(ctx, &t->vedge, l.vedge, c->nv, err));
+    TR_TRY(ints_buffer(ctx, &t->comp_estart, l.estart, (size_t)c->ncomp + 1, err));
+    TR_TRY(ints_buffer(ctx, &t->node_a, l.a, nn, err));
+    TR_TRY(ints_buffer(ctx, &t->node_b, l.b, nn, err));
+    TR_TRY(ints_buffer(ctx, &t->node_comp, l.comp, nn, err));
+    TR_TRY(ints_buffer(ctx, &t->left, l.left, nn, err));
+    TR_TRY(ints_buffer(ctx, &t->right, l.right, nn, err));
+    TR_TRY(ints_buffer(ctx, &t->leaf_id, l.leaf, (size_t)t->nleaf, err));
+    TR_TRY(ints_buffer(ctx, &t->level_id, l.level, nn, err));
+    TR_CL_CHECK((t->box = clCreateBuffer(ctx->context, CL_MEM_READ_WRITE, 6 * nn * sizeof(double), NULL, &e), e));
+    TR_CL_CHECK((t->slab = clCreateBuffer(ctx->context, CL_MEM_READ_WRITE, 8 * nn * sizeof(double), NULL, &e), e));
+    TR_CL_CHECK((t->count = clCreateBuffer(ctx->context, CL_MEM_READ_WRITE, c->nv * sizeof(int), NULL, &e), e));
+    TR_CL_CHECK((t->overflow = clCreateBuffer(ctx->context, CL_MEM_READ_WRITE, sizeof(int), NULL, &e), e));
+    TR_CL_CHECK((t->leaf_box = clCreateKernel(prog, "tree_leaf_box", &e), e));
+    TR_CL_CHECK((t->inner_box = clCreateKernel(prog, "tree_inner_box", &e), e));
+    TR_CL_CHECK((t->leaf_slab = clCreateKernel(prog, "tree_leaf_slab", &e), e));
+    TR_CL_CHECK((t->pairs = clCreateKernel(prog, "tree_pairs", &e), e));
+    TR_TRY(alloc_lists(t, ctx, cap > 0 ? cap : 16, err));
+cleanup:
+    layout_free(&l);
+    tr_nsearch_free(&ns);
+    if (rc != TR_OK)
+        tr_cl_tree_free(t);
+    return rc;
+}
+
+static int launch(const tr_cl_ctx *ctx, cl_kernel k, size_t n, tr_error *err)
+{
+    int rc = TR_OK;
+    size_t gsz = tr_cl_global(n), l = TR_CL_LOCAL;
+    TR_CL_CHECK(clEnqueueNDRangeKernel(ctx->queue, k, 1, NULL, &gsz, &l, 0, NULL, NULL));
+cleanup:
+    return rc;
+}
+
+/* Boxes of every node for positions x, bottom-up. */
+static int refit(tr_cl_tree *t, const tr_cl_ctx *ctx, const tr_cl_topology *topo, cl_mem x, tr_error *err)
+{
+    int rc = TR_OK;
+    ARG(t->leaf_box, 0, x);
+    ARG(t->leaf_box, 1, topo->next);
+    ARG(t->leaf_box, 2, t->tedge);
+    ARG(t->leaf_box, 3, t->leaf_id);
+    ARG(t->leaf_box, 4, t->nleaf);
+    ARG(t->leaf_box, 5, t->node_a);
+    ARG(t->leaf_box, 6, t->node_b);
+    ARG(t->leaf_box, 7, t->box);
+    TR_TRY(launch(ctx, t->leaf_box, (size_t)t->nleaf, err));
+    ARG(t->inner_box, 0, t->level_id);
+    ARG(t->inner_box, 3, t->left);
+    ARG(t->inner_box, 4, t->right);
+    ARG(t->inner_box, 5, t->box);
+    for (int L = 0; L < t->nlevels; L++) {
+        int off = t->level_off[L], n = t->level_off[L + 1] - off;
+        if (n == 0)
+            continue;
+        ARG(t->inner_box, 1, off);
+        ARG(t->inner_box, 2, n);
+        TR_TRY(launch(ctx, t->inner_box, (size_t)n, err));
+    }
+cleanup:
+    return rc;
+}
+
+int tr_cl_tree_search(tr_cl_tree *t, const tr_cl_ctx *ctx, const tr_cl_topology *topo, cl_mem x,
+                      double cutoff, double tilt, cl_mem gap, int gmin, tr_error *err)
+{
+    int rc = TR_OK;
+    cl_int e = CL_SUCCESS;
+    if (topo->nv != t->nv)
+        return tr_fail(err, TR_EINVAL, "neighbour tree prepared for %d vertices, curve has %d", t->nv, topo->nv);
+    if (t->ne == 0)
+        return TR_OK;
+    TR_TRY(refit(t, ctx, topo, x, err));
+    double root[6];
+    TR_CL_CHECK(clEnqueueReadBuffer(ctx->queue, t->box, CL_TRUE, 0, sizeof root, root, 0, NULL, NULL));
+    for (int k = 0; k < 6; k++)
+        if (!isfinite(root[k])) {
+            rc = tr_fail(err, TR_EGEOMETRY, "non-finite coordinates on the device");
+            goto cleanup;
+        }
+    int use_slab = tilt > 0.0 && tilt < 1.0;
+    if (use_slab) {
+        double pad = tilt * cutoff;
+        ARG(t->leaf_slab, 0, x);
+        ARG(t->leaf_slab, 1, topo->next);
+        ARG(t->leaf_slab, 2, t->tedge);
+        ARG(t->leaf_slab, 3, t->leaf_id);
+        ARG(t->leaf_slab, 4, t->nleaf);
+        ARG(t->leaf_slab, 5, t->node_a);
+        ARG(t->leaf_slab, 6, t->node_b);
+        ARG(t->leaf_slab, 7, cutoff);
+        ARG(t->leaf_slab, 8, pad);
+        ARG(t->leaf_slab, 9, t->slab);
+        TR_TRY(launch(ctx, t->leaf_slab, (size_t)t->nleaf, err));
+    }
+    int min_gap = gmin < 2 ? 2 : gmin;
+    int flag = 0;
+    for (int attempt = 0; attempt < 2; attempt++) {
+        int zero = 0;
+        TR_CL_CHECK(clEnqueueWriteBuffer(ctx->queue, t->overflow, CL_FALSE, 0, sizeof zero, &zero, 0, NULL, NULL));
+        cl_mem args[] = {x, topo->next};
+        ARG(t->pairs, 0, args[0]);
+        ARG(t->pairs, 1, args[1]);
+        ARG(t->pairs, 2, t->nv);
+        ARG(t->pairs, 3, topo->comp);
+        ARG(t->pairs, 4, topo->pos);
+        ARG(t->pairs, 5, topo->comp_n);
+        ARG(t->pairs, 6, topo->comp_closed);
+        ARG(t->pairs, 7, gap);
+        ARG(t->pairs, 8, min_gap);
+        ARG(t->pairs, 9, t->vedge);
+        ARG(t->pairs, 10, t->tedge);
+        ARG(t->pairs, 11, t->comp_estart);
+        ARG(t->pairs, 12, t->node_a);
+        ARG(t->pairs, 13, t->node_b);
+        ARG(t->pairs, 14, t->node_comp);
+        ARG(t->pairs, 15, t->left);
+        ARG(t->pairs, 16, t->right);
+        ARG(t->pairs, 17, t->box);
+        ARG(t->pairs, 18, t->slab);
+        ARG(t->pairs, 19, cutoff);
+        ARG(t->pairs, 20, tilt);
+        ARG(t->pairs, 21, t->cap);
+        ARG(t->pairs, 22, t->count);
+        ARG(t->pairs, 23, t->list);
+        ARG(t->pairs, 24, t->overflow);
+        TR_TRY(launch(ctx, t->pairs, (size_t)t->nv, err));
+        TR_CL_CHECK(clEnqueueReadBuffer(ctx->queue, t->overflow, CL_TRUE, 0, sizeof flag, &flag, 0, NULL, NULL));
+        if (flag == 2) {
+            rc = tr_fail(err, TR_EOPENCL, "neighbour tree walk ran out of stack");
+            goto cleanup;
+        }
+        if (!flag)
+            break;
+        /* Rare (after a big move): size the lists to the largest count and redo. */
+        int *cnt = malloc((size_t)t->nv * sizeof *cnt);
+        if (!cnt) {
+            rc = tr_fail(err, TR_ENOMEM, "out of memory growing neighbour lists");
+            goto cleanup;
+        }
+        e = clEnqueueReadBuffer(ctx->queue, t->count, CL_TRUE, 0, (size_t)t->nv * sizeof(int), cnt, 0, NULL, NULL);
+        if (e != CL_SUCCESS)
+            free(cnt);
+        TR_CL_CHECK(e);
+        int most = 0;
+        for (int i = 0; i < t->nv; i++)
+            most = cnt[i] > most ? cnt[i] : most;
+        free(cnt);
+        if ((double)most * t->nv > 5e8) {
+            rc = tr_fail(err, TR_EGEOMETRY, "%d contact candidates for one edge within %g: the curve is far too dense",
+                         most, cutoff);
+            goto cleanup;
+        }
+        TR_TRY(alloc_lists(t, ctx, most + most / 4 + 4, err));
+    }
+    /* the lists were sized to the first pass's counts; a second overflow
+     * means the kernel disagrees with itself, never a silent cut */
+    if (flag)
+        rc = tr_fail(err, TR_EOPENCL, "neighbour lists still overflow after growing them");
+cleanup:
+    return rc;
+}
