@@ -164,7 +164,7 @@ static int ref_restore(void *sp, tr_error *err)
     return TR_OK;
 }
 
-/* ---- neighbour search: uniform grid over edge midpoints ---- */
+/* ---- neighbour search: the tree over the edges (neighbour_search.h) ---- */
 
 static int excluded(const ref_state *s, size_t a, size_t b, const int *gap)
 {

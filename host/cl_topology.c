@@ -30,7 +30,7 @@ int tr_topology_arrays(const tr_curve *c, int **next, int **prev, int **comp, in
     return TR_OK;
 }
 
-static int upload(const tr_cl_ctx *ctx, const int *v, size_t n, cl_mem *out, tr_error *err)
+int tr_cl_upload_ints(const tr_cl_ctx *ctx, const int *v, size_t n, cl_mem *out, tr_error *err)
 {
     int rc = TR_OK;
     cl_int e = CL_SUCCESS;
@@ -62,12 +62,12 @@ int tr_cl_topology_upload(const tr_cl_ctx *ctx, const tr_curve *c, tr_cl_topolog
         cn[k] = (int)tr_comp_nv(c, k);
         cc[k] = c->closed[k] ? 1 : 0;
     }
-    TR_TRY(upload(ctx, next, c->nv, &t->next, err));
-    TR_TRY(upload(ctx, prev, c->nv, &t->prev, err));
-    TR_TRY(upload(ctx, comp, c->nv, &t->comp, err));
-    TR_TRY(upload(ctx, pos, c->nv, &t->pos, err));
-    TR_TRY(upload(ctx, cn, (size_t)c->ncomp, &t->comp_n, err));
-    TR_TRY(upload(ctx, cc, (size_t)c->ncomp, &t->comp_closed, err));
+    TR_TRY(tr_cl_upload_ints(ctx, next, c->nv, &t->next, err));
+    TR_TRY(tr_cl_upload_ints(ctx, prev, c->nv, &t->prev, err));
+    TR_TRY(tr_cl_upload_ints(ctx, comp, c->nv, &t->comp, err));
+    TR_TRY(tr_cl_upload_ints(ctx, pos, c->nv, &t->pos, err));
+    TR_TRY(tr_cl_upload_ints(ctx, cn, (size_t)c->ncomp, &t->comp_n, err));
+    TR_TRY(tr_cl_upload_ints(ctx, cc, (size_t)c->ncomp, &t->comp_closed, err));
 cleanup:
     free(next), free(prev), free(comp), free(pos), free(cn), free(cc);
     if (rc != TR_OK)

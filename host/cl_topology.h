@@ -23,4 +23,7 @@ int tr_cl_topology_upload(const tr_cl_ctx *ctx, const tr_curve *c, tr_cl_topolog
                           tr_error *err);
 void tr_cl_topology_free(tr_cl_topology *t);
 
+/* A read-only device copy of n ints (n == 0 allocates one). */
+int tr_cl_upload_ints(const tr_cl_ctx *ctx, const int *v, size_t n, cl_mem *out, tr_error *err);
+
 #endif

@@ -9,26 +9,13 @@
 
 #define ARG(k, i, v) TR_CL_CHECK(clSetKernelArg((k), (i), sizeof(v), &(v)))
 
-static void release(cl_mem *m)
-{
+static void release(cl_mem *m) {
     if (*m)
         clReleaseMemObject(*m);
     *m = NULL;
 }
 
-static int ints_buffer(const tr_cl_ctx *ctx, cl_mem *out, const int *v, size_t n, tr_error *err)
-{
-    int rc = TR_OK;
-    cl_int e = CL_SUCCESS;
-    TR_CL_CHECK((*out = clCreateBuffer(ctx->context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
-                                       (n ? n : 1) * sizeof(int), (void *)v, &e),
-                 e));
-cleanup:
-    return rc;
-}
-
-static int alloc_lists(tr_cl_tree *t, const tr_cl_ctx *ctx, int cap, tr_error *err)
-{
+static int alloc_lists(tr_cl_tree *t, const tr_cl_ctx *ctx, int cap, tr_error *err) {
     int rc = TR_OK;
     cl_int e = CL_SUCCESS;
     release(&t->list);
@@ -40,15 +27,14 @@ cleanup:
     return rc;
 }
 
-void tr_cl_tree_free(tr_cl_tree *t)
-{
+void tr_cl_tree_free(tr_cl_tree *t) {
     cl_kernel *k[] = {&t->leaf_box, &t->inner_box, &t->leaf_slab, &t->pairs};
     for (size_t i = 0; i < sizeof k / sizeof k[0]; i++)
         if (*k[i])
             clReleaseKernel(*k[i]);
-    cl_mem *m[] = {&t->tedge, &t->vedge,   &t->comp_estart, &t->node_a, &t->node_b, &t->node_comp,
-                   &t->left,  &t->right,   &t->leaf_id,     &t->level_id, &t->box, &t->slab,
-                   &t->count, &t->list,    &t->overflow};
+    cl_mem *m[] = {&t->tedge,     &t->vedge, &t->comp_estart, &t->node_a,  &t->node_b,
+                   &t->node_comp, &t->left,  &t->right,       &t->leaf_id, &t->level_id,
+                   &t->box,       &t->slab,  &t->count,       &t->list,    &t->overflow};
     for (size_t i = 0; i < sizeof m / sizeof m[0]; i++)
         release(m[i]);
     free(t->level_off);
@@ -60,9 +46,9 @@ typedef struct layout {
     int *tedge, *vedge, *estart, *a, *b, *comp, *left, *right, *leaf, *level, *depth;
 } layout;
 
-static void layout_free(layout *l)
-{
-    int *p[] = {l->tedge, l->vedge, l->estart, l->a, l->b, l->comp, l->left, l->right, l->leaf, l->level, l->depth};
+static void layout_free(layout *l) {
+    int *p[] = {l->tedge, l->vedge, l->estart, l->a,     l->b,    l->comp,
+                l->left,  l->right, l->leaf,   l->level, l->depth};
     for (size_t i = 0; i < sizeof p / sizeof p[0]; i++)
         free(p[i]);
 }
@@ -70,8 +56,7 @@ static void layout_free(layout *l)
 /* Inner nodes ordered by depth, deepest first (a level's children are all
  * deeper, so one launch per level refits bottom-up); level_off[L] starts
  * level L of nlevels. */
-static int order_levels(tr_cl_tree *t, layout *l, const tr_nsearch *ns)
-{
+static int order_levels(tr_cl_tree *t, layout *l, const tr_nsearch *ns) {
     int maxd = 0;
     for (int id = 0; id < t->nnodes; id++) {
         size_t a, b, lf, rt;
@@ -101,8 +86,7 @@ static int order_levels(tr_cl_tree *t, layout *l, const tr_nsearch *ns)
 }
 
 int tr_cl_tree_init(tr_cl_tree *t, const tr_cl_ctx *ctx, cl_program prog, const tr_curve *c, int cap,
-                    tr_error *err)
-{
+                    tr_error *err) {
     int rc = TR_OK;
     cl_int e = CL_SUCCESS;
     memset(t, 0, sizeof *t);
@@ -152,19 +136,22 @@ int tr_cl_tree_init(tr_cl_tree *t, const tr_cl_ctx *ctx, cl_program prog, const 
         rc = tr_fail(err, TR_ENOMEM, "out of memory for the device neighbour tree");
         goto cleanup;
     }
-    TR_TRY(ints_buffer(ctx, &t->tedge, l.tedge, ns.ne, err));
-    TR_TRY(ints_buffer(ctx, &t->vedge, l.vedge, c->nv, err));
-    TR_TRY(ints_buffer(ctx, &t->comp_estart, l.estart, (size_t)c->ncomp + 1, err));
-    TR_TRY(ints_buffer(ctx, &t->node_a, l.a, nn, err));
-    TR_TRY(ints_buffer(ctx, &t->node_b, l.b, nn, err));
-    TR_TRY(ints_buffer(ctx, &t->node_comp, l.comp, nn, err));
-    TR_TRY(ints_buffer(ctx, &t->left, l.left, nn, err));
-    TR_TRY(ints_buffer(ctx, &t->right, l.right, nn, err));
-    TR_TRY(ints_buffer(ctx, &t->leaf_id, l.leaf, (size_t)t->nleaf, err));
-    TR_TRY(ints_buffer(ctx, &t->level_id, l.level, nn, err));
-    TR_CL_CHECK((t->box = clCreateBuffer(ctx->context, CL_MEM_READ_WRITE, 6 * nn * sizeof(double), NULL, &e), e));
-    TR_CL_CHECK((t->slab = clCreateBuffer(ctx->context, CL_MEM_READ_WRITE, 8 * nn * sizeof(double), NULL, &e), e));
-    TR_CL_CHECK((t->count = clCreateBuffer(ctx->context, CL_MEM_READ_WRITE, c->nv * sizeof(int), NULL, &e), e));
+    TR_TRY(tr_cl_upload_ints(ctx, l.tedge, ns.ne, &t->tedge, err));
+    TR_TRY(tr_cl_upload_ints(ctx, l.vedge, c->nv, &t->vedge, err));
+    TR_TRY(tr_cl_upload_ints(ctx, l.estart, (size_t)c->ncomp + 1, &t->comp_estart, err));
+    TR_TRY(tr_cl_upload_ints(ctx, l.a, nn, &t->node_a, err));
+    TR_TRY(tr_cl_upload_ints(ctx, l.b, nn, &t->node_b, err));
+    TR_TRY(tr_cl_upload_ints(ctx, l.comp, nn, &t->node_comp, err));
+    TR_TRY(tr_cl_upload_ints(ctx, l.left, nn, &t->left, err));
+    TR_TRY(tr_cl_upload_ints(ctx, l.right, nn, &t->right, err));
+    TR_TRY(tr_cl_upload_ints(ctx, l.leaf, (size_t)t->nleaf, &t->leaf_id, err));
+    TR_TRY(tr_cl_upload_ints(ctx, l.level, nn, &t->level_id, err));
+    TR_CL_CHECK(
+        (t->box = clCreateBuffer(ctx->context, CL_MEM_READ_WRITE, 6 * nn * sizeof(double), NULL, &e), e));
+    TR_CL_CHECK(
+        (t->slab = clCreateBuffer(ctx->context, CL_MEM_READ_WRITE, 8 * nn * sizeof(double), NULL, &e), e));
+    TR_CL_CHECK(
+        (t->count = clCreateBuffer(ctx->context, CL_MEM_READ_WRITE, c->nv * sizeof(int), NULL, &e), e));
     TR_CL_CHECK((t->overflow = clCreateBuffer(ctx->context, CL_MEM_READ_WRITE, sizeof(int), NULL, &e), e));
     TR_CL_CHECK((t->leaf_box = clCreateKernel(prog, "tree_leaf_box", &e), e));
     TR_CL_CHECK((t->inner_box = clCreateKernel(prog, "tree_inner_box", &e), e));
@@ -179,8 +166,7 @@ cleanup:
     return rc;
 }
 
-static int launch(const tr_cl_ctx *ctx, cl_kernel k, size_t n, tr_error *err)
-{
+static int launch(const tr_cl_ctx *ctx, cl_kernel k, size_t n, tr_error *err) {
     int rc = TR_OK;
     size_t gsz = tr_cl_global(n), l = TR_CL_LOCAL;
     TR_CL_CHECK(clEnqueueNDRangeKernel(ctx->queue, k, 1, NULL, &gsz, &l, 0, NULL, NULL));
@@ -189,8 +175,7 @@ cleanup:
 }
 
 /* Boxes of every node for positions x, bottom-up. */
-static int refit(tr_cl_tree *t, const tr_cl_ctx *ctx, const tr_cl_topology *topo, cl_mem x, tr_error *err)
-{
+static int refit(tr_cl_tree *t, const tr_cl_ctx *ctx, const tr_cl_topology *topo, cl_mem x, tr_error *err) {
     int rc = TR_OK;
     ARG(t->leaf_box, 0, x);
     ARG(t->leaf_box, 1, topo->next);
@@ -218,12 +203,12 @@ cleanup:
 }
 
 int tr_cl_tree_search(tr_cl_tree *t, const tr_cl_ctx *ctx, const tr_cl_topology *topo, cl_mem x,
-                      double cutoff, double tilt, cl_mem gap, int gmin, tr_error *err)
-{
+                      double cutoff, double tilt, cl_mem gap, int gmin, tr_error *err) {
     int rc = TR_OK;
     cl_int e = CL_SUCCESS;
     if (topo->nv != t->nv)
-        return tr_fail(err, TR_EINVAL, "neighbour tree prepared for %d vertices, curve has %d", t->nv, topo->nv);
+        return tr_fail(err, TR_EINVAL, "neighbour tree prepared for %d vertices, curve has %d", t->nv,
+                       topo->nv);
     if (t->ne == 0)
         return TR_OK;
     TR_TRY(refit(t, ctx, topo, x, err));
@@ -253,7 +238,8 @@ int tr_cl_tree_search(tr_cl_tree *t, const tr_cl_ctx *ctx, const tr_cl_topology 
     int flag = 0;
     for (int attempt = 0; attempt < 2; attempt++) {
         int zero = 0;
-        TR_CL_CHECK(clEnqueueWriteBuffer(ctx->queue, t->overflow, CL_FALSE, 0, sizeof zero, &zero, 0, NULL, NULL));
+        TR_CL_CHECK(
+            clEnqueueWriteBuffer(ctx->queue, t->overflow, CL_FALSE, 0, sizeof zero, &zero, 0, NULL, NULL));
         cl_mem args[] = {x, topo->next};
         ARG(t->pairs, 0, args[0]);
         ARG(t->pairs, 1, args[1]);
@@ -281,7 +267,8 @@ int tr_cl_tree_search(tr_cl_tree *t, const tr_cl_ctx *ctx, const tr_cl_topology 
         ARG(t->pairs, 23, t->list);
         ARG(t->pairs, 24, t->overflow);
         TR_TRY(launch(ctx, t->pairs, (size_t)t->nv, err));
-        TR_CL_CHECK(clEnqueueReadBuffer(ctx->queue, t->overflow, CL_TRUE, 0, sizeof flag, &flag, 0, NULL, NULL));
+        TR_CL_CHECK(
+            clEnqueueReadBuffer(ctx->queue, t->overflow, CL_TRUE, 0, sizeof flag, &flag, 0, NULL, NULL));
         if (flag == 2) {
             rc = tr_fail(err, TR_EOPENCL, "neighbour tree walk ran out of stack");
             goto cleanup;
@@ -294,7 +281,8 @@ int tr_cl_tree_search(tr_cl_tree *t, const tr_cl_ctx *ctx, const tr_cl_topology 
             rc = tr_fail(err, TR_ENOMEM, "out of memory growing neighbour lists");
             goto cleanup;
         }
-        e = clEnqueueReadBuffer(ctx->queue, t->count, CL_TRUE, 0, (size_t)t->nv * sizeof(int), cnt, 0, NULL, NULL);
+        e = clEnqueueReadBuffer(ctx->queue, t->count, CL_TRUE, 0, (size_t)t->nv * sizeof(int), cnt, 0, NULL,
+                                NULL);
         if (e != CL_SUCCESS)
             free(cnt);
         TR_CL_CHECK(e);
@@ -303,8 +291,9 @@ int tr_cl_tree_search(tr_cl_tree *t, const tr_cl_ctx *ctx, const tr_cl_topology 
             most = cnt[i] > most ? cnt[i] : most;
         free(cnt);
         if ((double)most * t->nv > 5e8) {
-            rc = tr_fail(err, TR_EGEOMETRY, "%d contact candidates for one edge within %g: the curve is far too dense",
-                         most, cutoff);
+            rc = tr_fail(err, TR_EGEOMETRY,
+                         "%d contact candidates for one edge within %g: the curve is far too dense", most,
+                         cutoff);
             goto cleanup;
         }
         TR_TRY(alloc_lists(t, ctx, most + most / 4 + 4, err));

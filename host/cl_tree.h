@@ -14,13 +14,13 @@
 typedef struct tr_cl_tree {
     cl_kernel leaf_box, inner_box, leaf_slab, pairs;
     int nv, ne, nnodes, nleaf, cap;
-    int nlevels, *level_off; /* host: inner nodes by depth, deepest first */
-    int min_gap_floor;       /* 2 */
-    cl_mem tedge, vedge, comp_estart;           /* tree edge -> vertex, vertex -> tree edge, per component */
+    int nlevels, *level_off;          /* host: inner nodes by depth, deepest first */
+    int min_gap_floor;                /* 2 */
+    cl_mem tedge, vedge, comp_estart; /* tree edge -> vertex, vertex -> tree edge, per component */
     cl_mem node_a, node_b, node_comp, left, right; /* nnodes ints each */
-    cl_mem leaf_id, level_id;                   /* leaves; inner nodes by level */
-    cl_mem box, slab;                           /* 6 and 8 reals per node */
-    cl_mem count, list, overflow;               /* nv ints; nv * cap ints; one int */
+    cl_mem leaf_id, level_id;                      /* leaves; inner nodes by level */
+    cl_mem box, slab;                              /* 6 and 8 reals per node */
+    cl_mem count, list, overflow;                  /* nv ints; nv * cap ints; one int */
     int max_count;
 } tr_cl_tree;
 
