@@ -58,7 +58,7 @@ void tr_engine_params_default(tr_engine_params *p)
     p->skin_min = 1e-3;
     p->skin_motion = 4.0;
     p->tilt_edges = 1.25;
-    p->tilt_motion = 2.0;
+    p->tilt_motion = 0.0;
     p->max_move = 0.03;
     p->guard_move = 0.06;
     p->smooth_passes = 8;

@@ -45,8 +45,11 @@ typedef struct tr_engine_params {
      * min(1, MinRad) + tilt_motion * (the last step's largest vertex
      * motion), capped at 1 (no test): the first term is above the largest
      * turning angle, 2 atan(ebar / (2 MinRad)) <= ebar / MinRad, so every
-     * local minimum of the distance is held; the second adds the pairs a
-     * step like the last one can slide into. It keeps the list linear in N. */
+     * local minimum of the distance is held; the second would add the pairs
+     * a step like the last one can slide into. It is 0 by default: the
+     * check after each step rejects a step that lost a contact, and on the
+     * N = 2400 trefoil both settings take the same steps, the smaller list
+     * faster (bench/RESULTS.md). The list stays linear in N. */
     double tilt_edges, tilt_motion;
     double max_move;       /* per-vertex cap of the tension move */
     double guard_move;     /* reject a step that moved any vertex further */
