@@ -155,8 +155,12 @@
  *          diagonal D_a and off-diagonal between a and next(a) (when that
  *          edge exists) o_a = -(P_v u_a) . u_next(a), v = next(a);
  *          M^-1 on curvature and strut rows: z_r = r_r / D_r (0 inactive);
- *          on the edge block: exact solve (Thomas; cyclic via
- *          Sherman-Morrison with gamma = -D_first, as Numerical Recipes 2.7).
+ *          on the edge block: exact solve (Thomas, factored once per
+ *          solve with reciprocal pivots; cyclic via Sherman-Morrison with
+ *          gamma = -D_first, as Numerical Recipes 2.7, its correction
+ *          vector solved with the factors). Ports may solve the block
+ *          exactly in another order (twisted factorisation, PCR): the
+ *          rounding differs, the operator does not.
  *          The debar coupling enters M only through D (rank-1 part dropped).
  *     d. Apply: dx, debar from y as in (b); m = max_i |dx_i|; if m > max_step,
  *        scale dx and debar by max_step / m (damped Newton: keeps the

@@ -17,16 +17,18 @@
 #include "vec3.h"
 
 /* Kernels this file launches itself (the reduction and tree modules hold their own). */
-#define KERNELS(X)                                                                            \
-    X(tension_force) X(tension_smooth) X(tension_move) X(pairs_upper) X(scan_local)           \
-    X(scan_sums) X(scan_add) X(pairs_write) X(contacts_csr) X(pairs_dist) X(rows_chain)       \
-    X(rows_strut) X(cg_init) X(jt_vertex) X(jt_ebar_partial) X(jt_ebar) X(j_rows)             \
-    X(cg_start) X(cg_top)                                                                     \
-    X(cg_alpha) X(cg_yr) X(cg_beta) X(cg_p) X(dx_norm) X(step_scale) X(apply_dx)              \
-    X(apply_debar) X(measure_edges) X(measure_minrad) X(measure_disp) X(comp_sum)            \
-    X(cg_reset) X(release_pulling) X(project_field) X(tangent_finish) X(ebar_velocity)        \
-    X(tension_smooth2) X(precond_setup) X(precond_diag) X(precond_edges) X(copy_rows)        \
-    X(tridiag_matrix) X(tridiag_level) X(tridiag_finish) X(tridiag_group)
+#define KERNELS(X)                                                                         \
+    X(tension_force) X(tension_smooth) X(tension_move) X(pairs_upper) X(scan_local)        \
+    X(scan_sums) X(scan_add) X(pairs_write) X(contacts_csr) X(pairs_dist) X(rows_chain)    \
+    X(rows_strut) X(cg_init) X(jt_vertex) X(jt_ebar_partial) X(jt_ebar) X(j_rows)          \
+    X(cg_start) X(cg_top) X(cg_alpha) X(cg_yr) X(cg_beta) X(cg_p) X(dx_norm)               \
+    X(step_scale) X(apply_dx) X(apply_debar) X(measure_edges) X(measure_minrad)            \
+    X(measure_disp) X(comp_sum) X(cg_reset) X(release_pulling) X(project_field)            \
+    X(tangent_finish) X(ebar_velocity) X(tension_smooth2) X(precond_setup)                 \
+    X(precond_diag) X(precond_edges) X(copy_rows) X(precond_edges_factor) X(curv_limits)   \
+    X(tridiag_matrix) X(tridiag_level) X(tridiag_finish) X(tridiag_group)                  \
+    X(twist_factor) X(twist_factor_mid) X(twist_sweep_rows) X(twist_back_rows)             \
+    X(twist_finish)
 #define ENUM(k) K_##k,
 #define NAME(k) #k,
 enum { KERNELS(ENUM) K_COUNT };
@@ -60,6 +62,7 @@ typedef struct cl_state {
     tr_curve shape; /* host copy of the topology and constraints (for upload's snap-free ebar) */
     cl_mem start, ne, cst, gap;
     cl_mem x, xs, ebar, ebar_s, debar;
+    cl_mem curv; /* per component: largest turning angle and its ebar term (curv_limits) */
     cl_mem F, G, H, dx;
     cl_mem t1, t2, t3; /* nv reals: per-vertex terms for reductions */
     cl_mem sc;         /* scalars */
@@ -76,6 +79,11 @@ typedef struct cl_state {
      * the Sherman-Morrison vector; tri_group > 0: one work-group of that size
      * does the whole solve. */
     int tri_pcr, tri_levels, any_closed;
+    /* Or (CPU devices) the twisted factorisation of kernels/twisted.cl: two
+     * work-groups per component; scratch of 2 ncomp reals for the rows
+     * beside the middle row, and for the block's first and last rows. */
+    int tri_twist;
+    cl_mem tmid, tends;
     /* work-groups per component of the ebar sums (jt_ebar_partial), and their partial sums */
     int ebar_groups;
     cl_mem ebar_part;
@@ -194,6 +202,17 @@ static int run_groups(cl_state *s, int id, size_t groups, tr_error *err, ...)
     va_end(ap);
     size_t l = groups ? TR_CL_LOCAL : 1, g = groups ? groups * TR_CL_LOCAL : 1;
     return rc != TR_OK ? rc : enqueue(s, id, g, l, err);
+}
+
+/* Launches n items, each its own work-group (a CPU device runs
+ * work-groups, not items, on different cores). */
+static int run_items(cl_state *s, int id, size_t n, tr_error *err, ...)
+{
+    va_list ap;
+    va_start(ap, err);
+    int rc = set_args(s, id, ap, err);
+    va_end(ap);
+    return rc != TR_OK ? rc : enqueue(s, id, n, 1, err);
 }
 
 /* Launches one work-group of local items. */
@@ -403,8 +422,10 @@ static int eval_rows(cl_state *s, const tr_correct_params *prm, tr_error *err)
     int rc = TR_OK;
     int nv = s->nv, np = s->np, nr = 2 * nv + np;
     double minrad = prm->minrad, ac = prm->active_curv, sd = prm->strut_dist, as = prm->active_strut;
+    TR_TRY(run(s, K_curv_limits, (size_t)s->ncomp, err, A(s->ebar), A(s->ncomp), A(minrad),
+               A(s->curv), END));
     TR_TRY(run(s, K_rows_chain, (size_t)nv, err, A(s->x), A(s->topo.next), A(s->topo.prev),
-               A(s->topo.comp), A(s->ebar), A(nv), A(minrad), A(ac), A(s->rC), A(s->rgrad),
+               A(s->topo.comp), A(s->ebar), A(s->curv), A(nv), A(ac), A(s->rC), A(s->rgrad),
                A(s->ract), A(s->rv), A(s->cgq), A(s->cdeb), END));
     if (np > 0)
         TR_TRY(run(s, K_rows_strut, (size_t)np, err, A(s->x), A(s->topo.next), A(s->topo.prev),
@@ -483,6 +504,17 @@ static int precond_apply(cl_state *s, cl_mem r, tr_error *err)
     int rc = TR_OK;
     int nv = s->nv, nr = 2 * nv + s->np;
     size_t d = sizeof(double);
+    if (s->tri_twist) {
+        size_t items = 2 * (size_t)s->ncomp;
+        TR_TRY(run_items(s, K_twist_sweep_rows, items, err, A(r), A(s->po), A(s->start), A(s->ne),
+                         A(s->ncomp), A(nv), A(s->tw), A(s->tmid), A(s->z), END));
+        TR_TRY(run_items(s, K_twist_back_rows, items, err, A(r), A(s->po), A(s->start), A(s->ne),
+                         A(s->ncomp), A(nv), A(s->tw), A(s->tmid), A(s->tends), A(s->z), END));
+        TR_TRY(run(s, K_twist_finish, (size_t)nr, err, A(r), A(s->pdiag), A(s->po), A(s->ract),
+                   A(s->topo.comp), A(s->start), A(s->ne), A(s->closed), A(nv), A(nr), A(s->tw),
+                   A(s->tends), A(s->z), END));
+        return TR_OK;
+    }
     TR_TRY(run(s, K_precond_diag, (size_t)(nr - nv), err, A(r), A(s->pdiag), A(s->ract), A(nv), A(nr),
                A(s->z), END));
     if (s->tri_pcr) {
@@ -511,8 +543,18 @@ static int cg_iterate(cl_state *s, const tr_correct_params *prm, int *iters, tr_
     TR_TRY(run(s, K_precond_setup, (size_t)nr, err, A(s->rgrad), A(s->cgq), A(s->cdeb), A(s->ract),
                A(s->topo.next), A(s->topo.prev), A(s->topo.comp), A(s->ne), A(s->pa), A(s->pb),
                A(s->rs), A(s->rt), A(s->cst), A(nv), A(np), A(w), A(reg), A(s->pdiag), A(s->po), END));
-    if (s->tri_pcr)
+    if (s->tri_pcr) {
         TR_TRY(tridiag_setup(s, err));
+    } else if (s->tri_twist) {
+        TR_TRY(run_items(s, K_twist_factor, 2 * (size_t)s->ncomp, err, A(s->pdiag), A(s->po),
+                         A(s->start), A(s->ne), A(s->closed), A(s->ncomp), A(nv), A(s->tw),
+                         A(s->tmid), END));
+        TR_TRY(run_items(s, K_twist_factor_mid, (size_t)s->ncomp, err, A(s->pdiag), A(s->po),
+                         A(s->start), A(s->ne), A(s->closed), A(s->ncomp), A(nv), A(s->tw),
+                         A(s->tmid), END));
+    } else
+        TR_TRY(run(s, K_precond_edges_factor, (size_t)s->ncomp, err, A(s->pdiag), A(s->po),
+                   A(s->start), A(s->ne), A(s->closed), A(s->ncomp), A(nv), A(s->tw), END));
     TR_TRY(precond_apply(s, s->r, err));
     TR_TRY(run(s, K_copy_rows, (size_t)nr, err, A(s->z), A(s->p), A(nr), END));
     TR_TRY(tr_cl_reduce_dot(&s->red, &s->ctx, s->r, s->r, nr, s->sc, SC_RR, err));
@@ -758,29 +800,38 @@ static const tr_backend_ops opencl_ops = {
  * it one work-group is too few items for the rows. */
 #define TR_TRI_GROUP_MAX_ROWS 4096
 
-/* Which edge-block solver: TIGHTROPE_CL_TRIDIAG=thomas|pcr chooses (pcr-group
- * and pcr-levels force one of PCR's two launch plans; the tests run each on
- * any device); by default PCR on GPUs and accelerators, where the one-item
- * Thomas sweep is the slowest kernel of the step, and Thomas on CPU devices,
- * where it is O(N) against PCR's O(N log N) and matches the reference bit for
- * bit. Allocates what PCR needs. */
+/* Which edge-block solver: TIGHTROPE_CL_TRIDIAG=thomas|twisted|pcr chooses
+ * (pcr-group and pcr-levels force one of PCR's two launch plans; the tests
+ * run each on any device); by default PCR on GPUs and accelerators, where a
+ * sequential sweep is the slowest kernel of the step, and the twisted
+ * factorisation on CPU devices: O(N) like Thomas (PCR is O(N log N)) but two
+ * chains per component, so two cores work where Thomas keeps one. "thomas"
+ * is the reference's arithmetic bit for bit. Allocates what the choice
+ * needs. */
 static int tridiag_choose(cl_state *s, const tr_cl_device_info *dev, tr_error *err)
 {
     int rc = TR_OK;
     const char *v = getenv("TIGHTROPE_CL_TRIDIAG");
     int plan = 0; /* 1: one work-group, 2: a launch per level, 0: by size */
     if (v && *v) {
-        if (strcmp(v, "pcr") && strcmp(v, "thomas") && strcmp(v, "pcr-group") &&
-            strcmp(v, "pcr-levels"))
-            return tr_fail(err, TR_EINVAL, "TIGHTROPE_CL_TRIDIAG='%s': use thomas, pcr, pcr-group or pcr-levels", v);
-        s->tri_pcr = strcmp(v, "thomas") != 0;
+        if (strcmp(v, "pcr") && strcmp(v, "thomas") && strcmp(v, "twisted") &&
+            strcmp(v, "pcr-group") && strcmp(v, "pcr-levels"))
+            return tr_fail(err, TR_EINVAL,
+                           "TIGHTROPE_CL_TRIDIAG='%s': use thomas, twisted, pcr, pcr-group or pcr-levels", v);
+        s->tri_twist = !strcmp(v, "twisted");
+        s->tri_pcr = !s->tri_twist && strcmp(v, "thomas") != 0;
         plan = !strcmp(v, "pcr-group") ? 1 : !strcmp(v, "pcr-levels") ? 2 : 0;
     } else {
         s->tri_pcr = !(dev->type & CL_DEVICE_TYPE_CPU);
+        s->tri_twist = !s->tri_pcr;
+    }
+    size_t nv = (size_t)s->nv, d = sizeof(double);
+    if (s->tri_twist) {
+        TR_TRY(buffer(s, &s->tmid, 2 * (size_t)s->ncomp * d, err));
+        TR_TRY(buffer(s, &s->tends, 2 * (size_t)s->ncomp * d, err));
     }
     if (!s->tri_pcr)
         return TR_OK;
-    size_t nv = (size_t)s->nv, d = sizeof(double);
     int maxne = 1;
     for (int k = 0; k < s->ncomp; k++) {
         maxne = s->h_ne[k] > maxne ? s->h_ne[k] : maxne;
@@ -878,6 +929,7 @@ static int open_on(const tr_device_choice *dev, const tr_curve *c, int profiling
     TR_TRY(buffer(s, &s->ebar, nc * d, err));
     TR_TRY(buffer(s, &s->ebar_s, nc * d, err));
     TR_TRY(buffer(s, &s->debar, nc * d, err));
+    TR_TRY(buffer(s, &s->curv, 2 * nc * d, err));
     TR_TRY(buffer(s, &s->F, 3 * nv * d, err));
     TR_TRY(buffer(s, &s->G, 3 * nv * d, err));
     TR_TRY(buffer(s, &s->H, 3 * nv * d, err));
@@ -1006,5 +1058,5 @@ const char *tr_backend_opencl_tridiag(const tr_backend *b)
     if (!b || b->ops != &opencl_ops)
         return NULL;
     const cl_state *s = b->state;
-    return !s->tri_pcr ? "thomas" : s->tri_group ? "pcr-group" : "pcr-levels";
+    return s->tri_twist ? "twisted" : !s->tri_pcr ? "thomas" : s->tri_group ? "pcr-group" : "pcr-levels";
 }

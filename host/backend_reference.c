@@ -47,7 +47,10 @@ typedef struct ref_state {
     double *y, *r, *p, *q, *b;
     double *cgq, *cdeb; /* curvature rows: second gradient vector, dC/debar */
     double *pd, *z;     /* preconditioner diagonal, preconditioned residual (rows) */
-    double *po, *tw[5]; /* edge-row off-diagonal, tridiagonal work (nv) */
+    double *po;         /* edge-row off-diagonal (nv) */
+    /* the edge block factored once per solve (precond_factor): Thomas
+     * multipliers, reciprocal pivots, Sherman-Morrison vector (nv each) */
+    double *tri_w, *tri_ib, *tri_uu;
     /* inside cg_solve: the active strut rows (ascending) and the per-vertex
      * strut adjacency restricted to them, so that CG iterations skip the
      * many inactive rows of a long list (they hold exact zeros: skipping
@@ -69,7 +72,7 @@ static void ref_destroy(void *sp)
                     s->ebar_s, s->pj, s->pu, s->vcst, s->cst, s->pa, s->pb, s->adj_start, s->adj,
                     s->F, s->G, s->H, s->dx, s->debar, s->rC, s->rgrad, s->rs, s->rt, s->ract,
                     s->y, s->r, s->p, s->q, s->b, s->cgq, s->cdeb, s->pd, s->z, s->po,
-                    s->tw[0], s->tw[1], s->tw[2], s->tw[3], s->tw[4], s->act, s->aadj_start, s->aadj};
+                    s->tri_w, s->tri_ib, s->tri_uu, s->act, s->aadj_start, s->aadj};
     for (size_t i = 0; i < sizeof ptrs / sizeof ptrs[0]; i++)
         free(ptrs[i]);
     if (s->ns_built)
@@ -631,17 +634,28 @@ static double proj_norm2(const ref_state *s, size_t v, const double *g, double c
     return v3_dot(t, t);
 }
 
-/* Thomas algorithm: sub a[1..n-1], diag b, sup c[0..n-2]; x may alias r. */
-static void tridiag_solve(const double *a, const double *b, const double *c, const double *r, double *x,
-                          double *w, size_t n)
+/* The edge block of one component as Thomas factors: rows st .. st+n-1 with
+ * diagonal b (b[0] is row st) and off-diagonals po[st .. st+n-2]. Stores
+ * the multipliers w[j] = o_{j-1} / pivot_{j-1} and the reciprocal pivots ib,
+ * so that every CG iteration's solve is two multiply-add sweeps with no
+ * division. */
+static void tridiag_factor(const double *po, const double *b, double b_first, double b_last,
+                           size_t st, size_t n, double *w, double *ib)
 {
-    double bet = b[0];
-    x[0] = r[0] / bet;
+    ib[0] = 1.0 / (n > 1 ? b_first : b_last);
     for (size_t j = 1; j < n; j++) {
-        w[j] = c[j - 1] / bet;
-        bet = b[j] - a[j] * w[j];
-        x[j] = (r[j] - a[j] * x[j - 1]) / bet;
+        w[j] = po[st + j - 1] * ib[j - 1];
+        ib[j] = 1.0 / ((j + 1 < n ? b[j] : b_last) - po[st + j - 1] * w[j]);
     }
+}
+
+/* x = T^-1 r from tridiag_factor's factors; x may alias r. */
+static void tridiag_subst(const double *po, size_t st, size_t n, const double *w, const double *ib,
+                          const double *r, double *x)
+{
+    x[0] = r[0] * ib[0];
+    for (size_t j = 1; j < n; j++)
+        x[j] = (r[j] - po[st + j - 1] * x[j - 1]) * ib[j];
     for (size_t j = n - 1; j-- > 0;)
         x[j] -= w[j + 1] * x[j + 1];
 }
@@ -691,6 +705,33 @@ static void precond_setup(ref_state *s, const tr_correct_params *prm)
     }
 }
 
+/* Factors every component's edge block (once per solve: the block is the
+ * same in every CG iteration). Closed components: Sherman-Morrison on the
+ * corner entries (Numerical Recipes 2.7, gamma = -D_first), so the factors
+ * are of the block with a modified first and last diagonal entry, and the
+ * correction vector uu is solved here too. */
+static void precond_factor(ref_state *s)
+{
+    for (int k = 0; k < s->ncomp; k++) {
+        size_t st = s->start[k], n = s->ne[k];
+        const double *d = s->pd + st;
+        double *w = s->tri_w + st, *ib = s->tri_ib + st, *uu = s->tri_uu + st;
+        if (n == 0)
+            continue;
+        if (!s->closed[k] || n < 3) {
+            tridiag_factor(s->po, d, d[0], d[n - 1], st, n, w, ib);
+            continue;
+        }
+        double alpha = s->po[st + n - 1], beta = alpha, gamma = -d[0];
+        tridiag_factor(s->po, d, d[0] - gamma, d[n - 1] - alpha * beta / gamma, st, n, w, ib);
+        for (size_t j = 0; j < n; j++)
+            uu[j] = 0.0;
+        uu[0] = gamma;
+        uu[n - 1] = alpha;
+        tridiag_subst(s->po, st, n, w, ib, uu, uu);
+    }
+}
+
 /* z = M^-1 r: per component the tridiagonal (cyclic for closed) block of
  * the edge rows, solved exactly; every other row divided by its diagonal. */
 static void precond_apply(ref_state *s, const double *r, double *z)
@@ -705,33 +746,16 @@ static void precond_apply(ref_state *s, const double *r, double *z)
     for (size_t q = 0; q < nv; q++)
         if (!s->ract[q])
             z[q] = 0.0;
-    double *sub = s->tw[0], *sup = s->tw[1], *w = s->tw[2], *uu = s->tw[3], *bb = s->tw[4];
     for (int k = 0; k < s->ncomp; k++) {
         size_t st = s->start[k], n = s->ne[k];
-        const double *d = s->pd + st;
-        const double *rr = r + st;
+        const double *w = s->tri_w + st, *ib = s->tri_ib + st, *uu = s->tri_uu + st;
         double *x = z + st;
-        for (size_t j = 0; j < n; j++) {
-            sub[j] = j > 0 ? s->po[st + j - 1] : 0.0;
-            sup[j] = s->po[st + j];
-        }
-        if (!s->closed[k] || n < 3) {
-            tridiag_solve(sub, d, sup, rr, x, w, n);
+        if (n == 0)
             continue;
-        }
-        /* cyclic: Sherman-Morrison on the corner entries (Numerical Recipes 2.7) */
-        double alpha = s->po[st + n - 1], beta = alpha;
-        double gamma = -d[0];
-        for (size_t j = 0; j < n; j++)
-            bb[j] = d[j];
-        bb[0] = d[0] - gamma;
-        bb[n - 1] = d[n - 1] - alpha * beta / gamma;
-        tridiag_solve(sub, bb, sup, rr, x, w, n);
-        for (size_t j = 0; j < n; j++)
-            uu[j] = 0.0;
-        uu[0] = gamma;
-        uu[n - 1] = alpha;
-        tridiag_solve(sub, bb, sup, uu, uu, w, n);
+        tridiag_subst(s->po, st, n, w, ib, r + st, x);
+        if (!s->closed[k] || n < 3)
+            continue;
+        double beta = s->po[st + n - 1], gamma = -s->pd[st];
         double fact = (x[0] + beta * x[n - 1] / gamma) / (1.0 + uu[0] + beta * uu[n - 1] / gamma);
         for (size_t j = 0; j < n; j++)
             x[j] -= fact * uu[j];
@@ -744,6 +768,7 @@ static int cg_solve(ref_state *s, const tr_correct_params *prm)
 {
     size_t nr = 2 * s->nv + s->np;
     precond_setup(s, prm);
+    precond_factor(s);
     for (size_t r = 0; r < nr; r++) {
         s->y[r] = 0.0;
         s->r[r] = s->b[r];
@@ -1063,12 +1088,13 @@ int tr_backend_reference_open(const char *spec, const tr_curve *c, tr_backend *o
     s->cgq = malloc(3 * nv * sizeof *s->cgq);
     s->cdeb = malloc(nv * sizeof *s->cdeb);
     s->po = calloc(nv, sizeof *s->po);
-    for (int k = 0; k < 5; k++)
-        s->tw[k] = calloc(nv, sizeof *s->tw[k]);
+    s->tri_w = calloc(nv, sizeof *s->tri_w);
+    s->tri_ib = calloc(nv, sizeof *s->tri_ib);
+    s->tri_uu = calloc(nv, sizeof *s->tri_uu);
     if (!s->start || !s->closed || !s->ne || !s->comp || !s->next || !s->prev || !s->x || !s->xs ||
         !s->ebar || !s->ebar_s || !s->debar || !s->pj || !s->pu || !s->vcst || !s->cst ||
-        !s->adj_start || !s->F || !s->G || !s->H || !s->dx || !s->cgq || !s->cdeb || !s->po || !s->tw[0] ||
-        !s->tw[1] || !s->tw[2] || !s->tw[3] || !s->tw[4]) {
+        !s->adj_start || !s->F || !s->G || !s->H || !s->dx || !s->cgq || !s->cdeb || !s->po || !s->tri_w ||
+        !s->tri_ib || !s->tri_uu) {
         ref_destroy(s);
         return tr_fail(err, TR_ENOMEM, "out of memory opening the reference backend (%zu vertices)", nv);
     }

@@ -18,7 +18,7 @@ static size_t stage1_global(size_t n)
 int tr_cl_build_all(const tr_cl_ctx *ctx, cl_program *prog, tr_error *err)
 {
     static const char *const files[] = {"reduce.cl",   "tree.cl",    "tension.cl",
-                                        "contacts.cl", "correct.cl", "tridiag.cl",
+                                        "contacts.cl", "correct.cl", "tridiag.cl",  "twisted.cl",
                                         "measure.cl"};
     return tr_cl_build(ctx, files, (int)(sizeof files / sizeof files[0]), "", prog, err);
 }

@@ -22,14 +22,29 @@
 #define SC_NACT 14
 #define SC_RZ 15
 
+/* Per component k: the largest turning angle MinRad >= minrad allows,
+ * 2 atan(ebar / (2 minrad)), and its ebar derivative times ebar; rows_chain
+ * reads them instead of taking an arc tangent per vertex. */
+__kernel void curv_limits(__global const real *ebar, const int ncomp, const real minrad,
+                          __global real *lim)
+{
+    int k = get_global_id(0);
+    if (k >= ncomp)
+        return;
+    real eb = ebar[k], rr = minrad;
+    lim[2 * k] = 2.0 * atan(eb / (2.0 * rr));
+    lim[2 * k + 1] = eb * (1.0 / rr) / (1.0 + eb * eb / (4.0 * rr * rr));
+}
+
 /* Edge row i and curvature row nv + i; rv holds each row's violation (>= 0).
  * The curvature row is the turning-angle form of MinRad >= minrad:
  * C = ebar (theta_max - theta), theta = atan2(|p x q|, p.q) for the edges p,
  * q at vertex i; its gradient is ga (stored with the row) on the incoming
- * edge and gb (cgq) on the outgoing one, cdeb its ebar derivative. */
+ * edge and gb (cgq) on the outgoing one, cdeb its ebar derivative;
+ * theta_max per component from curv_limits. */
 __kernel void rows_chain(__global const real *x, __global const int *next,
                          __global const int *prev, __global const int *comp,
-                         __global const real *ebar, const int nv, const real minrad,
+                         __global const real *ebar, __global const real *lim, const int nv,
                          const real active_curv, __global real *rC, __global real *rgrad,
                          __global int *ract, __global real *rv, __global real *cgq,
                          __global real *cdeb)
@@ -59,11 +74,11 @@ __kernel void rows_chain(__global const real *x, __global const int *next,
         real3 cr = tr_cross3(pe, qe);
         real lp = tr_norm3(pe), lq = tr_norm3(qe), sn = tr_norm3(cr), cs = tr_dot3(pe, qe);
         real theta = atan2(sn, cs);
-        real eb = ebar[comp[i]], rr = minrad;
-        real tmax = 2.0 * atan(eb / (2.0 * rr));
+        int k = comp[i];
+        real eb = ebar[k], tmax = lim[2 * k];
         real C = eb * (tmax - theta);
         rC[r] = C;
-        cdeb[i] = (tmax - theta) + eb * (1.0 / rr) / (1.0 + eb * eb / (4.0 * rr * rr));
+        cdeb[i] = (tmax - theta) + lim[2 * k + 1];
         real3 ga = (real3)(0.0), gb = (real3)(0.0);
         if (!(sn < 1e-12 * lp * lq)) {
             real c = cs / (lp * lq), sinv = lp * lq / sn;
@@ -463,56 +478,84 @@ __kernel void precond_diag(__global const real *r, __global const real *pd,
         z[q] = ract[q] ? r[q] / pd[q] : 0.0;
 }
 
-/* Thomas algorithm over rows st .. st+n-1 (sub from po[j-1], sup po[j]),
- * exactly the reference's tridiag_solve; x may alias rr. */
-inline void thomas(__global const real *po, __global const real *b, int st, int n,
-                   __global const real *rr, __global real *x, __global real *w)
+/* The edge block of one component as Thomas factors (the reference's
+ * tridiag_factor, same arithmetic): multipliers w and reciprocal pivots ib
+ * of the rows st .. st+n-1, diagonal b with its first and last entries
+ * replaced by b_first, b_last. */
+inline void thomas_factor(__global const real *po, __global const real *b, real b_first,
+                          real b_last, int st, int n, __global real *w, __global real *ib)
 {
-    real bet = b[0];
-    x[0] = rr[0] / bet;
+    ib[0] = 1.0 / (n > 1 ? b_first : b_last);
     for (int j = 1; j < n; j++) {
-        w[j] = po[st + j - 1] / bet;
-        bet = b[j] - po[st + j - 1] * w[j];
-        x[j] = (rr[j] - po[st + j - 1] * x[j - 1]) / bet;
+        w[j] = po[st + j - 1] * ib[j - 1];
+        ib[j] = 1.0 / ((j + 1 < n ? b[j] : b_last) - po[st + j - 1] * w[j]);
     }
+}
+
+/* x = T^-1 rr from thomas_factor's factors (the reference's tridiag_subst). */
+inline void thomas_subst(__global const real *po, int st, int n, __global const real *w,
+                         __global const real *ib, __global const real *rr, __global real *x)
+{
+    x[0] = rr[0] * ib[0];
+    for (int j = 1; j < n; j++)
+        x[j] = (rr[j] - po[st + j - 1] * x[j - 1]) * ib[j];
     for (int j = n - 1; j-- > 0;)
         x[j] -= w[j + 1] * x[j + 1];
 }
 
-/* Edge block of component k (one item per component: the exact tridiagonal
- * solve is sequential, as in the reference; cyclic ones by Sherman-Morrison,
- * Numerical Recipes 2.7). tw holds 3 nv reals of work. */
-__kernel void precond_edges(__global const real *r, __global const real *pd,
-                            __global const real *po, __global const int *start,
-                            __global const int *ne, __global const int *closed, const int ncomp,
-                            const int nv, __global real *tw, __global real *z)
+/* Factors the edge block of component k once per solve (one item per
+ * component; the reference's precond_factor). tw holds 3 nv reals:
+ * multipliers, reciprocal pivots, and for closed components the
+ * Sherman-Morrison vector uu (Numerical Recipes 2.7, gamma = -D_first). */
+__kernel void precond_edges_factor(__global const real *pd, __global const real *po,
+                                   __global const int *start, __global const int *ne,
+                                   __global const int *closed, const int ncomp, const int nv,
+                                   __global real *tw)
 {
     int k = get_global_id(0);
     if (k >= ncomp)
         return;
     int st = start[k], n = ne[k];
-    __global real *w = tw + st, *uu = tw + nv + st, *bb = tw + 2 * nv + st;
-    __global const real *d = pd + st, *rr = r + st;
-    __global real *x = z + st;
-    /* the row of an open rope's last vertex has no edge: keep it out of the dot products */
-    for (int j = n; j < start[k + 1] - st; j++)
-        x[j] = 0.0;
+    __global real *w = tw + st, *ib = tw + nv + st, *uu = tw + 2 * nv + st;
+    __global const real *d = pd + st;
+    if (n == 0)
+        return;
     if (!closed[k] || n < 3) {
-        thomas(po, d, st, n, rr, x, w);
+        thomas_factor(po, d, d[0], d[n - 1], st, n, w, ib);
         return;
     }
-    real alpha = po[st + n - 1], beta = alpha;
-    real gamma = -d[0];
-    for (int j = 0; j < n; j++)
-        bb[j] = d[j];
-    bb[0] = d[0] - gamma;
-    bb[n - 1] = d[n - 1] - alpha * beta / gamma;
-    thomas(po, bb, st, n, rr, x, w);
+    real alpha = po[st + n - 1], beta = alpha, gamma = -d[0];
+    thomas_factor(po, d, d[0] - gamma, d[n - 1] - alpha * beta / gamma, st, n, w, ib);
     for (int j = 0; j < n; j++)
         uu[j] = 0.0;
     uu[0] = gamma;
     uu[n - 1] = alpha;
-    thomas(po, bb, st, n, uu, uu, w);
+    thomas_subst(po, st, n, w, ib, uu, uu);
+}
+
+/* Edge block of component k from precond_edges_factor's factors (one item
+ * per component: the substitution sweeps are sequential, as in the
+ * reference). */
+__kernel void precond_edges(__global const real *r, __global const real *pd,
+                            __global const real *po, __global const int *start,
+                            __global const int *ne, __global const int *closed, const int ncomp,
+                            const int nv, __global const real *tw, __global real *z)
+{
+    int k = get_global_id(0);
+    if (k >= ncomp)
+        return;
+    int st = start[k], n = ne[k];
+    __global const real *w = tw + st, *ib = tw + nv + st, *uu = tw + 2 * nv + st;
+    __global real *x = z + st;
+    /* the row of an open rope's last vertex has no edge: keep it out of the dot products */
+    for (int j = n; j < start[k + 1] - st; j++)
+        x[j] = 0.0;
+    if (n == 0)
+        return;
+    thomas_subst(po, st, n, w, ib, r + st, x);
+    if (!closed[k] || n < 3)
+        return;
+    real beta = po[st + n - 1], gamma = -pd[st];
     real fact = (x[0] + beta * x[n - 1] / gamma) / (1.0 + uu[0] + beta * uu[n - 1] / gamma);
     for (int j = 0; j < n; j++)
         x[j] -= fact * uu[j];

@@ -28,10 +28,10 @@ set_tests_properties(cli_bench_tight_start PROPERTIES
 add_test(NAME cli_bench_bad_contacts COMMAND ${_tr} bench --contacts 1.5,0.1)
 set_tests_properties(cli_bench_bad_contacts PROPERTIES
   PASS_REGULAR_EXPRESSION "bad --contacts '1.5,0.1'")
-# Both edge-block solvers of the preconditioner on whatever device there is
-# (by default Thomas on CPU devices such as PoCL, PCR on GPUs), each against
-# the serial reference.
-foreach(_solver pcr-group pcr-levels thomas)
+# Every edge-block solver of the preconditioner on whatever device there is
+# (by default the twisted factorisation on CPU devices such as PoCL, PCR on
+# GPUs), each against the serial reference.
+foreach(_solver pcr-group pcr-levels thomas twisted)
   add_test(NAME test_opencl_backend_${_solver} COMMAND test_opencl_backend)
   set_tests_properties(test_opencl_backend_${_solver} PROPERTIES SKIP_RETURN_CODE 77
     ENVIRONMENT "${TR_TEST_ENV};TIGHTROPE_CL_TRIDIAG=${_solver}"
@@ -41,4 +41,4 @@ endforeach()
 add_test(NAME cli_bench_bad_tridiag COMMAND ${_tr} bench --n 300 --steps 1 --device opencl)
 set_tests_properties(cli_bench_bad_tridiag PROPERTIES
   ENVIRONMENT "${TR_TEST_ENV};TIGHTROPE_CL_TRIDIAG=bogus"
-  PASS_REGULAR_EXPRESSION "TIGHTROPE_CL_TRIDIAG='bogus': use thomas, pcr")
+  PASS_REGULAR_EXPRESSION "TIGHTROPE_CL_TRIDIAG='bogus': use thomas, twisted, pcr")

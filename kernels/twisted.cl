@@ -1,0 +1,256 @@
+/* The edge block of the CG preconditioner (backend.h correct (c)) on CPU
+ * devices: a twisted factorisation ("burn at both ends"; van der Vorst 1987,
+ * Parlett & Dhillon 2000). Thomas's sweep is one dependent chain per
+ * component, so precond_edges runs on one core while the others idle; here
+ * each component's chain is cut at its middle row m, rows 0 .. m-1 are
+ * eliminated downwards and rows m+1 .. n-1 upwards by two work-groups at
+ * once, row m is solved from both, and both halves substitute outwards.
+ * Same operation count as Thomas; the rounding differs, as PCR's does (the
+ * tests hold it to PCR's tolerance against the reference).
+ *
+ * The block of component k is rows st .. st+n-1 (st = start[k], n = ne[k]),
+ * symmetric: diagonal D (pd), off-diagonal o_j = po[st + j] between rows j
+ * and j + 1. Closed components use the reference's Sherman-Morrison split
+ * (Numerical Recipes 2.7, gamma = -D_first): the factors are of the block
+ * with modified first and last diagonal entries, and the correction vector
+ * uu is solved once per setup.
+ *
+ * tw holds 3 nv reals, indexed by row: g (the multiplier of the outward
+ * neighbour in the back substitution: o_j / p_j above m, o_{j-1} / p_j
+ * below), ip (reciprocal pivots; at row m the middle pivot's), uu. */
+
+/* The middle row: n / 2 when both halves have rows, else the last row
+ * (short blocks are plain Thomas in the upper half). */
+inline int twist_row(int n) { return n >= 4 ? n / 2 : n - 1; }
+
+/* Factors of component k's block with first and last diagonal entries
+ * b_first, b_last: the upper half downwards (side 0) or the lower half
+ * upwards (side 1). */
+inline void twist_factor_half(__global const real *po, __global const real *d, real b_first,
+                              real b_last, int st, int n, int side, __global real *g,
+                              __global real *ip)
+{
+    int m = twist_row(n);
+    if (side == 0) {
+        for (int j = 0; j < m; j++) {
+            real bj = j == 0 ? b_first : d[j];
+            real p = j == 0 ? bj : bj - po[st + j - 1] * g[j - 1];
+            ip[j] = 1.0 / p;
+            g[j] = po[st + j] * ip[j];
+        }
+    } else {
+        for (int j = n - 1; j > m; j--) {
+            real bj = j == n - 1 ? b_last : d[j];
+            real p = j == n - 1 ? bj : bj - po[st + j] * g[j + 1];
+            ip[j] = 1.0 / p;
+            g[j] = po[st + j - 1] * ip[j];
+        }
+    }
+}
+
+/* The middle pivot's reciprocal from both halves' factors. */
+inline real twist_middle(__global const real *po, __global const real *d, real b_first,
+                         real b_last, int st, int n, __global const real *g)
+{
+    int m = twist_row(n);
+    real p = m == 0 ? b_first : m == n - 1 ? b_last : d[m];
+    if (m > 0)
+        p -= po[st + m - 1] * g[m - 1];
+    if (m + 1 < n)
+        p -= po[st + m] * g[m + 1];
+    return 1.0 / p;
+}
+
+/* Elimination sweep of rhs into y (upper half: y_j = (rhs_j - o_{j-1}
+ * y_{j-1}) ip_j; lower half: y_j = (rhs_j - o_j y_{j+1}) ip_j), then the
+ * middle row's solution once both are known (twist_solve_mid). */
+inline void twist_sweep(__global const real *po, int st, int n, int side,
+                        __global const real *ip, __global const real *rhs, __global real *y)
+{
+    int m = twist_row(n);
+    if (side == 0) {
+        for (int j = 0; j < m; j++)
+            y[j] = (rhs[j] - (j > 0 ? po[st + j - 1] * y[j - 1] : 0.0)) * ip[j];
+    } else {
+        for (int j = n - 1; j > m; j--)
+            y[j] = (rhs[j] - (j < n - 1 ? po[st + j] * y[j + 1] : 0.0)) * ip[j];
+    }
+}
+
+/* x_m from the swept sides' neighbours of row m (ym1 = y_{m-1}, yp1 =
+ * y_{m+1}, 0 where absent). */
+inline real twist_solve_mid(__global const real *po, int st, int n, __global const real *ip,
+                            real rm, real ym1, real yp1)
+{
+    int m = twist_row(n);
+    real v = rm;
+    if (m > 0)
+        v -= po[st + m - 1] * ym1;
+    if (m + 1 < n)
+        v -= po[st + m] * yp1;
+    return v * ip[m];
+}
+
+/* Back substitution of one half outwards from the middle row's xm (y[m]
+ * itself is not read: the other side's items may be writing it). */
+inline void twist_back(int n, int side, __global const real *g, real xm, __global real *y)
+{
+    int m = twist_row(n);
+    real prev = xm;
+    if (side == 0) {
+        for (int j = m - 1; j >= 0; j--)
+            prev = y[j] -= g[j] * prev;
+    } else {
+        for (int j = m + 1; j < n; j++)
+            prev = y[j] -= g[j] * prev;
+    }
+}
+
+/* The diagonal of the factored block's first and last rows (closed blocks:
+ * Sherman-Morrison's modification). */
+inline void twist_ends(__global const real *pd, __global const real *po, int st, int n, int cyc,
+                       real *b_first, real *b_last)
+{
+    __global const real *d = pd + st;
+    *b_first = d[0];
+    *b_last = d[n - 1];
+    if (cyc) {
+        real alpha = po[st + n - 1], gamma = -d[0];
+        *b_first = d[0] - gamma;
+        *b_last = d[n - 1] - alpha * alpha / gamma;
+    }
+}
+
+/* Setup, step 1 (items 2k + side, one per work-group): each half's factors,
+ * and for closed blocks its half of uu's sweep (right-hand side gamma at the
+ * first row, alpha at the last). mid: 4 ncomp reals of scratch. */
+__kernel void twist_factor(__global const real *pd, __global const real *po,
+                           __global const int *start, __global const int *ne,
+                           __global const int *closed, const int ncomp, const int nv,
+                           __global real *tw, __global real *mid)
+{
+    int k = get_global_id(0) / 2, side = get_global_id(0) % 2;
+    if (k >= ncomp)
+        return;
+    int st = start[k], n = ne[k], cyc = closed[k] && n >= 3;
+    if (n == 0)
+        return;
+    __global real *g = tw + st, *ip = tw + nv + st, *uu = tw + 2 * nv + st;
+    real bf, bl;
+    twist_ends(pd, po, st, n, cyc, &bf, &bl);
+    twist_factor_half(po, pd + st, bf, bl, st, n, side, g, ip);
+    if (!cyc)
+        return;
+    for (int j = side == 0 ? 0 : twist_row(n) + 1; j < (side == 0 ? twist_row(n) : n); j++)
+        uu[j] = 0.0;
+    if (side == 0)
+        uu[0] = -pd[st];
+    else
+        uu[n - 1] = po[st + n - 1];
+    /* the right-hand side is zero but at the two ends: sweep it in place */
+    twist_sweep(po, st, n, side, ip, uu, uu);
+    int m = twist_row(n);
+    mid[2 * k + side] = side == 0 ? (m > 0 ? uu[m - 1] : 0.0) : (m + 1 < n ? uu[m + 1] : 0.0);
+}
+
+/* Setup, step 2 (one item per component): the middle pivot, and uu's
+ * middle row and back substitution (short: run by one item, once per
+ * solve). */
+__kernel void twist_factor_mid(__global const real *pd, __global const real *po,
+                               __global const int *start, __global const int *ne,
+                               __global const int *closed, const int ncomp, const int nv,
+                               __global real *tw, __global const real *mid)
+{
+    int k = get_global_id(0);
+    if (k >= ncomp)
+        return;
+    int st = start[k], n = ne[k], cyc = closed[k] && n >= 3;
+    if (n == 0)
+        return;
+    __global real *g = tw + st, *ip = tw + nv + st, *uu = tw + 2 * nv + st;
+    real bf, bl;
+    twist_ends(pd, po, st, n, cyc, &bf, &bl);
+    int m = twist_row(n);
+    ip[m] = twist_middle(po, pd + st, bf, bl, st, n, g);
+    if (!cyc)
+        return;
+    real rm = m == 0 ? -pd[st] : m == n - 1 ? po[st + n - 1] : 0.0;
+    real um = twist_solve_mid(po, st, n, ip, rm, mid[2 * k], mid[2 * k + 1]);
+    uu[m] = um;
+    twist_back(n, 0, g, um, uu);
+    twist_back(n, 1, g, um, uu);
+}
+
+/* Apply, step 1 (items 2k + side): sweep r into z; each half leaves its
+ * neighbour of row m in mid (the other side may already be overwriting z
+ * in step 2). */
+__kernel void twist_sweep_rows(__global const real *r, __global const real *po,
+                               __global const int *start, __global const int *ne,
+                               const int ncomp, const int nv, __global const real *tw,
+                               __global real *mid, __global real *z)
+{
+    int k = get_global_id(0) / 2, side = get_global_id(0) % 2;
+    if (k >= ncomp)
+        return;
+    int st = start[k], n = ne[k];
+    if (n == 0)
+        return;
+    int m = twist_row(n);
+    twist_sweep(po, st, n, side, tw + nv + st, r + st, z + st);
+    mid[2 * k + side] = side == 0 ? (m > 0 ? z[st + m - 1] : 0.0) : (m + 1 < n ? z[st + m + 1] : 0.0);
+}
+
+/* Apply, step 2 (items 2k + side): x_m (each half computes it), then the
+ * side's back substitution; the half that holds row 0 or row n-1 leaves it
+ * in ends for step 3's Sherman-Morrison factor. */
+__kernel void twist_back_rows(__global const real *r, __global const real *po,
+                              __global const int *start, __global const int *ne,
+                              const int ncomp, const int nv, __global const real *tw,
+                              __global const real *mid, __global real *ends, __global real *z)
+{
+    int k = get_global_id(0) / 2, side = get_global_id(0) % 2;
+    if (k >= ncomp)
+        return;
+    int st = start[k], n = ne[k];
+    if (n == 0)
+        return;
+    int m = twist_row(n);
+    __global real *x = z + st;
+    real xm = twist_solve_mid(po, st, n, tw + nv + st, r[st + m], mid[2 * k], mid[2 * k + 1]);
+    if (side == 0)
+        x[m] = xm;
+    twist_back(n, side, tw + st, xm, x);
+    /* the sweep of a half without rows leaves x_m as its end */
+    ends[2 * k + side] = side == 0 ? (m > 0 ? x[0] : xm) : (m + 1 < n ? x[n - 1] : xm);
+}
+
+/* Apply, step 3 (one item per row): Sherman-Morrison's correction on the
+ * edge rows of closed blocks, zero on dead edge rows (an open rope's last
+ * vertex), and z = r / D on curvature and strut rows (precond_diag). */
+__kernel void twist_finish(__global const real *r, __global const real *pd,
+                           __global const real *po, __global const int *ract,
+                           __global const int *comp, __global const int *start,
+                           __global const int *ne, __global const int *closed, const int nv,
+                           const int nr, __global const real *tw, __global const real *ends,
+                           __global real *z)
+{
+    int q = get_global_id(0);
+    if (q >= nr)
+        return;
+    if (q >= nv) {
+        z[q] = ract[q] ? r[q] / pd[q] : 0.0;
+        return;
+    }
+    int k = comp[q], st = start[k], n = ne[k];
+    if (q >= st + n) {
+        z[q] = 0.0;
+        return;
+    }
+    if (!closed[k] || n < 3)
+        return;
+    __global const real *uu = tw + 2 * nv + st;
+    real beta = po[st + n - 1], gamma = -pd[st];
+    real x0 = ends[2 * k], xl = ends[2 * k + 1];
+    real fact = (x0 + beta * xl / gamma) / (1.0 + uu[0] + beta * uu[n - 1] / gamma);
+    z[q] -= fact * uu[q - st];
+}
