@@ -28,7 +28,7 @@
     X(precond_diag) X(precond_edges) X(copy_rows) X(precond_edges_factor) X(curv_limits)   \
     X(tridiag_matrix) X(tridiag_level) X(tridiag_finish) X(tridiag_group)                  \
     X(twist_factor) X(twist_factor_mid) X(twist_sweep_rows) X(twist_back_rows)             \
-    X(twist_finish)
+    X(twist_ring_fact) X(twist_ring_fix)
 #define ENUM(k) K_##k,
 #define NAME(k) #k,
 enum { KERNELS(ENUM) K_COUNT };
@@ -81,7 +81,8 @@ typedef struct cl_state {
     int tri_pcr, tri_levels, any_closed;
     /* Or (CPU devices) the twisted factorisation of kernels/twisted.cl: two
      * work-groups per component; scratch of 2 ncomp reals for the rows
-     * beside the middle row, and for the block's first and last rows. */
+     * beside the middle row, and 3 ncomp for the blocks' first and last
+     * rows and Sherman-Morrison factors. */
     int tri_twist;
     cl_mem tmid, tends;
     /* work-groups per component of the ebar sums (jt_ebar_partial), and their partial sums */
@@ -510,9 +511,15 @@ static int precond_apply(cl_state *s, cl_mem r, tr_error *err)
                          A(s->ncomp), A(nv), A(s->tw), A(s->tmid), A(s->z), END));
         TR_TRY(run_items(s, K_twist_back_rows, items, err, A(r), A(s->po), A(s->start), A(s->ne),
                          A(s->ncomp), A(nv), A(s->tw), A(s->tmid), A(s->tends), A(s->z), END));
-        TR_TRY(run(s, K_twist_finish, (size_t)nr, err, A(r), A(s->pdiag), A(s->po), A(s->ract),
-                   A(s->topo.comp), A(s->start), A(s->ne), A(s->closed), A(nv), A(nr), A(s->tw),
-                   A(s->tends), A(s->z), END));
+        if (s->any_closed) {
+            TR_TRY(run_items(s, K_twist_ring_fact, (size_t)s->ncomp, err, A(s->pdiag), A(s->po),
+                             A(s->start), A(s->ne), A(s->closed), A(s->ncomp), A(nv), A(s->tw),
+                             A(s->tends), END));
+            TR_TRY(run(s, K_twist_ring_fix, (size_t)nv, err, A(s->topo.comp), A(s->ncomp), A(nv),
+                       A(s->tw), A(s->tends), A(s->z), END));
+        }
+        TR_TRY(run(s, K_precond_diag, (size_t)(nr - nv), err, A(r), A(s->pdiag), A(s->ract),
+                   A(nv), A(nr), A(s->z), END));
         return TR_OK;
     }
     TR_TRY(run(s, K_precond_diag, (size_t)(nr - nv), err, A(r), A(s->pdiag), A(s->ract), A(nv), A(nr),
@@ -548,7 +555,7 @@ static int cg_iterate(cl_state *s, const tr_correct_params *prm, int *iters, tr_
     } else if (s->tri_twist) {
         TR_TRY(run_items(s, K_twist_factor, 2 * (size_t)s->ncomp, err, A(s->pdiag), A(s->po),
                          A(s->start), A(s->ne), A(s->closed), A(s->ncomp), A(nv), A(s->tw),
-                         A(s->tmid), END));
+                         A(s->tmid), A(s->z), END));
         TR_TRY(run_items(s, K_twist_factor_mid, (size_t)s->ncomp, err, A(s->pdiag), A(s->po),
                          A(s->start), A(s->ne), A(s->closed), A(s->ncomp), A(nv), A(s->tw),
                          A(s->tmid), END));
@@ -826,17 +833,17 @@ static int tridiag_choose(cl_state *s, const tr_cl_device_info *dev, tr_error *e
         s->tri_twist = !s->tri_pcr;
     }
     size_t nv = (size_t)s->nv, d = sizeof(double);
+    for (int k = 0; k < s->ncomp; k++)
+        s->any_closed |= s->shape.closed[k] && s->h_ne[k] >= 3;
     if (s->tri_twist) {
         TR_TRY(buffer(s, &s->tmid, 2 * (size_t)s->ncomp * d, err));
-        TR_TRY(buffer(s, &s->tends, 2 * (size_t)s->ncomp * d, err));
+        TR_TRY(buffer(s, &s->tends, 3 * (size_t)s->ncomp * d, err));
     }
     if (!s->tri_pcr)
         return TR_OK;
     int maxne = 1;
-    for (int k = 0; k < s->ncomp; k++) {
+    for (int k = 0; k < s->ncomp; k++)
         maxne = s->h_ne[k] > maxne ? s->h_ne[k] : maxne;
-        s->any_closed |= s->shape.closed[k] && s->h_ne[k] >= 3;
-    }
     s->tri_levels = 0;
     while ((1L << s->tri_levels) < maxne)
         s->tri_levels++;

@@ -123,33 +123,40 @@ inline void twist_ends(__global const real *pd, __global const real *po, int st,
 
 /* Setup, step 1 (items 2k + side, one per work-group): each half's factors,
  * and for closed blocks its half of uu's sweep (right-hand side gamma at the
- * first row, alpha at the last). mid: 4 ncomp reals of scratch. */
+ * first row, alpha at the last). uu is zero on every other edge row, open
+ * blocks' and dead ones (an open rope's last vertex), so that twist_ring_fix
+ * needs no branch; the dead rows of z are zeroed here, once per solve,
+ * since no sweep writes them. mid: 2 ncomp reals of scratch. */
 __kernel void twist_factor(__global const real *pd, __global const real *po,
                            __global const int *start, __global const int *ne,
                            __global const int *closed, const int ncomp, const int nv,
-                           __global real *tw, __global real *mid)
+                           __global real *tw, __global real *mid, __global real *z)
 {
     int k = get_global_id(0) / 2, side = get_global_id(0) % 2;
     if (k >= ncomp)
         return;
-    int st = start[k], n = ne[k], cyc = closed[k] && n >= 3;
+    int st = start[k], n = ne[k], cyc = closed[k] && n >= 3, m = twist_row(n);
+    __global real *g = tw + st, *ip = tw + nv + st, *uu = tw + 2 * nv + st;
+    if (side == 1)
+        for (int j = n; j < start[k + 1] - st; j++) {
+            uu[j] = 0.0;
+            z[st + j] = 0.0;
+        }
     if (n == 0)
         return;
-    __global real *g = tw + st, *ip = tw + nv + st, *uu = tw + 2 * nv + st;
+    for (int j = side == 0 ? 0 : m + 1; j < (side == 0 ? m : n); j++)
+        uu[j] = 0.0;
     real bf, bl;
     twist_ends(pd, po, st, n, cyc, &bf, &bl);
     twist_factor_half(po, pd + st, bf, bl, st, n, side, g, ip);
     if (!cyc)
         return;
-    for (int j = side == 0 ? 0 : twist_row(n) + 1; j < (side == 0 ? twist_row(n) : n); j++)
-        uu[j] = 0.0;
     if (side == 0)
         uu[0] = -pd[st];
     else
         uu[n - 1] = po[st + n - 1];
     /* the right-hand side is zero but at the two ends: sweep it in place */
     twist_sweep(po, st, n, side, ip, uu, uu);
-    int m = twist_row(n);
     mid[2 * k + side] = side == 0 ? (m > 0 ? uu[m - 1] : 0.0) : (m + 1 < n ? uu[m + 1] : 0.0);
 }
 
@@ -172,6 +179,7 @@ __kernel void twist_factor_mid(__global const real *pd, __global const real *po,
     twist_ends(pd, po, st, n, cyc, &bf, &bl);
     int m = twist_row(n);
     ip[m] = twist_middle(po, pd + st, bf, bl, st, n, g);
+    uu[m] = 0.0;
     if (!cyc)
         return;
     real rm = m == 0 ? -pd[st] : m == n - 1 ? po[st + n - 1] : 0.0;
@@ -224,33 +232,35 @@ __kernel void twist_back_rows(__global const real *r, __global const real *po,
     ends[2 * k + side] = side == 0 ? (m > 0 ? x[0] : xm) : (m + 1 < n ? x[n - 1] : xm);
 }
 
-/* Apply, step 3 (one item per row): Sherman-Morrison's correction on the
- * edge rows of closed blocks, zero on dead edge rows (an open rope's last
- * vertex), and z = r / D on curvature and strut rows (precond_diag). */
-__kernel void twist_finish(__global const real *r, __global const real *pd,
-                           __global const real *po, __global const int *ract,
-                           __global const int *comp, __global const int *start,
-                           __global const int *ne, __global const int *closed, const int nv,
-                           const int nr, __global const real *tw, __global const real *ends,
-                           __global real *z)
+/* Apply, step 3 (one item per component): Sherman-Morrison's factor of
+ * closed blocks from their first and last rows, 0 for the others. */
+__kernel void twist_ring_fact(__global const real *pd, __global const real *po,
+                              __global const int *start, __global const int *ne,
+                              __global const int *closed, const int ncomp, const int nv,
+                              __global const real *tw, __global real *ends)
+{
+    int k = get_global_id(0);
+    if (k >= ncomp)
+        return;
+    int st = start[k], n = ne[k];
+    real fact = 0.0;
+    if (closed[k] && n >= 3) {
+        __global const real *uu = tw + 2 * nv + st;
+        real beta = po[st + n - 1], gamma = -pd[st];
+        fact = (ends[2 * k] + beta * ends[2 * k + 1] / gamma) /
+               (1.0 + uu[0] + beta * uu[n - 1] / gamma);
+    }
+    ends[2 * ncomp + k] = fact;
+}
+
+/* Apply, step 4 (one item per edge row, only when some block is closed):
+ * z -= fact uu, exact no-op on rows whose uu is zero. The curvature and
+ * strut rows are precond_diag's. */
+__kernel void twist_ring_fix(__global const int *comp, const int ncomp, const int nv,
+                             __global const real *tw, __global const real *ends,
+                             __global real *z)
 {
     int q = get_global_id(0);
-    if (q >= nr)
-        return;
-    if (q >= nv) {
-        z[q] = ract[q] ? r[q] / pd[q] : 0.0;
-        return;
-    }
-    int k = comp[q], st = start[k], n = ne[k];
-    if (q >= st + n) {
-        z[q] = 0.0;
-        return;
-    }
-    if (!closed[k] || n < 3)
-        return;
-    __global const real *uu = tw + 2 * nv + st;
-    real beta = po[st + n - 1], gamma = -pd[st];
-    real x0 = ends[2 * k], xl = ends[2 * k + 1];
-    real fact = (x0 + beta * xl / gamma) / (1.0 + uu[0] + beta * uu[n - 1] / gamma);
-    z[q] -= fact * uu[q - st];
+    if (q < nv)
+        z[q] -= ends[2 * ncomp + comp[q]] * tw[2 * nv + q];
 }
