@@ -28,7 +28,7 @@
     X(precond_diag) X(precond_edges) X(copy_rows) X(precond_edges_factor) X(curv_limits)   \
     X(tridiag_matrix) X(tridiag_level) X(tridiag_finish) X(tridiag_group)                  \
     X(twist_factor) X(twist_factor_mid) X(twist_sweep_rows) X(twist_back_rows)             \
-    X(twist_ring_fact) X(twist_ring_fix)
+    X(twist_ring_fact) X(twist_ring_fix) X(adj_active)
 #define ENUM(k) K_##k,
 #define NAME(k) #k,
 enum { KERNELS(ENUM) K_COUNT };
@@ -69,6 +69,7 @@ typedef struct cl_state {
     /* contacts */
     int np, pcap, acap;
     cl_mem up, first, off, sums, pa, pb, adj, adjn, pd;
+    cl_mem aadj, aadjn; /* adj restricted to active strut rows (adj_active, per CG solve) */
     /* rows */
     int rcap;
     cl_mem rC, rgrad, ract, rs, rt, rv, y, r, p, q, b;
@@ -391,6 +392,7 @@ static int cl_find_contacts(void *sp, const tr_contact_params *prm, tr_contact_s
     if (2 * cap > s->acap) {
         s->acap = 2 * cap;
         TR_TRY(buffer(s, &s->adj, (size_t)nv * (size_t)s->acap * sizeof(int), err));
+        TR_TRY(buffer(s, &s->aadj, (size_t)nv * (size_t)s->acap * sizeof(int), err));
     }
     TR_TRY(run(s, K_pairs_write, (size_t)nv, err, A(s->tree.count), A(s->tree.list), A(cap),
                A(s->first), A(s->off), A(nv), A(s->pa), A(s->pb), END));
@@ -445,7 +447,7 @@ static int apply_JT(cl_state *s, const tr_correct_params *prm, cl_mem y, tr_erro
     int nv = s->nv;
     double w = prm->ebar_weight;
     TR_TRY(run(s, K_jt_vertex, (size_t)nv, err, A(y), A(s->rgrad), A(s->cgq), A(s->ract), A(s->topo.next),
-               A(s->topo.prev), A(s->adj), A(s->adjn), A(s->acap), A(s->rs), A(s->rt), A(s->cst),
+               A(s->topo.prev), A(s->aadj), A(s->aadjn), A(s->acap), A(s->rs), A(s->rt), A(s->cst),
                A(nv), A(s->dx), END));
     int G = s->ebar_groups;
     TR_TRY(run_groups(s, K_jt_ebar_partial, (size_t)s->ncomp * (size_t)G, err, A(y), A(s->ract),
@@ -547,6 +549,9 @@ static int cg_iterate(cl_state *s, const tr_correct_params *prm, int *iters, tr_
     double reg = prm->reg, w = prm->ebar_weight, tol2 = prm->cg_rtol * prm->cg_rtol, it;
     TR_CL_CHECK(clEnqueueWriteBuffer(s->ctx.queue, s->sc, CL_FALSE, SC_TOL2 * sizeof(double),
                                      sizeof tol2, &tol2, 0, NULL, NULL));
+    /* the active set is fixed from here to the next cg_iterate: apply_JT's adjacency */
+    TR_TRY(run(s, K_adj_active, (size_t)nv, err, A(s->adj), A(s->adjn), A(s->acap), A(s->ract), A(nv),
+               A(s->aadj), A(s->aadjn), END));
     TR_TRY(run(s, K_precond_setup, (size_t)nr, err, A(s->rgrad), A(s->cgq), A(s->cdeb), A(s->ract),
                A(s->topo.next), A(s->topo.prev), A(s->topo.comp), A(s->ne), A(s->pa), A(s->pb),
                A(s->rs), A(s->rt), A(s->cst), A(nv), A(np), A(w), A(reg), A(s->pdiag), A(s->po), END));
@@ -969,6 +974,8 @@ static int open_on(const tr_device_choice *dev, const tr_curve *c, int profiling
     TR_TRY(buffer(s, &s->adjn, nv * sizeof(int), err));
     s->acap = 32;
     TR_TRY(buffer(s, &s->adj, nv * (size_t)s->acap * sizeof(int), err));
+    TR_TRY(buffer(s, &s->aadj, nv * (size_t)s->acap * sizeof(int), err));
+    TR_TRY(buffer(s, &s->aadjn, nv * sizeof(int), err));
     s->pcap = 64;
     TR_TRY(buffer(s, &s->pa, (size_t)s->pcap * sizeof(int), err));
     TR_TRY(buffer(s, &s->pb, (size_t)s->pcap * sizeof(int), err));
