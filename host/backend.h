@@ -146,7 +146,8 @@
  *            q = A p; alpha = rz / (p.q); y += alpha p; r -= alpha q;
  *            rr = r.r; z = M^-1 r; rz' = r.z; p = z + (rz'/rz) p; rz = rz'
  *        (a port may run a fixed count with the stop test turning the
- *        remaining iterations into no-ops.)
+ *        remaining iterations into no-ops, and may run the vector
+ *        operations over the active rows only: the others hold exact zeros.)
  *        Preconditioner M (set up once per solve from the evaluated rows):
  *          diagonal of every active row: D_r = sum over its vertices v of
  *          |P_v dC_r/dx_v|^2 + (dC_r/debar)^2 / (ebar_weight ne_k) + reg;

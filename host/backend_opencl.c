@@ -28,7 +28,8 @@
     X(precond_diag) X(precond_edges) X(copy_rows) X(precond_edges_factor) X(curv_limits)   \
     X(tridiag_matrix) X(tridiag_level) X(tridiag_finish) X(tridiag_group)                  \
     X(twist_factor) X(twist_factor_mid) X(twist_sweep_rows) X(twist_back_rows)             \
-    X(twist_ring_fact) X(twist_ring_fix) X(adj_active)
+    X(twist_ring_fact) X(twist_ring_fix) X(adj_active)           \
+    X(act_count) X(act_scan) X(act_write)
 #define ENUM(k) K_##k,
 #define NAME(k) #k,
 enum { KERNELS(ENUM) K_COUNT };
@@ -70,6 +71,10 @@ typedef struct cl_state {
     int np, pcap, acap;
     cl_mem up, first, off, sums, pa, pb, adj, adjn, pd;
     cl_mem aadj, aadjn; /* adj restricted to active strut rows (adj_active, per CG solve) */
+    /* The CG's row list (kernels/correct.cl row_of), built per solve: the
+     * active strut rows in list order (pcap), block counts for building it. */
+    cl_mem act, actc;
+    int cg_nl; /* rows in the list: 2 nv + active struts */
     /* rows */
     int rcap;
     cl_mem rC, rgrad, ract, rs, rt, rv, y, r, p, q, b;
@@ -226,6 +231,9 @@ static int run_one_group(cl_state *s, int id, size_t local, tr_error *err, ...)
     va_end(ap);
     return rc != TR_OK ? rc : enqueue(s, id, local, local, err);
 }
+
+/* Strut rows per item when the CG's row list is built (act_count, act_write). */
+#define TR_ACT_BLOCK 1024
 
 #define A(v) sizeof(v), (const void *)&(v)
 #define END (size_t)0
@@ -387,6 +395,8 @@ static int cl_find_contacts(void *sp, const tr_contact_params *prm, tr_contact_s
         TR_TRY(buffer(s, &s->pa, (size_t)pc * sizeof(int), err));
         TR_TRY(buffer(s, &s->pb, (size_t)pc * sizeof(int), err));
         TR_TRY(buffer(s, &s->pd, (size_t)pc * sizeof(double), err));
+        TR_TRY(buffer(s, &s->act, (size_t)pc * sizeof(int), err));
+        TR_TRY(buffer(s, &s->actc, ((size_t)pc / TR_ACT_BLOCK + 2) * sizeof(int), err));
         s->pcap = pc;
     }
     if (2 * cap > s->acap) {
@@ -505,7 +515,7 @@ cleanup:
 static int precond_apply(cl_state *s, cl_mem r, tr_error *err)
 {
     int rc = TR_OK;
-    int nv = s->nv, nr = 2 * nv + s->np;
+    int nv = s->nv, nl = s->cg_nl, mapped = 1;
     size_t d = sizeof(double);
     if (s->tri_twist) {
         size_t items = 2 * (size_t)s->ncomp;
@@ -520,12 +530,12 @@ static int precond_apply(cl_state *s, cl_mem r, tr_error *err)
             TR_TRY(run(s, K_twist_ring_fix, (size_t)nv, err, A(s->topo.comp), A(s->ncomp), A(nv),
                        A(s->tw), A(s->tends), A(s->z), END));
         }
-        TR_TRY(run(s, K_precond_diag, (size_t)(nr - nv), err, A(r), A(s->pdiag), A(s->ract),
-                   A(nv), A(nr), A(s->z), END));
+        TR_TRY(run(s, K_precond_diag, (size_t)(nl - nv), err, A(r), A(s->pdiag), A(s->ract),
+                   A(nv), A(s->act), A(mapped), A(nl), A(s->z), END));
         return TR_OK;
     }
-    TR_TRY(run(s, K_precond_diag, (size_t)(nr - nv), err, A(r), A(s->pdiag), A(s->ract), A(nv), A(nr),
-               A(s->z), END));
+    TR_TRY(run(s, K_precond_diag, (size_t)(nl - nv), err, A(r), A(s->pdiag), A(s->ract), A(nv),
+               A(s->act), A(mapped), A(nl), A(s->z), END));
     if (s->tri_pcr) {
         TR_CL_CHECK(clEnqueueCopyBuffer(s->ctx.queue, r, s->tset0, 0, 3 * (size_t)nv * d,
                                         (size_t)nv * d, 0, NULL, NULL));
@@ -535,6 +545,28 @@ static int precond_apply(cl_state *s, cl_mem r, tr_error *err)
                    A(s->start), A(s->ne), A(s->closed), A(s->ncomp), A(nv), A(s->tw), A(s->z),
                    END));
     }
+cleanup:
+    return rc;
+}
+
+/* The CG's row list for this solve (kernels/correct.cl row_of): every edge
+ * and curvature row, then the active strut rows in list order; s->cg_nl
+ * its length. One read of the count, once per solve. */
+static int row_list(cl_state *s, tr_error *err)
+{
+    int rc = TR_OK;
+    int nv = s->nv, np = s->np, bsize = TR_ACT_BLOCK, nb = (np + TR_ACT_BLOCK - 1) / TR_ACT_BLOCK;
+    int nact = 0;
+    if (np > 0) {
+        TR_TRY(run(s, K_act_count, (size_t)nb, err, A(s->ract), A(nv), A(np), A(bsize), A(nb),
+                   A(s->actc), END));
+        TR_TRY(run_groups(s, K_act_scan, 0, err, A(nb), A(s->actc), END));
+        TR_TRY(run(s, K_act_write, (size_t)nb, err, A(s->ract), A(nv), A(np), A(bsize), A(nb),
+                   A(s->actc), A(s->act), END));
+        TR_CL_CHECK(clEnqueueReadBuffer(s->ctx.queue, s->actc, CL_TRUE, (size_t)nb * sizeof(int),
+                                        sizeof nact, &nact, 0, NULL, NULL));
+    }
+    s->cg_nl = 2 * nv + nact;
 cleanup:
     return rc;
 }
@@ -567,10 +599,13 @@ static int cg_iterate(cl_state *s, const tr_correct_params *prm, int *iters, tr_
     } else
         TR_TRY(run(s, K_precond_edges_factor, (size_t)s->ncomp, err, A(s->pdiag), A(s->po),
                    A(s->start), A(s->ne), A(s->closed), A(s->ncomp), A(nv), A(s->tw), END));
+    TR_TRY(row_list(s, err));
+    int nl = s->cg_nl, nfix = 2 * nv, nact = nl - nfix, mapped = 1;
     TR_TRY(precond_apply(s, s->r, err));
-    TR_TRY(run(s, K_copy_rows, (size_t)nr, err, A(s->z), A(s->p), A(nr), END));
-    TR_TRY(tr_cl_reduce_dot(&s->red, &s->ctx, s->r, s->r, nr, s->sc, SC_RR, err));
-    TR_TRY(tr_cl_reduce_dot(&s->red, &s->ctx, s->r, s->z, nr, s->sc, SC_RZ, err));
+    TR_TRY(run(s, K_copy_rows, (size_t)nl, err, A(s->z), A(s->p), A(s->act), A(nfix), A(mapped), A(nl),
+               END));
+    TR_TRY(tr_cl_reduce_dot_rows(&s->red, &s->ctx, s->r, s->r, nfix, s->act, nact, s->sc, SC_RR, err));
+    TR_TRY(tr_cl_reduce_dot_rows(&s->red, &s->ctx, s->r, s->z, nfix, s->act, nact, s->sc, SC_RZ, err));
     TR_TRY(run_groups(s, K_cg_start, 0, err, A(s->sc), END));
     for (int k = 0; k < prm->max_cg; k++) {
         TR_TRY(run_groups(s, K_cg_top, 0, err, A(s->sc), END));
@@ -581,19 +616,23 @@ static int cg_iterate(cl_state *s, const tr_correct_params *prm, int *iters, tr_
                 break;
         }
         TR_TRY(apply_JT(s, prm, s->p, err));
-        TR_TRY(run(s, K_j_rows, (size_t)nr, err, A(s->dx), A(s->debar), A(s->cdeb), A(s->rgrad),
+        TR_TRY(run(s, K_j_rows, (size_t)nl, err, A(s->dx), A(s->debar), A(s->cdeb), A(s->rgrad),
                    A(s->cgq), A(s->ract), A(s->topo.next), A(s->topo.prev), A(s->topo.comp),
-                   A(s->pa), A(s->pb), A(s->rs), A(s->rt), A(s->p), A(nv), A(np), A(reg), A(s->q),
-                   END));
-        TR_TRY(tr_cl_reduce_dot(&s->red, &s->ctx, s->p, s->q, nr, s->sc, SC_PQ, err));
+                   A(s->pa), A(s->pb), A(s->rs), A(s->rt), A(s->p), A(nv), A(np), A(reg), A(s->act),
+                   A(mapped), A(nl), A(s->q), END));
+        TR_TRY(tr_cl_reduce_dot_rows(&s->red, &s->ctx, s->p, s->q, nfix, s->act, nact, s->sc, SC_PQ,
+                                     err));
         TR_TRY(run_groups(s, K_cg_alpha, 0, err, A(s->sc), END));
-        TR_TRY(run(s, K_cg_yr, (size_t)nr, err, A(s->y), A(s->r), A(s->p), A(s->q), A(s->sc), A(nr),
-                   END));
-        TR_TRY(tr_cl_reduce_dot(&s->red, &s->ctx, s->r, s->r, nr, s->sc, SC_RR, err));
+        TR_TRY(run(s, K_cg_yr, (size_t)nl, err, A(s->y), A(s->r), A(s->p), A(s->q), A(s->sc), A(s->act),
+                   A(nfix), A(mapped), A(nl), END));
+        TR_TRY(tr_cl_reduce_dot_rows(&s->red, &s->ctx, s->r, s->r, nfix, s->act, nact, s->sc, SC_RR,
+                                     err));
         TR_TRY(precond_apply(s, s->r, err));
-        TR_TRY(tr_cl_reduce_dot(&s->red, &s->ctx, s->r, s->z, nr, s->sc, SC_RR1, err));
+        TR_TRY(tr_cl_reduce_dot_rows(&s->red, &s->ctx, s->r, s->z, nfix, s->act, nact, s->sc, SC_RR1,
+                                     err));
         TR_TRY(run_groups(s, K_cg_beta, 0, err, A(s->sc), END));
-        TR_TRY(run(s, K_cg_p, (size_t)nr, err, A(s->p), A(s->z), A(s->sc), A(nr), END));
+        TR_TRY(run(s, K_cg_p, (size_t)nl, err, A(s->p), A(s->z), A(s->sc), A(s->act), A(nfix),
+                   A(mapped), A(nl), END));
     }
     TR_TRY(read_scalars(s, SC_ITERS, 1, &it, err));
     *iters = (int)it;
@@ -656,7 +695,7 @@ static int project_tangent(cl_state *s, const tr_correct_params *q, cl_mem G, tr
     int rc = TR_OK;
     int nv = s->nv, np = s->np, nr = 2 * nv + np, n3 = 3 * nv;
     double reg0 = 0.0, zero = 0.0;
-    int izero = 0;
+    int izero = 0, unmapped = 0;
     TR_TRY(eval_rows(s, q, err));
     TR_TRY(run(s, K_project_field, (size_t)nv, err, A(G), A(s->cst), A(nv), END));
     for (int pass = 0; pass < q->max_newton; pass++) {
@@ -669,8 +708,8 @@ static int project_tangent(cl_state *s, const tr_correct_params *q, cl_mem G, tr
         /* b = J (G, debar = 0), no regularisation term (y = 0) */
         TR_TRY(run(s, K_j_rows, (size_t)nr, err, A(s->dx), A(s->debar), A(s->cdeb), A(s->rgrad),
                    A(s->cgq), A(s->ract), A(s->topo.next), A(s->topo.prev), A(s->topo.comp),
-                   A(s->pa), A(s->pb), A(s->rs), A(s->rt), A(s->y), A(nv), A(np), A(reg0), A(s->b),
-                   END));
+                   A(s->pa), A(s->pb), A(s->rs), A(s->rt), A(s->y), A(nv), A(np), A(reg0),
+                   A(s->act), A(unmapped), A(nr), A(s->b), END));
         TR_TRY(run(s, K_cg_reset, (size_t)nr, err, A(s->b), A(s->y), A(s->r), A(s->p), A(nr), END));
         int iters = 0;
         TR_TRY(cg_iterate(s, q, &iters, err));
@@ -980,6 +1019,8 @@ static int open_on(const tr_device_choice *dev, const tr_curve *c, int profiling
     TR_TRY(buffer(s, &s->pa, (size_t)s->pcap * sizeof(int), err));
     TR_TRY(buffer(s, &s->pb, (size_t)s->pcap * sizeof(int), err));
     TR_TRY(buffer(s, &s->pd, (size_t)s->pcap * d, err));
+    TR_TRY(buffer(s, &s->act, (size_t)s->pcap * sizeof(int), err));
+    TR_TRY(buffer(s, &s->actc, ((size_t)s->pcap / TR_ACT_BLOCK + 2) * sizeof(int), err));
     TR_TRY(ensure_rows(s, err));
 
     cl_command_queue q = s->ctx.queue;

@@ -36,6 +36,7 @@ int tr_cl_reduce_init(tr_cl_reduce *r, const tr_cl_ctx *ctx, cl_program prog, si
     TR_CL_CHECK((r->edge_lengths = clCreateKernel(prog, "edge_lengths", &e), e));
     TR_CL_CHECK((r->sum_partial = clCreateKernel(prog, "sum_partial", &e), e));
     TR_CL_CHECK((r->dot_partial = clCreateKernel(prog, "dot_partial", &e), e));
+    TR_CL_CHECK((r->dot_rows_partial = clCreateKernel(prog, "dot_rows_partial", &e), e));
     TR_CL_CHECK((r->isum_partial = clCreateKernel(prog, "isum_partial", &e), e));
     r->groups = tr_cl_global(n) / TR_CL_LOCAL;
     TR_CL_CHECK((r->pa = clCreateBuffer(ctx->context, CL_MEM_READ_WRITE, r->groups * sizeof(double),
@@ -53,7 +54,8 @@ cleanup:
 void tr_cl_reduce_free(tr_cl_reduce *r)
 {
     cl_kernel *k[] = {&r->length_partial, &r->minmax_partial, &r->sum_final, &r->minmax_final,
-                      &r->edge_lengths, &r->sum_partial, &r->dot_partial, &r->isum_partial};
+                      &r->edge_lengths, &r->sum_partial, &r->dot_partial, &r->isum_partial,
+                      &r->dot_rows_partial};
     for (size_t i = 0; i < sizeof k / sizeof k[0]; i++)
         if (*k[i])
             clReleaseKernel(*k[i]);
@@ -192,6 +194,31 @@ int tr_cl_reduce_dot(tr_cl_reduce *r, const tr_cl_ctx *ctx, cl_mem a, cl_mem b, 
     TR_CL_CHECK(clSetKernelArg(r->dot_partial, 0, sizeof a, &a));
     TR_CL_CHECK(clSetKernelArg(r->dot_partial, 1, sizeof b, &b));
     rc = finish_sum(r, ctx, r->dot_partial, 2, n, out, slot, err);
+cleanup:
+    return rc;
+}
+
+int tr_cl_reduce_dot_rows(tr_cl_reduce *r, const tr_cl_ctx *ctx, cl_mem a, cl_mem b, int nfix,
+                          cl_mem act, int nact, cl_mem out, int slot, tr_error *err)
+{
+    int n = nfix + nact, rc = check_size(r, n, err);
+    if (rc != TR_OK)
+        return rc;
+    size_t g = stage1_global((size_t)n), l = TR_CL_LOCAL;
+    int m = (int)(g / l);
+    cl_kernel k = r->dot_rows_partial;
+    TR_CL_CHECK(clSetKernelArg(k, 0, sizeof a, &a));
+    TR_CL_CHECK(clSetKernelArg(k, 1, sizeof b, &b));
+    TR_CL_CHECK(clSetKernelArg(k, 2, sizeof nfix, &nfix));
+    TR_CL_CHECK(clSetKernelArg(k, 3, sizeof act, &act));
+    TR_CL_CHECK(clSetKernelArg(k, 4, sizeof nact, &nact));
+    TR_CL_CHECK(clSetKernelArg(k, 5, sizeof r->pa, &r->pa));
+    TR_CL_CHECK(clEnqueueNDRangeKernel(ctx->queue, k, 1, NULL, &g, &l, 0, NULL, NULL));
+    TR_CL_CHECK(clSetKernelArg(r->sum_final, 0, sizeof r->pa, &r->pa));
+    TR_CL_CHECK(clSetKernelArg(r->sum_final, 1, sizeof m, &m));
+    TR_CL_CHECK(clSetKernelArg(r->sum_final, 2, sizeof out, &out));
+    TR_CL_CHECK(clSetKernelArg(r->sum_final, 3, sizeof slot, &slot));
+    TR_CL_CHECK(clEnqueueNDRangeKernel(ctx->queue, r->sum_final, 1, NULL, &l, &l, 0, NULL, NULL));
 cleanup:
     return rc;
 }

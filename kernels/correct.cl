@@ -264,7 +264,58 @@ void jt_ebar(__global const real *part, __global const int *ne, const int groups
         debar[k] = ne[k] ? s[0] / (ebar_weight * (real)ne[k]) : 0.0;
 }
 
-/* out_r = dC_r/dx . dx + dC_r/debar . debar + reg y_r on active rows, else 0. */
+/* The CG's row list (backend.h: its sums skip inactive rows, which hold
+ * exact zeros): positions l < nfix (= 2 nv, the edge and curvature rows)
+ * are those rows, then the active strut rows in list order (act, built
+ * once per solve by act_count / act_scan / act_write). On a tight curve
+ * most listed struts are inactive (3.85 million rows, ~10^5 active, at
+ * N = 10^5), and every CG iteration's vector operations would sweep them.
+ * mapped = 0: the identity (the full row vector). */
+inline int row_of(int l, int nfix, int mapped, __global const int *act)
+{
+    return (!mapped || l < nfix) ? l : nfix + act[l - nfix];
+}
+
+/* Active strut rows per block of bsize list entries. */
+__kernel void act_count(__global const int *ract, const int nv, const int np, const int bsize,
+                        const int nblocks, __global int *counts)
+{
+    int b = get_global_id(0);
+    if (b >= nblocks)
+        return;
+    int c = 0, hi = min(np, (b + 1) * bsize);
+    for (int p = b * bsize; p < hi; p++)
+        c += ract[2 * nv + p] != 0;
+    counts[b] = c;
+}
+
+/* One item: exclusive prefix sums of the block counts; counts[nblocks] = total. */
+__kernel void act_scan(const int nblocks, __global int *counts)
+{
+    int sum = 0;
+    for (int b = 0; b < nblocks; b++) {
+        int c = counts[b];
+        counts[b] = sum;
+        sum += c;
+    }
+    counts[nblocks] = sum;
+}
+
+/* act[l] = the l-th active strut row's pair index, in list order. */
+__kernel void act_write(__global const int *ract, const int nv, const int np, const int bsize,
+                        const int nblocks, __global const int *counts, __global int *act)
+{
+    int b = get_global_id(0);
+    if (b >= nblocks)
+        return;
+    int o = counts[b], hi = min(np, (b + 1) * bsize);
+    for (int p = b * bsize; p < hi; p++)
+        if (ract[2 * nv + p])
+            act[o++] = p;
+}
+
+/* out_r = dC_r/dx . dx + dC_r/debar . debar + reg y_r on active rows, else 0;
+ * one item per position of the row list (row_of). */
 __kernel void j_rows(__global const real *dx, __global const real *debar,
                      __global const real *cdeb, __global const real *rgrad,
                      __global const real *cgq,
@@ -272,11 +323,13 @@ __kernel void j_rows(__global const real *dx, __global const real *debar,
                      __global const int *prev, __global const int *comp,
                      __global const int *pa, __global const int *pb, __global const real *rs,
                      __global const real *rt, __global const real *y, const int nv, const int np,
-                     const real reg, __global real *out)
+                     const real reg, __global const int *act, const int mapped, const int nl,
+                     __global real *out)
 {
-    int r = get_global_id(0);
-    if (r >= 2 * nv + np)
+    int l = get_global_id(0);
+    if (l >= nl)
         return;
+    int r = row_of(l, 2 * nv, mapped, act);
     if (!ract[r]) {
         out[r] = 0.0;
         return;
@@ -323,11 +376,13 @@ __kernel void cg_alpha(__global real *sc)
 }
 
 __kernel void cg_yr(__global real *y, __global real *r, __global const real *p,
-                    __global const real *q, __global const real *sc, const int nr)
+                    __global const real *q, __global const real *sc, __global const int *act,
+                    const int nfix, const int mapped, const int nl)
 {
-    int k = get_global_id(0);
-    if (k >= nr || sc[SC_DONE] != 0.0)
+    int l = get_global_id(0);
+    if (l >= nl || sc[SC_DONE] != 0.0)
         return;
+    int k = row_of(l, nfix, mapped, act);
     real alpha = sc[SC_ALPHA];
     y[k] += alpha * p[k];
     r[k] -= alpha * q[k];
@@ -344,11 +399,12 @@ __kernel void cg_beta(__global real *sc)
 }
 
 __kernel void cg_p(__global real *p, __global const real *z, __global const real *sc,
-                   const int nr)
+                   __global const int *act, const int nfix, const int mapped, const int nl)
 {
-    int k = get_global_id(0);
-    if (k >= nr || sc[SC_DONE] != 0.0)
+    int l = get_global_id(0);
+    if (l >= nl || sc[SC_DONE] != 0.0)
         return;
+    int k = row_of(l, nfix, mapped, act);
     p[k] = z[k] + sc[SC_BETA] * p[k];
 }
 
@@ -491,12 +547,14 @@ __kernel void precond_setup(__global const real *rgrad, __global const real *cgq
 
 /* z = r / pd on curvature and strut rows (0 when inactive). */
 __kernel void precond_diag(__global const real *r, __global const real *pd,
-                           __global const int *ract, const int nv, const int nr,
-                           __global real *z)
+                           __global const int *ract, const int nv, __global const int *act,
+                           const int mapped, const int nl, __global real *z)
 {
-    int q = get_global_id(0) + nv;
-    if (q < nr)
-        z[q] = ract[q] ? r[q] / pd[q] : 0.0;
+    int l = get_global_id(0) + nv;
+    if (l >= nl)
+        return;
+    int q = row_of(l, 2 * nv, mapped, act);
+    z[q] = ract[q] ? r[q] / pd[q] : 0.0;
 }
 
 /* The edge block of one component as Thomas factors (the reference's
@@ -583,9 +641,12 @@ __kernel void precond_edges(__global const real *r, __global const real *pd,
 }
 
 /* p = z */
-__kernel void copy_rows(__global const real *z, __global real *p, const int nr)
+__kernel void copy_rows(__global const real *z, __global real *p, __global const int *act,
+                        const int nfix, const int mapped, const int nl)
 {
-    int k = get_global_id(0);
-    if (k < nr)
+    int l = get_global_id(0);
+    if (l < nl) {
+        int k = row_of(l, nfix, mapped, act);
         p[k] = z[k];
+    }
 }

@@ -159,6 +159,37 @@ void dot_partial(__global const real *a, __global const real *b, const int n,
         partial[get_group_id(0)] = s[0];
 }
 
+/* Stage 1 of a . b over the CG's row list (kernels/correct.cl row_of): the
+ * first nfix rows as dot_partial folds them, then rows nfix + act[0 ..
+ * nact) one at a time (gathered), in one Neumaier sum per item. */
+__kernel __attribute__((reqd_work_group_size(TR_LOCAL_SIZE, 1, 1)))
+void dot_rows_partial(__global const real *a, __global const real *b, const int nfix,
+                      __global const int *act, const int nact, __global real *partial)
+{
+    __local real s[TR_LOCAL_SIZE];
+    int l = get_local_id(0), gs = get_global_size(0), n4 = nfix / 4;
+    real4 sum = (real4)(0.0), c = (real4)(0.0);
+    for (int q = get_global_id(0); q < n4; q += gs) {
+        real4 v = vload4(q, a) * vload4(q, b), t = sum + v;
+        c += select((v - t) + sum, (sum - t) + v, isgreaterequal(fabs(sum), fabs(v)));
+        sum = t;
+    }
+    real r = ((sum.s0 + c.s0) + (sum.s1 + c.s1)) + ((sum.s2 + c.s2) + (sum.s3 + c.s3));
+    if (get_global_id(0) == 0)
+        for (int i = 4 * n4; i < nfix; i++)
+            r += a[i] * b[i];
+    real r2 = 0.0, c2 = 0.0;
+    for (int k = get_global_id(0); k < nact; k += gs) {
+        int i = nfix + act[k];
+        KAHAN_ADD(r2, c2, a[i] * b[i]);
+    }
+    s[l] = r + (r2 + c2);
+    barrier(CLK_LOCAL_MEM_FENCE);
+    TREE(tr_add, s, l)
+    if (l == 0)
+        partial[get_group_id(0)] = s[0];
+}
+
 /* Stage 1 of a count: the sum of int flags (exact in double below 2^53). */
 __kernel __attribute__((reqd_work_group_size(TR_LOCAL_SIZE, 1, 1)))
 void isum_partial(__global const int *v, const int n, __global real *partial)
