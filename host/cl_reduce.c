@@ -74,6 +74,21 @@ static int check_size(const tr_cl_reduce *r, int n, tr_error *err)
     return TR_OK;
 }
 
+/* Stage 2: sum_final folds the m partial sums into out[slot]. */
+static int sum_stage2(tr_cl_reduce *r, const tr_cl_ctx *ctx, int m, cl_mem out, int slot,
+                      tr_error *err)
+{
+    int rc = TR_OK;
+    size_t l = TR_CL_LOCAL;
+    TR_CL_CHECK(clSetKernelArg(r->sum_final, 0, sizeof r->pa, &r->pa));
+    TR_CL_CHECK(clSetKernelArg(r->sum_final, 1, sizeof m, &m));
+    TR_CL_CHECK(clSetKernelArg(r->sum_final, 2, sizeof out, &out));
+    TR_CL_CHECK(clSetKernelArg(r->sum_final, 3, sizeof slot, &slot));
+    TR_CL_CHECK(clEnqueueNDRangeKernel(ctx->queue, r->sum_final, 1, NULL, &l, &l, 0, NULL, NULL));
+cleanup:
+    return rc;
+}
+
 int tr_cl_reduce_length(tr_cl_reduce *r, const tr_cl_ctx *ctx, cl_mem x, cl_mem next, int n,
                         cl_mem out, int slot, tr_error *err)
 {
@@ -87,11 +102,7 @@ int tr_cl_reduce_length(tr_cl_reduce *r, const tr_cl_ctx *ctx, cl_mem x, cl_mem 
     TR_CL_CHECK(clSetKernelArg(r->length_partial, 2, sizeof n, &n));
     TR_CL_CHECK(clSetKernelArg(r->length_partial, 3, sizeof r->pa, &r->pa));
     TR_CL_CHECK(clEnqueueNDRangeKernel(ctx->queue, r->length_partial, 1, NULL, &g, &l, 0, NULL, NULL));
-    TR_CL_CHECK(clSetKernelArg(r->sum_final, 0, sizeof r->pa, &r->pa));
-    TR_CL_CHECK(clSetKernelArg(r->sum_final, 1, sizeof m, &m));
-    TR_CL_CHECK(clSetKernelArg(r->sum_final, 2, sizeof out, &out));
-    TR_CL_CHECK(clSetKernelArg(r->sum_final, 3, sizeof slot, &slot));
-    TR_CL_CHECK(clEnqueueNDRangeKernel(ctx->queue, r->sum_final, 1, NULL, &l, &l, 0, NULL, NULL));
+    rc = sum_stage2(r, ctx, m, out, slot, err);
 cleanup:
     return rc;
 }
@@ -156,23 +167,21 @@ cleanup:
     return rc;
 }
 
-/* stage 1 kernel k over (args already set from index 0..nargs-1), then sum_final. */
+/* Stage 1 kernel k over enough items for `items` entries (its arguments
+ * before argn already set; argn gets n, argn + 1 the partial sums), then
+ * sum_final. */
 static int finish_sum(tr_cl_reduce *r, const tr_cl_ctx *ctx, cl_kernel k, int argn, int n,
-                      cl_mem out, int slot, tr_error *err)
+                      int items, cl_mem out, int slot, tr_error *err)
 {
-    int rc = check_size(r, n, err);
+    int rc = check_size(r, items, err);
     if (rc != TR_OK)
         return rc;
-    size_t g = stage1_global((size_t)n), l = TR_CL_LOCAL;
+    size_t g = stage1_global((size_t)items), l = TR_CL_LOCAL;
     int m = (int)(g / l);
     TR_CL_CHECK(clSetKernelArg(k, (cl_uint)argn, sizeof n, &n));
     TR_CL_CHECK(clSetKernelArg(k, (cl_uint)argn + 1, sizeof r->pa, &r->pa));
     TR_CL_CHECK(clEnqueueNDRangeKernel(ctx->queue, k, 1, NULL, &g, &l, 0, NULL, NULL));
-    TR_CL_CHECK(clSetKernelArg(r->sum_final, 0, sizeof r->pa, &r->pa));
-    TR_CL_CHECK(clSetKernelArg(r->sum_final, 1, sizeof m, &m));
-    TR_CL_CHECK(clSetKernelArg(r->sum_final, 2, sizeof out, &out));
-    TR_CL_CHECK(clSetKernelArg(r->sum_final, 3, sizeof slot, &slot));
-    TR_CL_CHECK(clEnqueueNDRangeKernel(ctx->queue, r->sum_final, 1, NULL, &l, &l, 0, NULL, NULL));
+    rc = sum_stage2(r, ctx, m, out, slot, err);
 cleanup:
     return rc;
 }
@@ -182,7 +191,7 @@ int tr_cl_reduce_sum(tr_cl_reduce *r, const tr_cl_ctx *ctx, cl_mem v, int n, cl_
 {
     int rc = TR_OK;
     TR_CL_CHECK(clSetKernelArg(r->sum_partial, 0, sizeof v, &v));
-    rc = finish_sum(r, ctx, r->sum_partial, 1, n, out, slot, err);
+    rc = finish_sum(r, ctx, r->sum_partial, 1, n, n, out, slot, err);
 cleanup:
     return rc;
 }
@@ -193,7 +202,7 @@ int tr_cl_reduce_dot(tr_cl_reduce *r, const tr_cl_ctx *ctx, cl_mem a, cl_mem b, 
     int rc = TR_OK;
     TR_CL_CHECK(clSetKernelArg(r->dot_partial, 0, sizeof a, &a));
     TR_CL_CHECK(clSetKernelArg(r->dot_partial, 1, sizeof b, &b));
-    rc = finish_sum(r, ctx, r->dot_partial, 2, n, out, slot, err);
+    rc = finish_sum(r, ctx, r->dot_partial, 2, n, n, out, slot, err);
 cleanup:
     return rc;
 }
@@ -201,24 +210,13 @@ cleanup:
 int tr_cl_reduce_dot_rows(tr_cl_reduce *r, const tr_cl_ctx *ctx, cl_mem a, cl_mem b, int nfix,
                           cl_mem act, int nact, cl_mem out, int slot, tr_error *err)
 {
-    int n = nfix + nact, rc = check_size(r, n, err);
-    if (rc != TR_OK)
-        return rc;
-    size_t g = stage1_global((size_t)n), l = TR_CL_LOCAL;
-    int m = (int)(g / l);
+    int rc = TR_OK;
     cl_kernel k = r->dot_rows_partial;
     TR_CL_CHECK(clSetKernelArg(k, 0, sizeof a, &a));
     TR_CL_CHECK(clSetKernelArg(k, 1, sizeof b, &b));
     TR_CL_CHECK(clSetKernelArg(k, 2, sizeof nfix, &nfix));
     TR_CL_CHECK(clSetKernelArg(k, 3, sizeof act, &act));
-    TR_CL_CHECK(clSetKernelArg(k, 4, sizeof nact, &nact));
-    TR_CL_CHECK(clSetKernelArg(k, 5, sizeof r->pa, &r->pa));
-    TR_CL_CHECK(clEnqueueNDRangeKernel(ctx->queue, k, 1, NULL, &g, &l, 0, NULL, NULL));
-    TR_CL_CHECK(clSetKernelArg(r->sum_final, 0, sizeof r->pa, &r->pa));
-    TR_CL_CHECK(clSetKernelArg(r->sum_final, 1, sizeof m, &m));
-    TR_CL_CHECK(clSetKernelArg(r->sum_final, 2, sizeof out, &out));
-    TR_CL_CHECK(clSetKernelArg(r->sum_final, 3, sizeof slot, &slot));
-    TR_CL_CHECK(clEnqueueNDRangeKernel(ctx->queue, r->sum_final, 1, NULL, &l, &l, 0, NULL, NULL));
+    rc = finish_sum(r, ctx, k, 4, nact, nfix + nact, out, slot, err);
 cleanup:
     return rc;
 }
@@ -228,7 +226,7 @@ int tr_cl_reduce_count(tr_cl_reduce *r, const tr_cl_ctx *ctx, cl_mem v, int n, c
 {
     int rc = TR_OK;
     TR_CL_CHECK(clSetKernelArg(r->isum_partial, 0, sizeof v, &v));
-    rc = finish_sum(r, ctx, r->isum_partial, 1, n, out, slot, err);
+    rc = finish_sum(r, ctx, r->isum_partial, 1, n, n, out, slot, err);
 cleanup:
     return rc;
 }

@@ -131,17 +131,13 @@ void sum_partial(__global const real *v, const int n, __global real *partial)
         partial[get_group_id(0)] = s[0];
 }
 
-/* Stage 1 of a dot product a . b over n entries (then sum_final). The CG
- * takes three per iteration, so it is the hottest reduction: each item folds
- * its slice four entries at a time in explicit vectors (Neumaier per lane),
- * since a CPU device runs an item's loop as scalar code otherwise. Item 0
- * adds the n mod 4 entries at the end. */
-__kernel __attribute__((reqd_work_group_size(TR_LOCAL_SIZE, 1, 1)))
-void dot_partial(__global const real *a, __global const real *b, const int n,
-                 __global real *partial)
+/* One item's share of a . b over the first n entries: its strided slice
+ * four entries at a time in explicit vectors (Neumaier per lane), since a
+ * CPU device runs an item's loop as scalar code otherwise; item 0 adds the
+ * n mod 4 entries at the end. */
+inline real dot_slice4(__global const real *a, __global const real *b, int n)
 {
-    __local real s[TR_LOCAL_SIZE];
-    int l = get_local_id(0), gs = get_global_size(0), n4 = n / 4;
+    int gs = get_global_size(0), n4 = n / 4;
     real4 sum = (real4)(0.0), c = (real4)(0.0);
     for (int q = get_global_id(0); q < n4; q += gs) {
         real4 v = vload4(q, a) * vload4(q, b), t = sum + v;
@@ -152,7 +148,18 @@ void dot_partial(__global const real *a, __global const real *b, const int n,
     if (get_global_id(0) == 0)
         for (int i = 4 * n4; i < n; i++)
             r += a[i] * b[i];
-    s[l] = r;
+    return r;
+}
+
+/* Stage 1 of a dot product a . b over n entries (then sum_final); the CG
+ * takes three per iteration, so it is the hottest reduction. */
+__kernel __attribute__((reqd_work_group_size(TR_LOCAL_SIZE, 1, 1)))
+void dot_partial(__global const real *a, __global const real *b, const int n,
+                 __global real *partial)
+{
+    __local real s[TR_LOCAL_SIZE];
+    int l = get_local_id(0);
+    s[l] = dot_slice4(a, b, n);
     barrier(CLK_LOCAL_MEM_FENCE);
     TREE(tr_add, s, l)
     if (l == 0)
@@ -167,18 +174,8 @@ void dot_rows_partial(__global const real *a, __global const real *b, const int 
                       __global const int *act, const int nact, __global real *partial)
 {
     __local real s[TR_LOCAL_SIZE];
-    int l = get_local_id(0), gs = get_global_size(0), n4 = nfix / 4;
-    real4 sum = (real4)(0.0), c = (real4)(0.0);
-    for (int q = get_global_id(0); q < n4; q += gs) {
-        real4 v = vload4(q, a) * vload4(q, b), t = sum + v;
-        c += select((v - t) + sum, (sum - t) + v, isgreaterequal(fabs(sum), fabs(v)));
-        sum = t;
-    }
-    real r = ((sum.s0 + c.s0) + (sum.s1 + c.s1)) + ((sum.s2 + c.s2) + (sum.s3 + c.s3));
-    if (get_global_id(0) == 0)
-        for (int i = 4 * n4; i < nfix; i++)
-            r += a[i] * b[i];
-    real r2 = 0.0, c2 = 0.0;
+    int l = get_local_id(0), gs = get_global_size(0);
+    real r = dot_slice4(a, b, nfix), r2 = 0.0, c2 = 0.0;
     for (int k = get_global_id(0); k < nact; k += gs) {
         int i = nfix + act[k];
         KAHAN_ADD(r2, c2, a[i] * b[i]);
