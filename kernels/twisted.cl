@@ -106,6 +106,28 @@ inline void twist_back(int n, int side, __global const real *g, real xm, __globa
     }
 }
 
+/* The swept value beside row m on a half's side (0 where that half has no
+ * rows): what the middle row's solve needs from it. */
+inline real twist_beside(int n, int side, __global const real *y)
+{
+    int m = twist_row(n);
+    return side == 0 ? (m > 0 ? y[m - 1] : 0.0) : (m + 1 < n ? y[m + 1] : 0.0);
+}
+
+/* Item 2k + side of the per-half kernels: its component k and side, and
+ * the block's first row and size; 0 when there is nothing to solve. */
+inline int twist_item(int ncomp, __global const int *start, __global const int *ne, int *k,
+                      int *side, int *st, int *n)
+{
+    *k = get_global_id(0) / 2;
+    *side = get_global_id(0) % 2;
+    if (*k >= ncomp)
+        return 0;
+    *st = start[*k];
+    *n = ne[*k];
+    return *n > 0;
+}
+
 /* The diagonal of the factored block's first and last rows (closed blocks:
  * Sherman-Morrison's modification). */
 inline void twist_ends(__global const real *pd, __global const real *po, int st, int n, int cyc,
@@ -157,7 +179,7 @@ __kernel void twist_factor(__global const real *pd, __global const real *po,
         uu[n - 1] = po[st + n - 1];
     /* the right-hand side is zero but at the two ends: sweep it in place */
     twist_sweep(po, st, n, side, ip, uu, uu);
-    mid[2 * k + side] = side == 0 ? (m > 0 ? uu[m - 1] : 0.0) : (m + 1 < n ? uu[m + 1] : 0.0);
+    mid[2 * k + side] = twist_beside(n, side, uu);
 }
 
 /* Setup, step 2 (one item per component): the middle pivot, and uu's
@@ -197,15 +219,11 @@ __kernel void twist_sweep_rows(__global const real *r, __global const real *po,
                                const int ncomp, const int nv, __global const real *tw,
                                __global real *mid, __global real *z)
 {
-    int k = get_global_id(0) / 2, side = get_global_id(0) % 2;
-    if (k >= ncomp)
+    int k, side, st, n;
+    if (!twist_item(ncomp, start, ne, &k, &side, &st, &n))
         return;
-    int st = start[k], n = ne[k];
-    if (n == 0)
-        return;
-    int m = twist_row(n);
     twist_sweep(po, st, n, side, tw + nv + st, r + st, z + st);
-    mid[2 * k + side] = side == 0 ? (m > 0 ? z[st + m - 1] : 0.0) : (m + 1 < n ? z[st + m + 1] : 0.0);
+    mid[2 * k + side] = twist_beside(n, side, z + st);
 }
 
 /* Apply, step 2 (items 2k + side): x_m (each half computes it), then the
@@ -216,11 +234,8 @@ __kernel void twist_back_rows(__global const real *r, __global const real *po,
                               const int ncomp, const int nv, __global const real *tw,
                               __global const real *mid, __global real *ends, __global real *z)
 {
-    int k = get_global_id(0) / 2, side = get_global_id(0) % 2;
-    if (k >= ncomp)
-        return;
-    int st = start[k], n = ne[k];
-    if (n == 0)
+    int k, side, st, n;
+    if (!twist_item(ncomp, start, ne, &k, &side, &st, &n))
         return;
     int m = twist_row(n);
     __global real *x = z + st;
