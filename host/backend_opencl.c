@@ -117,7 +117,8 @@ static void cl_destroy(void *sp)
                    &s->ract,  &s->rs,   &s->rt,   &s->rv,   &s->y,    &s->r,    &s->p,
                    &s->q,     &s->b,    &s->cgq,  &s->cdeb, &s->chg,
                    &s->pdiag, &s->z,    &s->po,   &s->tw,   &s->closed, &s->tset0,
-                   &s->tp,    &s->tq,   &s->tuu,  &s->ebar_part};
+                   &s->tp,    &s->tq,   &s->tuu,  &s->ebar_part, &s->curv, &s->tmid,
+                   &s->tends, &s->aadj, &s->aadjn, &s->act, &s->actc};
     for (size_t i = 0; i < sizeof m / sizeof m[0]; i++)
         release(m[i]);
     for (int i = 0; i < K_COUNT; i++)

@@ -440,7 +440,8 @@ int tr_cmd_bench(int argc, char **argv)
 
     if (json) {
         printf("{\"benchmark\": \"tightening step (tension_step with projection 1x10 CG, correct "
-               "2x20 CG, measure) on a T(2,3) torus knot\",\n \"results\": [");
+               "2x20 CG, measure) on %s\",\n \"results\": [",
+               start ? "the --start curve, Fourier-resampled to each N" : "a T(2,3) torus knot");
         for (int i = 0; i < ndev * nn; i++) {
             const result *r = &res[i];
             printf("%s\n  {\"device\": \"%s\", \"n\": %zu, \"valid\": %s, \"validation_diff\": %.3g, ",
