@@ -128,12 +128,17 @@ static int measure(tr_engine *e, tr_measure *m, tr_error *err)
     return TR_OK;
 }
 
-static int rebuild_contacts(tr_engine *e, int recompute_gap, tr_error *err)
+/* now: a measurement of the current state (e->ebar set by it) when the
+ * caller has one, else NULL. The list does not change what the tilt reads
+ * (the longest edge and MinRad), so it is not measured twice. */
+static int rebuild_contacts(tr_engine *e, int recompute_gap, const tr_measure *now, tr_error *err)
 {
     /* the tilt needs the longest edge and MinRad as of this state */
     tr_measure m;
-    int rc = measure(e, &m, err);
-    if (rc)
+    int rc = TR_OK;
+    if (now)
+        m = *now;
+    else if ((rc = measure(e, &m, err)))
         return rc;
     if (recompute_gap) {
         for (int k = 0; k < e->curve.ncomp; k++) {
@@ -168,7 +173,7 @@ static int settle(tr_engine *e, const char *what, double overlap_ok, tr_error *e
 {
     const tr_backend_ops *op = e->be.ops;
     tr_measure m;
-    int rc = rebuild_contacts(e, 1, err);
+    int rc = rebuild_contacts(e, 1, NULL, err);
     if (rc)
         return rc;
     rc = measure(e, &m, err);
@@ -191,7 +196,7 @@ static int settle(tr_engine *e, const char *what, double overlap_ok, tr_error *e
     tr_correct_params cp = e->prm.correct;
     cp.max_newton = 1;
     for (int it = 0; it < 400; it++) {
-        if (e->disp_acc + e->prm.guard_move > 0.5 * e->prm.skin && (rc = rebuild_contacts(e, 1, err)))
+        if (e->disp_acc + e->prm.guard_move > 0.5 * e->prm.skin && (rc = rebuild_contacts(e, 1, &m, err)))
             return rc;
         tr_correct_stats cs;
         if ((rc = op->save(e->be.state, err)) || (rc = op->correct(e->be.state, &cp, &cs, err)) ||
@@ -203,7 +208,7 @@ static int settle(tr_engine *e, const char *what, double overlap_ok, tr_error *e
             return tr_fail(err, TR_ETOPOLOGY, "%s: equalising the edges brought strands to %.4g apart",
                            what, m.min_strut);
         if (cs.viol_after <= e->prm.accept_viol) {
-            if ((rc = rebuild_contacts(e, 1, err)) || (rc = measure(e, &m, err)))
+            if ((rc = rebuild_contacts(e, 1, &m, err)) || (rc = measure(e, &m, err)))
                 return rc;
             fill_state(e, &m);
             return TR_OK;
@@ -291,7 +296,7 @@ int tr_engine_step(tr_engine *e, int *accepted, tr_error *err)
     const tr_backend_ops *op = e->be.ops;
     int rc;
     *accepted = 0;
-    if (!e->contacts_valid && (rc = rebuild_contacts(e, 1, err)))
+    if (!e->contacts_valid && (rc = rebuild_contacts(e, 1, NULL, err)))
         return rc;
     tr_tension_params tp = {.h = e->h, .max_move = e->prm.max_move, .smooth_passes = e->prm.smooth_passes,
                             .project = e->prm.project ? &e->prm.proj : NULL};
@@ -313,7 +318,7 @@ int tr_engine_step(tr_engine *e, int *accepted, tr_error *err)
     if (ok) {
         double keep = e->disp_est;
         e->disp_est = m.max_disp;
-        if ((rc = rebuild_contacts(e, 1, err)))
+        if ((rc = rebuild_contacts(e, 1, &m, err)))
             return rc;
         if (!(e->contacts.min_dist >= e->prm.correct.strut_dist - 10.0 * e->prm.accept_viol)) {
             ok = 0;
@@ -326,7 +331,7 @@ int tr_engine_step(tr_engine *e, int *accepted, tr_error *err)
             return rc;
         /* a list built at the rejected state is rebuilt now, so that a
          * checkpoint taken here resumes on the very list this run uses */
-        if (!e->contacts_valid && (rc = rebuild_contacts(e, 1, err)))
+        if (!e->contacts_valid && (rc = rebuild_contacts(e, 1, NULL, err)))
             return rc;
         e->rejected++;
         e->h *= e->prm.shrink;
@@ -600,7 +605,7 @@ int tr_engine_resume(tr_engine **out, const char *path, const char *device,
      * the uninterrupted run's list are inactive and contribute exact zeros */
     {
         memcpy(e->ebar, ebar, (size_t)ncomp * sizeof *ebar);
-        if ((rc = rebuild_contacts(e, 0, err)))
+        if ((rc = rebuild_contacts(e, 0, NULL, err)))
             goto fail;
         tr_measure m;
         if ((rc = measure(e, &m, err)))
@@ -734,7 +739,7 @@ restore:
     if (rc)
         return rc;
     tr_measure m;
-    if ((rc = rebuild_contacts(e, 1, err)) || (rc = measure(e, &m, err)))
+    if ((rc = rebuild_contacts(e, 1, NULL, err)) || (rc = measure(e, &m, err)))
         return rc;
     fill_state(e, &m);
     e->polished = -1;
