@@ -174,16 +174,26 @@ cleanup:
     return rc;
 }
 
+/* The arguments the per-leaf kernels (tree_leaf_box, tree_leaf_slab) share:
+ * positions, next, the tree's edge order, its leaves and their edge ranges. */
+static int leaf_args(const tr_cl_tree *t, cl_kernel k, const tr_cl_topology *topo, cl_mem x,
+                     tr_error *err) {
+    int rc = TR_OK;
+    ARG(k, 0, x);
+    ARG(k, 1, topo->next);
+    ARG(k, 2, t->tedge);
+    ARG(k, 3, t->leaf_id);
+    ARG(k, 4, t->nleaf);
+    ARG(k, 5, t->node_a);
+    ARG(k, 6, t->node_b);
+cleanup:
+    return rc;
+}
+
 /* Boxes of every node for positions x, bottom-up. */
 static int refit(tr_cl_tree *t, const tr_cl_ctx *ctx, const tr_cl_topology *topo, cl_mem x, tr_error *err) {
     int rc = TR_OK;
-    ARG(t->leaf_box, 0, x);
-    ARG(t->leaf_box, 1, topo->next);
-    ARG(t->leaf_box, 2, t->tedge);
-    ARG(t->leaf_box, 3, t->leaf_id);
-    ARG(t->leaf_box, 4, t->nleaf);
-    ARG(t->leaf_box, 5, t->node_a);
-    ARG(t->leaf_box, 6, t->node_b);
+    TR_TRY(leaf_args(t, t->leaf_box, topo, x, err));
     ARG(t->leaf_box, 7, t->box);
     TR_TRY(launch(ctx, t->leaf_box, (size_t)t->nleaf, err));
     ARG(t->inner_box, 0, t->level_id);
@@ -222,13 +232,7 @@ int tr_cl_tree_search(tr_cl_tree *t, const tr_cl_ctx *ctx, const tr_cl_topology 
     int use_slab = tilt > 0.0 && tilt < 1.0;
     if (use_slab) {
         double pad = tilt * cutoff;
-        ARG(t->leaf_slab, 0, x);
-        ARG(t->leaf_slab, 1, topo->next);
-        ARG(t->leaf_slab, 2, t->tedge);
-        ARG(t->leaf_slab, 3, t->leaf_id);
-        ARG(t->leaf_slab, 4, t->nleaf);
-        ARG(t->leaf_slab, 5, t->node_a);
-        ARG(t->leaf_slab, 6, t->node_b);
+        TR_TRY(leaf_args(t, t->leaf_slab, topo, x, err));
         ARG(t->leaf_slab, 7, cutoff);
         ARG(t->leaf_slab, 8, pad);
         ARG(t->leaf_slab, 9, t->slab);
@@ -240,9 +244,8 @@ int tr_cl_tree_search(tr_cl_tree *t, const tr_cl_ctx *ctx, const tr_cl_topology 
         int zero = 0;
         TR_CL_CHECK(
             clEnqueueWriteBuffer(ctx->queue, t->overflow, CL_FALSE, 0, sizeof zero, &zero, 0, NULL, NULL));
-        cl_mem args[] = {x, topo->next};
-        ARG(t->pairs, 0, args[0]);
-        ARG(t->pairs, 1, args[1]);
+        ARG(t->pairs, 0, x);
+        ARG(t->pairs, 1, topo->next);
         ARG(t->pairs, 2, t->nv);
         ARG(t->pairs, 3, topo->comp);
         ARG(t->pairs, 4, topo->pos);
