@@ -14,7 +14,14 @@
  * iterations, and 1 projection pass of 10 (tolerances 0). The engine's own
  * iteration counts depend on the state (and, where CG is far from
  * converged, on rounding), which would make steps/s at different N or on
- * different devices incomparable; fixed work measures throughput. */
+ * different devices incomparable; fixed work measures throughput.
+ *
+ * Every timed step (and the timed searches) starts from the same state, the
+ * one after the warm-up, restored untimed: the fixed, unconverged solver work
+ * does not hold a tight curve together over repeated steps (from the tight
+ * trefoil at N = 10^4, five such steps in a row took MinRad from 0.97 to
+ * 0.01), so later steps would time a crumpled curve, a different one on each
+ * device. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -172,7 +179,8 @@ static void bench_one(const char *spec, const tr_curve *c, const bench_ctx *bc, 
     }
     if ((rc = one_step(&b, bc, h, NULL, &err))) /* untimed warm-up */
         goto fail;
-    /* calibrate: one timed step sets the count for about target_s */
+    /* calibrate: one timed step sets the count for about target_s; its save
+     * holds the state every later timed step starts from */
     double t0 = now();
     int cg = 0;
     if ((rc = one_step(&b, bc, h, &cg, &err)))
@@ -186,6 +194,10 @@ static void bench_one(const char *spec, const tr_curve *c, const bench_ctx *bc, 
     }
     long cgsum = 0;
     for (int i = 0; i < k; i++) {
+        if ((rc = b.ops->restore(b.state, &err))) {
+            free(ts);
+            goto fail;
+        }
         double a = now();
         if ((rc = one_step(&b, bc, h, &cg, &err))) {
             free(ts);
@@ -201,6 +213,8 @@ static void bench_one(const char *spec, const tr_curve *c, const bench_ctx *bc, 
     r->cg_per_step = (double)cgsum / k;
     free(ts);
     int kc = bc->search ? 3 : 0;
+    if ((rc = b.ops->restore(b.state, &err)))
+        goto fail;
     double a = now();
     for (int i = 0; i < kc; i++)
         if ((rc = contacts(&b, bc, &r->pairs, &err)))
@@ -214,7 +228,8 @@ done:
     tr_backend_close(&b);
 }
 
-/* Per-kernel device times from a profiled backend: two steps after a warm-up. */
+/* Per-kernel device times from a profiled backend: two steps after a warm-up,
+ * each from the warm-up's start state (see the top of this file). */
 static void profile_kernels(const char *spec, const tr_curve *c, const bench_ctx *bc, double h,
                             result *r)
 {
@@ -226,8 +241,9 @@ static void profile_kernels(const char *spec, const tr_curve *c, const bench_ctx
     if (ok) {
         tr_kernel_time before[MAX_K];
         int nb = tr_backend_opencl_kernel_times(&b, before, MAX_K);
-        ok = one_step(&b, bc, h, NULL, &err) == TR_OK && one_step(&b, bc, h, NULL, &err) == TR_OK &&
-             contacts(&b, bc, NULL, &err) == TR_OK;
+        ok = b.ops->restore(b.state, &err) == TR_OK && one_step(&b, bc, h, NULL, &err) == TR_OK &&
+             b.ops->restore(b.state, &err) == TR_OK && one_step(&b, bc, h, NULL, &err) == TR_OK &&
+             b.ops->restore(b.state, &err) == TR_OK && contacts(&b, bc, NULL, &err) == TR_OK;
         if (ok) {
             r->nk = tr_backend_opencl_kernel_times(&b, r->k, MAX_K);
             for (int i = 0; i < r->nk; i++)
