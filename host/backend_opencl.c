@@ -18,8 +18,7 @@
 
 /* Kernels this file launches itself (the reduction and tree modules hold their own). */
 #define KERNELS(X)                                                                         \
-    X(tension_force) X(tension_smooth) X(tension_move) X(pairs_upper) X(scan_local)        \
-    X(scan_sums) X(scan_add) X(pairs_write) X(contacts_csr) X(pairs_dist) X(rows_chain)    \
+    X(tension_force) X(tension_smooth) X(tension_move) X(pairs_upper) X(pairs_write) X(contacts_csr) X(pairs_dist) X(rows_chain)    \
     X(rows_strut) X(cg_init) X(jt_vertex) X(jt_ebar_partial) X(jt_ebar) X(j_rows)          \
     X(cg_start) X(cg_top) X(cg_alpha) X(cg_yr) X(cg_beta) X(cg_p) X(dx_norm)               \
     X(step_scale) X(apply_dx) X(apply_debar) X(measure_edges) X(measure_minrad)            \
@@ -68,8 +67,10 @@ typedef struct cl_state {
     cl_mem t1, t2, t3; /* nv reals: per-vertex terms for reductions */
     cl_mem sc;         /* scalars */
     /* contacts */
-    int np, pcap, acap;
-    cl_mem up, first, off, sums, pa, pb, adj, adjn, pd;
+    int np, pcap;
+    size_t adjcap;      /* entries adj and aadj hold */
+    cl_mem up, first, off, pa, pb, pd;
+    cl_mem adjc, aoff, adj, adjn; /* per-vertex adjacency: entries, offsets (nv + 1), CSR */
     cl_mem aadj, aadjn; /* adj restricted to active strut rows (adj_active, per CG solve) */
     /* The CG's row list (kernels/correct.cl row_of), built per solve: the
      * active strut rows in list order (pcap), block counts for building it. */
@@ -112,7 +113,7 @@ static void cl_destroy(void *sp)
         return;
     cl_mem *m[] = {&s->start, &s->ne,   &s->cst,  &s->gap,  &s->x,    &s->xs,   &s->ebar,
                    &s->ebar_s, &s->debar, &s->F,  &s->G,    &s->H,    &s->dx,   &s->t1,
-                   &s->t2,    &s->t3,   &s->sc,   &s->up,   &s->first, &s->off, &s->sums,
+                   &s->t2,    &s->t3,   &s->sc,   &s->up,   &s->first, &s->off, &s->adjc, &s->aoff,
                    &s->pa,    &s->pb,   &s->adj,  &s->adjn, &s->pd,   &s->rC,   &s->rgrad,
                    &s->ract,  &s->rs,   &s->rt,   &s->rv,   &s->y,    &s->r,    &s->p,
                    &s->q,     &s->b,    &s->cgq,  &s->cdeb, &s->chg,
@@ -286,6 +287,8 @@ static int cl_upload(void *sp, const double *x, const double *ebar, tr_error *er
     int izero = 0;
     TR_CL_CHECK(clEnqueueFillBuffer(s->ctx.queue, s->adjn, &izero, sizeof izero, 0,
                                     (size_t)s->nv * sizeof(int), 0, NULL, NULL));
+    TR_CL_CHECK(clEnqueueFillBuffer(s->ctx.queue, s->aoff, &izero, sizeof izero, 0,
+                                    ((size_t)s->nv + 1) * sizeof(int), 0, NULL, NULL));
     s->np = 0;
     s->saved = 0;
 cleanup:
@@ -375,20 +378,23 @@ static int cl_find_contacts(void *sp, const tr_contact_params *prm, tr_contact_s
     int gmin = 0;
     for (int k = 0; k < s->ncomp; k++)
         gmin = k == 0 || prm->exclude_gap[k] < gmin ? prm->exclude_gap[k] : gmin;
-    TR_TRY(tr_cl_tree_search(&s->tree, &s->ctx, &s->topo, s->x, prm->cutoff, prm->tilt, s->gap, gmin, err));
-    int cap = s->tree.cap;
-    TR_TRY(run(s, K_pairs_upper, (size_t)nv, err, A(s->tree.count), A(s->tree.list), A(cap),
-               A(s->topo.next), A(nv), A(s->up), A(s->first), END));
-    /* exclusive scan of up into off[0..nv] */
-    int groups = (int)(tr_cl_global((size_t)nv) / TR_CL_LOCAL);
-    TR_TRY(run(s, K_scan_local, (size_t)nv, err, A(s->up), A(nv), A(s->off), A(s->sums), END));
-    TR_TRY(run_groups(s, K_scan_sums, 1, err, A(s->sums), A(groups), A(s->off), A(nv), END));
-    TR_TRY(run(s, K_scan_add, (size_t)nv, err, A(s->off), A(nv), A(s->sums), END));
-    int np = 0;
-    TR_CL_CHECK(clEnqueueReadBuffer(s->ctx.queue, s->off, CL_TRUE, (size_t)nv * sizeof(int), sizeof np,
+    TR_TRY(tr_cl_tree_search(&s->tree, &s->ctx, &s->red, &s->topo, s->x, prm->cutoff, prm->tilt,
+                             s->gap, gmin, err));
+    cl_mem list = s->tree.list, loff = s->tree.loff;
+    TR_TRY(run(s, K_pairs_upper, (size_t)nv, err, A(s->tree.count), A(list), A(loff), A(s->topo.next),
+               A(s->topo.prev), A(nv), A(s->up), A(s->first), A(s->adjc), END));
+    /* pair offsets off[0..nv] and adjacency offsets aoff[0..nv] */
+    TR_TRY(tr_cl_reduce_scan(&s->red, &s->ctx, s->up, nv, s->off, err));
+    TR_TRY(tr_cl_reduce_scan(&s->red, &s->ctx, s->adjc, nv, s->aoff, err));
+    int np = 0, nadj = 0;
+    TR_CL_CHECK(clEnqueueReadBuffer(s->ctx.queue, s->off, CL_FALSE, (size_t)nv * sizeof(int), sizeof np,
                                     &np, 0, NULL, NULL));
-    if (np < 0 || np > (1 << 28)) {
-        rc = tr_fail(err, TR_EGEOMETRY, "%d contact candidates: far too many", np);
+    TR_CL_CHECK(clEnqueueReadBuffer(s->ctx.queue, s->aoff, CL_TRUE, (size_t)nv * sizeof(int),
+                                    sizeof nadj, &nadj, 0, NULL, NULL));
+    /* every pair is in both edges' lists and touches four vertex rows */
+    if (np < 0 || np > (1 << 28) || nadj != 4 * np) {
+        rc = tr_fail(err, TR_EGEOMETRY, "%d contact candidates (%d adjacency entries): far too many", np,
+                     nadj);
         goto cleanup;
     }
     if (np > s->pcap) {
@@ -400,16 +406,17 @@ static int cl_find_contacts(void *sp, const tr_contact_params *prm, tr_contact_s
         TR_TRY(buffer(s, &s->actc, ((size_t)pc / TR_ACT_BLOCK + 2) * sizeof(int), err));
         s->pcap = pc;
     }
-    if (2 * cap > s->acap) {
-        s->acap = 2 * cap;
-        TR_TRY(buffer(s, &s->adj, (size_t)nv * (size_t)s->acap * sizeof(int), err));
-        TR_TRY(buffer(s, &s->aadj, (size_t)nv * (size_t)s->acap * sizeof(int), err));
+    if ((size_t)nadj > s->adjcap) {
+        size_t ac = (size_t)nadj + (size_t)nadj / 2 + 64;
+        TR_TRY(buffer(s, &s->adj, ac * sizeof(int), err));
+        TR_TRY(buffer(s, &s->aadj, ac * sizeof(int), err));
+        s->adjcap = ac;
     }
-    TR_TRY(run(s, K_pairs_write, (size_t)nv, err, A(s->tree.count), A(s->tree.list), A(cap),
-               A(s->first), A(s->off), A(nv), A(s->pa), A(s->pb), END));
-    TR_TRY(run(s, K_contacts_csr, (size_t)nv, err, A(s->tree.count), A(s->tree.list), A(cap),
-               A(s->first), A(s->off), A(s->topo.next), A(s->topo.prev), A(nv), A(s->acap),
-               A(s->adj), A(s->adjn), END));
+    TR_TRY(run(s, K_pairs_write, (size_t)nv, err, A(s->tree.count), A(list), A(loff), A(s->first),
+               A(s->off), A(nv), A(s->pa), A(s->pb), END));
+    TR_TRY(run(s, K_contacts_csr, (size_t)nv, err, A(s->tree.count), A(list), A(loff), A(s->first),
+               A(s->off), A(s->topo.next), A(s->topo.prev), A(nv), A(s->aoff), A(s->adj), A(s->adjn),
+               END));
     s->np = np;
     TR_TRY(ensure_rows(s, err));
     double mind = INFINITY;
@@ -458,7 +465,7 @@ static int apply_JT(cl_state *s, const tr_correct_params *prm, cl_mem y, tr_erro
     int nv = s->nv;
     double w = prm->ebar_weight;
     TR_TRY(run(s, K_jt_vertex, (size_t)nv, err, A(y), A(s->rgrad), A(s->cgq), A(s->ract), A(s->topo.next),
-               A(s->topo.prev), A(s->aadj), A(s->aadjn), A(s->acap), A(s->rs), A(s->rt), A(s->cst),
+               A(s->topo.prev), A(s->aadj), A(s->aadjn), A(s->aoff), A(s->rs), A(s->rt), A(s->cst),
                A(nv), A(s->dx), END));
     int G = s->ebar_groups;
     TR_TRY(run_groups(s, K_jt_ebar_partial, (size_t)s->ncomp * (size_t)G, err, A(y), A(s->ract),
@@ -583,7 +590,7 @@ static int cg_iterate(cl_state *s, const tr_correct_params *prm, int *iters, tr_
     TR_CL_CHECK(clEnqueueWriteBuffer(s->ctx.queue, s->sc, CL_FALSE, SC_TOL2 * sizeof(double),
                                      sizeof tol2, &tol2, 0, NULL, NULL));
     /* the active set is fixed from here to the next cg_iterate: apply_JT's adjacency */
-    TR_TRY(run(s, K_adj_active, (size_t)nv, err, A(s->adj), A(s->adjn), A(s->acap), A(s->ract), A(nv),
+    TR_TRY(run(s, K_adj_active, (size_t)nv, err, A(s->adj), A(s->adjn), A(s->aoff), A(s->ract), A(nv),
                A(s->aadj), A(s->aadjn), END));
     TR_TRY(run(s, K_precond_setup, (size_t)nr, err, A(s->rgrad), A(s->cgq), A(s->cdeb), A(s->ract),
                A(s->topo.next), A(s->topo.prev), A(s->topo.comp), A(s->ne), A(s->pa), A(s->pb),
@@ -1010,11 +1017,12 @@ static int open_on(const tr_device_choice *dev, const tr_curve *c, int profiling
     TR_TRY(buffer(s, &s->up, nv * sizeof(int), err));
     TR_TRY(buffer(s, &s->first, nv * sizeof(int), err));
     TR_TRY(buffer(s, &s->off, (nv + 1) * sizeof(int), err));
-    TR_TRY(buffer(s, &s->sums, (tr_cl_global(nv) / TR_CL_LOCAL) * sizeof(int), err));
+    TR_TRY(buffer(s, &s->adjc, nv * sizeof(int), err));
+    TR_TRY(buffer(s, &s->aoff, (nv + 1) * sizeof(int), err));
     TR_TRY(buffer(s, &s->adjn, nv * sizeof(int), err));
-    s->acap = 32;
-    TR_TRY(buffer(s, &s->adj, nv * (size_t)s->acap * sizeof(int), err));
-    TR_TRY(buffer(s, &s->aadj, nv * (size_t)s->acap * sizeof(int), err));
+    s->adjcap = 64;
+    TR_TRY(buffer(s, &s->adj, s->adjcap * sizeof(int), err));
+    TR_TRY(buffer(s, &s->aadj, s->adjcap * sizeof(int), err));
     TR_TRY(buffer(s, &s->aadjn, nv * sizeof(int), err));
     s->pcap = 64;
     TR_TRY(buffer(s, &s->pa, (size_t)s->pcap * sizeof(int), err));

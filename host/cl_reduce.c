@@ -38,6 +38,9 @@ int tr_cl_reduce_init(tr_cl_reduce *r, const tr_cl_ctx *ctx, cl_program prog, si
     TR_CL_CHECK((r->dot_partial = clCreateKernel(prog, "dot_partial", &e), e));
     TR_CL_CHECK((r->dot_rows_partial = clCreateKernel(prog, "dot_rows_partial", &e), e));
     TR_CL_CHECK((r->isum_partial = clCreateKernel(prog, "isum_partial", &e), e));
+    TR_CL_CHECK((r->scan_local = clCreateKernel(prog, "scan_local", &e), e));
+    TR_CL_CHECK((r->scan_sums = clCreateKernel(prog, "scan_sums", &e), e));
+    TR_CL_CHECK((r->scan_add = clCreateKernel(prog, "scan_add", &e), e));
     r->groups = tr_cl_global(n) / TR_CL_LOCAL;
     TR_CL_CHECK((r->pa = clCreateBuffer(ctx->context, CL_MEM_READ_WRITE, r->groups * sizeof(double),
                                         NULL, &e),
@@ -55,7 +58,7 @@ void tr_cl_reduce_free(tr_cl_reduce *r)
 {
     cl_kernel *k[] = {&r->length_partial, &r->minmax_partial, &r->sum_final, &r->minmax_final,
                       &r->edge_lengths, &r->sum_partial, &r->dot_partial, &r->isum_partial,
-                      &r->dot_rows_partial};
+                      &r->dot_rows_partial, &r->scan_local, &r->scan_sums, &r->scan_add};
     for (size_t i = 0; i < sizeof k / sizeof k[0]; i++)
         if (*k[i])
             clReleaseKernel(*k[i]);
@@ -227,6 +230,35 @@ int tr_cl_reduce_count(tr_cl_reduce *r, const tr_cl_ctx *ctx, cl_mem v, int n, c
     int rc = TR_OK;
     TR_CL_CHECK(clSetKernelArg(r->isum_partial, 0, sizeof v, &v));
     rc = finish_sum(r, ctx, r->isum_partial, 1, n, n, out, slot, err);
+cleanup:
+    return rc;
+}
+
+/* The per-group totals go to pb (as ints: it holds a double for every group
+ * of the largest n prepared). The queue is in order, so no reduction is
+ * between its stages while a scan runs. */
+int tr_cl_reduce_scan(tr_cl_reduce *r, const tr_cl_ctx *ctx, cl_mem in, int n, cl_mem out,
+                      tr_error *err)
+{
+    int rc = check_size(r, n, err);
+    if (rc != TR_OK)
+        return rc;
+    size_t g = tr_cl_global((size_t)n), l = TR_CL_LOCAL;
+    int groups = (int)(g / l);
+    TR_CL_CHECK(clSetKernelArg(r->scan_local, 0, sizeof in, &in));
+    TR_CL_CHECK(clSetKernelArg(r->scan_local, 1, sizeof n, &n));
+    TR_CL_CHECK(clSetKernelArg(r->scan_local, 2, sizeof out, &out));
+    TR_CL_CHECK(clSetKernelArg(r->scan_local, 3, sizeof r->pb, &r->pb));
+    TR_CL_CHECK(clEnqueueNDRangeKernel(ctx->queue, r->scan_local, 1, NULL, &g, &l, 0, NULL, NULL));
+    TR_CL_CHECK(clSetKernelArg(r->scan_sums, 0, sizeof r->pb, &r->pb));
+    TR_CL_CHECK(clSetKernelArg(r->scan_sums, 1, sizeof groups, &groups));
+    TR_CL_CHECK(clSetKernelArg(r->scan_sums, 2, sizeof out, &out));
+    TR_CL_CHECK(clSetKernelArg(r->scan_sums, 3, sizeof n, &n));
+    TR_CL_CHECK(clEnqueueNDRangeKernel(ctx->queue, r->scan_sums, 1, NULL, &l, &l, 0, NULL, NULL));
+    TR_CL_CHECK(clSetKernelArg(r->scan_add, 0, sizeof out, &out));
+    TR_CL_CHECK(clSetKernelArg(r->scan_add, 1, sizeof n, &n));
+    TR_CL_CHECK(clSetKernelArg(r->scan_add, 2, sizeof r->pb, &r->pb));
+    TR_CL_CHECK(clEnqueueNDRangeKernel(ctx->queue, r->scan_add, 1, NULL, &g, &l, 0, NULL, NULL));
 cleanup:
     return rc;
 }

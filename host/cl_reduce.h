@@ -8,6 +8,7 @@
 typedef struct tr_cl_reduce {
     cl_kernel length_partial, minmax_partial, sum_final, minmax_final, edge_lengths;
     cl_kernel sum_partial, dot_partial, isum_partial, dot_rows_partial;
+    cl_kernel scan_local, scan_sums, scan_add;
     cl_mem pa, pb;   /* per-work-group partials */
     size_t groups;   /* capacity of pa, pb */
 } tr_cl_reduce;
@@ -43,6 +44,11 @@ int tr_cl_reduce_dot_rows(tr_cl_reduce *r, const tr_cl_ctx *ctx, cl_mem a, cl_me
 /* Queues out[slot] = sum of the ints v[0..n) (a count of flags), as a double. */
 int tr_cl_reduce_count(tr_cl_reduce *r, const tr_cl_ctx *ctx, cl_mem v, int n, cl_mem out,
                        int slot, tr_error *err);
+
+/* Queues the exclusive prefix sums of the ints in[0..n) into out[0..n], with
+ * out[n] = the total (kernels/reduce.cl scan_*). n >= 1. */
+int tr_cl_reduce_scan(tr_cl_reduce *r, const tr_cl_ctx *ctx, cl_mem in, int n, cl_mem out,
+                      tr_error *err);
 
 /* Queues len[i] = |x[next[i]] - x[i]| (0 where no edge starts) for i < n. */
 int tr_cl_edge_lengths(tr_cl_reduce *r, const tr_cl_ctx *ctx, cl_mem x, cl_mem next, int n,

@@ -15,26 +15,31 @@ static void release(cl_mem *m) {
     *m = NULL;
 }
 
-static int alloc_lists(tr_cl_tree *t, const tr_cl_ctx *ctx, int cap, tr_error *err) {
-    int rc = TR_OK;
-    cl_int e = CL_SUCCESS;
+/* Makes room for n list entries (keeping the buffer when it is big enough). */
+static int reserve_list(tr_cl_tree *t, const tr_cl_ctx *ctx, size_t n, tr_error *err) {
+    if (n <= t->list_cap && t->list)
+        return TR_OK;
     release(&t->list);
-    t->cap = cap;
-    TR_CL_CHECK((t->list = clCreateBuffer(ctx->context, CL_MEM_READ_WRITE,
-                                          (size_t)t->nv * (size_t)cap * sizeof(int), NULL, &e),
-                 e));
-cleanup:
-    return rc;
+    t->list_cap = 0;
+    n += n / 4;
+    cl_int e = CL_SUCCESS;
+    t->list = clCreateBuffer(ctx->context, CL_MEM_READ_WRITE, (n ? n : 1) * sizeof(int), NULL, &e);
+    if (e != CL_SUCCESS)
+        return tr_fail(err, TR_EOPENCL, "clCreateBuffer: %s for the neighbour lists (%zu entries, %.0f MB)",
+                       tr_cl_strerror(e), n, 4e-6 * (double)n);
+    t->list_cap = n;
+    return TR_OK;
 }
 
 void tr_cl_tree_free(tr_cl_tree *t) {
-    cl_kernel *k[] = {&t->leaf_box, &t->inner_box, &t->leaf_slab, &t->pairs};
+    cl_kernel *k[] = {&t->leaf_box, &t->inner_box, &t->leaf_slab, &t->pairs, &t->list_room};
     for (size_t i = 0; i < sizeof k / sizeof k[0]; i++)
         if (*k[i])
             clReleaseKernel(*k[i]);
     cl_mem *m[] = {&t->tedge,     &t->vedge, &t->comp_estart, &t->node_a,  &t->node_b,
                    &t->node_comp, &t->left,  &t->right,       &t->leaf_id, &t->level_id,
-                   &t->box,       &t->slab,  &t->count,       &t->list,    &t->overflow};
+                   &t->box,       &t->slab,  &t->count,       &t->list,    &t->overflow,
+                   &t->loff,      &t->room};
     for (size_t i = 0; i < sizeof m / sizeof m[0]; i++)
         release(m[i]);
     free(t->level_off);
@@ -43,12 +48,12 @@ void tr_cl_tree_free(tr_cl_tree *t) {
 
 /* Host arrays of the tree's layout, uploaded once. */
 typedef struct layout {
-    int *tedge, *vedge, *estart, *a, *b, *comp, *left, *right, *leaf, *level, *depth;
+    int *tedge, *vedge, *estart, *a, *b, *comp, *left, *right, *leaf, *level, *depth, *loff;
 } layout;
 
 static void layout_free(layout *l) {
-    int *p[] = {l->tedge, l->vedge, l->estart, l->a,     l->b,    l->comp,
-                l->left,  l->right, l->leaf,   l->level, l->depth};
+    int *p[] = {l->tedge, l->vedge, l->estart, l->a,     l->b,     l->comp,
+                l->left,  l->right, l->leaf,   l->level, l->depth, l->loff};
     for (size_t i = 0; i < sizeof p / sizeof p[0]; i++)
         free(p[i]);
 }
@@ -152,12 +157,26 @@ int tr_cl_tree_init(tr_cl_tree *t, const tr_cl_ctx *ctx, cl_program prog, const 
         (t->slab = clCreateBuffer(ctx->context, CL_MEM_READ_WRITE, 8 * nn * sizeof(double), NULL, &e), e));
     TR_CL_CHECK(
         (t->count = clCreateBuffer(ctx->context, CL_MEM_READ_WRITE, c->nv * sizeof(int), NULL, &e), e));
+    TR_CL_CHECK(
+        (t->room = clCreateBuffer(ctx->context, CL_MEM_READ_WRITE, c->nv * sizeof(int), NULL, &e), e));
     TR_CL_CHECK((t->overflow = clCreateBuffer(ctx->context, CL_MEM_READ_WRITE, sizeof(int), NULL, &e), e));
     TR_CL_CHECK((t->leaf_box = clCreateKernel(prog, "tree_leaf_box", &e), e));
     TR_CL_CHECK((t->inner_box = clCreateKernel(prog, "tree_inner_box", &e), e));
     TR_CL_CHECK((t->leaf_slab = clCreateKernel(prog, "tree_leaf_slab", &e), e));
     TR_CL_CHECK((t->pairs = clCreateKernel(prog, "tree_pairs", &e), e));
-    TR_TRY(alloc_lists(t, ctx, cap > 0 ? cap : 16, err));
+    TR_CL_CHECK((t->list_room = clCreateKernel(prog, "list_room", &e), e));
+    /* the first walk's rows: cap entries for every vertex */
+    if (cap < 1)
+        cap = 16;
+    l.loff = malloc((c->nv + 1) * sizeof(int));
+    if (!l.loff || (double)cap * (double)c->nv > 5e8) {
+        rc = tr_fail(err, TR_ENOMEM, "no room for %d neighbours of each of %zu edges", cap, c->nv);
+        goto cleanup;
+    }
+    for (size_t v = 0; v <= c->nv; v++)
+        l.loff[v] = (int)v * cap;
+    TR_TRY(tr_cl_upload_ints(ctx, l.loff, c->nv + 1, &t->loff, err));
+    TR_TRY(reserve_list(t, ctx, (size_t)cap * c->nv, err));
 cleanup:
     layout_free(&l);
     tr_nsearch_free(&ns);
@@ -212,10 +231,36 @@ cleanup:
     return rc;
 }
 
-int tr_cl_tree_search(tr_cl_tree *t, const tr_cl_ctx *ctx, const tr_cl_topology *topo, cl_mem x,
-                      double cutoff, double tilt, cl_mem gap, int gmin, tr_error *err) {
+/* Rows sized from count (the last walk's): loff = the exclusive scan of
+ * list_room, and a list that holds them all. */
+static int size_rows(tr_cl_tree *t, const tr_cl_ctx *ctx, tr_cl_reduce *red, const tr_cl_topology *topo,
+                     tr_error *err) {
     int rc = TR_OK;
-    cl_int e = CL_SUCCESS;
+    ARG(t->list_room, 0, t->count);
+    ARG(t->list_room, 1, topo->next);
+    ARG(t->list_room, 2, t->nv);
+    ARG(t->list_room, 3, t->room);
+    TR_TRY(launch(ctx, t->list_room, (size_t)t->nv, err));
+    TR_TRY(tr_cl_reduce_scan(red, ctx, t->room, t->nv, t->loff, err));
+    int total = 0;
+    TR_CL_CHECK(clEnqueueReadBuffer(ctx->queue, t->loff, CL_TRUE, (size_t)t->nv * sizeof(int), sizeof total,
+                                    &total, 0, NULL, NULL));
+    /* far beyond any curve the step could use (a 2^29-entry list is 2 GB),
+     * and the int offsets wrap soon after */
+    if (total < 0 || total > (1 << 29)) {
+        rc = tr_fail(err, TR_EGEOMETRY, "%s contact candidates: the curve is far too dense",
+                     total < 0 ? "over 2^31" : "over 2^29");
+        goto cleanup;
+    }
+    TR_TRY(reserve_list(t, ctx, (size_t)total, err));
+cleanup:
+    return rc;
+}
+
+int tr_cl_tree_search(tr_cl_tree *t, const tr_cl_ctx *ctx, tr_cl_reduce *red,
+                      const tr_cl_topology *topo, cl_mem x, double cutoff, double tilt, cl_mem gap,
+                      int gmin, tr_error *err) {
+    int rc = TR_OK;
     if (topo->nv != t->nv)
         return tr_fail(err, TR_EINVAL, "neighbour tree prepared for %d vertices, curve has %d", t->nv,
                        topo->nv);
@@ -238,6 +283,8 @@ int tr_cl_tree_search(tr_cl_tree *t, const tr_cl_ctx *ctx, const tr_cl_topology 
         ARG(t->leaf_slab, 9, t->slab);
         TR_TRY(launch(ctx, t->leaf_slab, (size_t)t->nleaf, err));
     }
+    if (t->counted)
+        TR_TRY(size_rows(t, ctx, red, topo, err));
     int min_gap = gmin < 2 ? 2 : gmin;
     int flag = 0;
     for (int attempt = 0; attempt < 2; attempt++) {
@@ -265,7 +312,7 @@ int tr_cl_tree_search(tr_cl_tree *t, const tr_cl_ctx *ctx, const tr_cl_topology 
         ARG(t->pairs, 18, t->slab);
         ARG(t->pairs, 19, cutoff);
         ARG(t->pairs, 20, tilt);
-        ARG(t->pairs, 21, t->cap);
+        ARG(t->pairs, 21, t->loff);
         ARG(t->pairs, 22, t->count);
         ARG(t->pairs, 23, t->list);
         ARG(t->pairs, 24, t->overflow);
@@ -276,32 +323,15 @@ int tr_cl_tree_search(tr_cl_tree *t, const tr_cl_ctx *ctx, const tr_cl_topology 
             rc = tr_fail(err, TR_EOPENCL, "neighbour tree walk ran out of stack");
             goto cleanup;
         }
+        t->counted = 1; /* count is exact even where a row overflowed */
         if (!flag)
             break;
-        /* Rare (after a big move): size the lists to the largest count and redo. */
-        int *cnt = malloc((size_t)t->nv * sizeof *cnt);
-        if (!cnt) {
-            rc = tr_fail(err, TR_ENOMEM, "out of memory growing neighbour lists");
-            goto cleanup;
-        }
-        e = clEnqueueReadBuffer(ctx->queue, t->count, CL_TRUE, 0, (size_t)t->nv * sizeof(int), cnt, 0, NULL,
-                                NULL);
-        if (e != CL_SUCCESS)
-            free(cnt);
-        TR_CL_CHECK(e);
-        int most = 0;
-        for (int i = 0; i < t->nv; i++)
-            most = cnt[i] > most ? cnt[i] : most;
-        free(cnt);
-        if ((double)most * t->nv > 5e8) {
-            rc = tr_fail(err, TR_EGEOMETRY,
-                         "%d contact candidates for one edge within %g: the curve is far too dense", most,
-                         cutoff);
-            goto cleanup;
-        }
-        TR_TRY(alloc_lists(t, ctx, most + most / 4 + 4, err));
+        /* some edge found more partners than its row holds (the first walk,
+         * or a big move): rows from these counts, and again */
+        t->regrown++;
+        TR_TRY(size_rows(t, ctx, red, topo, err));
     }
-    /* the lists were sized to the first pass's counts; a second overflow
+    /* the rows were sized to the first pass's counts; a second overflow
      * means the kernel disagrees with itself, never a silent cut */
     if (flag)
         rc = tr_fail(err, TR_EOPENCL, "neighbour lists still overflow after growing them");

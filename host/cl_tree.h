@@ -8,32 +8,41 @@
 #define TR_CL_TREE_H
 
 #include "cl_device.h"
+#include "cl_reduce.h"
 #include "cl_topology.h"
 #include "curve.h"
 
 typedef struct tr_cl_tree {
-    cl_kernel leaf_box, inner_box, leaf_slab, pairs;
-    int nv, ne, nnodes, nleaf, cap;
+    cl_kernel leaf_box, inner_box, leaf_slab, pairs, list_room;
+    int nv, ne, nnodes, nleaf;
     int nlevels, *level_off;          /* host: inner nodes by depth, deepest first */
     int min_gap_floor;                /* 2 */
     cl_mem tedge, vedge, comp_estart; /* tree edge -> vertex, vertex -> tree edge, per component */
     cl_mem node_a, node_b, node_comp, left, right; /* nnodes ints each */
     cl_mem leaf_id, level_id;                      /* leaves; inner nodes by level */
     cl_mem box, slab;                              /* 6 and 8 reals per node */
-    cl_mem count, list, overflow;                  /* nv ints; nv * cap ints; one int */
-    int max_count;
+    cl_mem count, loff, room, overflow;            /* nv, nv + 1, nv ints; one int */
+    cl_mem list;                                   /* list_cap ints */
+    size_t list_cap;
+    int counted; /* count holds the last walk's counts, which size the next walk's rows */
+    int regrown; /* walks repeated because a row overflowed (read by the tests) */
 } tr_cl_tree;
 
-/* Sets up the tree for the curve's topology (positions are not read). */
+/* Sets up the tree for the curve's topology (positions are not read); the
+ * first walk has room for cap partners per edge. */
 int tr_cl_tree_init(tr_cl_tree *t, const tr_cl_ctx *ctx, cl_program prog, const tr_curve *c, int cap,
                     tr_error *err);
 void tr_cl_tree_free(tr_cl_tree *t);
 
-/* Refits the boxes to x and rebuilds the lists: count[i], list[i * cap ..]
- * in increasing partner index. gap: per-component exclusion gaps (device
- * buffer) and gmin their minimum. Grows the lists and repeats when a vertex
- * has more than cap partners. */
-int tr_cl_tree_search(tr_cl_tree *t, const tr_cl_ctx *ctx, const tr_cl_topology *topo, cl_mem x,
-                      double cutoff, double tilt, cl_mem gap, int gmin, tr_error *err);
+/* Refits the boxes to x and rebuilds the lists: count[i] partners at
+ * list[loff[i] ..], in increasing partner index. gap: per-component
+ * exclusion gaps (device buffer) and gmin their minimum. Each edge's row is
+ * sized from its count in the last walk (and a quarter more), so the list
+ * holds about as many entries as there are partners, however they are
+ * spread over the edges; when a row overflows, the rows are resized from
+ * that walk's counts and the walk repeats once. red scans the row sizes. */
+int tr_cl_tree_search(tr_cl_tree *t, const tr_cl_ctx *ctx, tr_cl_reduce *red,
+                      const tr_cl_topology *topo, cl_mem x, double cutoff, double tilt, cl_mem gap,
+                      int gmin, tr_error *err);
 
 #endif

@@ -168,15 +168,15 @@ __kernel void cg_init(__global const real *rC, __global const int *ract, const i
  * on a tight curve most listed pairs are inactive (3.6 million pairs, ~75
  * entries per vertex at N = 10^5), and jt_vertex, run in every CG
  * iteration, would step over them all. */
-__kernel void adj_active(__global const int *adj, __global const int *adjn, const int acap,
-                         __global const int *ract, const int nv, __global int *aadj,
-                         __global int *aadjn)
+__kernel void adj_active(__global const int *adj, __global const int *adjn,
+                         __global const int *aoff, __global const int *ract, const int nv,
+                         __global int *aadj, __global int *aadjn)
 {
     int i = get_global_id(0);
     if (i >= nv)
         return;
-    __global const int *row = adj + (size_t)i * (size_t)acap;
-    __global int *out = aadj + (size_t)i * (size_t)acap;
+    __global const int *row = adj + aoff[i];
+    __global int *out = aadj + aoff[i];
     int m = 0;
     for (int k = 0; k < adjn[i]; k++)
         if (ract[2 * nv + (row[k] >> 2)])
@@ -188,7 +188,7 @@ __kernel void adj_active(__global const int *adj, __global const int *adjn, cons
 __kernel void jt_vertex(__global const real *y, __global const real *rgrad,
                         __global const real *cgq, __global const int *ract, __global const int *next,
                         __global const int *prev, __global const int *adj,
-                        __global const int *adjn, const int acap, __global const real *rs,
+                        __global const int *adjn, __global const int *aoff, __global const real *rs,
                         __global const real *rt, __global const real *cst, const int nv,
                         __global real *dx)
 {
@@ -209,7 +209,7 @@ __kernel void jt_vertex(__global const real *y, __global const real *rgrad,
     }
     if (nx >= 0 && ract[nv + nx])
         g = g + y[nv + nx] * vload3(nv + nx, rgrad);
-    __global const int *row = adj + (size_t)i * (size_t)acap;
+    __global const int *row = adj + aoff[i];
     for (int m = 0; m < adjn[i]; m++) {
         int p = row[m] >> 2, slot = row[m] & 3, r = 2 * nv + p;
         if (!ract[r])

@@ -223,3 +223,64 @@ void comp_sum(__global const real *v, __global const int *start, __global real *
     if (l == 0)
         out[slot + k] = s[0];
 }
+
+/* Exclusive prefix sums in three passes: scan_local scans each work-group
+ * and leaves its total in sums[group]; scan_sums scans those totals in one
+ * work-group (a loop over blocks); scan_add adds each group's offset.
+ * out has n + 1 entries (out[n] = total). */
+__kernel __attribute__((reqd_work_group_size(TR_LOCAL_SIZE, 1, 1)))
+void scan_local(__global const int *in, const int n, __global int *out, __global int *sums)
+{
+    __local int s[TR_LOCAL_SIZE];
+    int i = get_global_id(0), l = get_local_id(0);
+    int v = i < n ? in[i] : 0;
+    s[l] = v;
+    barrier(CLK_LOCAL_MEM_FENCE);
+    for (int w = 1; w < TR_LOCAL_SIZE; w <<= 1) { /* Hillis-Steele inclusive scan */
+        int t = l >= w ? s[l - w] : 0;
+        barrier(CLK_LOCAL_MEM_FENCE);
+        s[l] += t;
+        barrier(CLK_LOCAL_MEM_FENCE);
+    }
+    if (i < n)
+        out[i] = s[l] - v;
+    if (l == TR_LOCAL_SIZE - 1)
+        sums[get_group_id(0)] = s[l];
+}
+
+__kernel __attribute__((reqd_work_group_size(TR_LOCAL_SIZE, 1, 1)))
+void scan_sums(__global int *sums, const int m, __global int *out, const int n)
+{
+    __local int s[TR_LOCAL_SIZE];
+    __local int carry;
+    int l = get_local_id(0);
+    if (l == 0)
+        carry = 0;
+    barrier(CLK_LOCAL_MEM_FENCE);
+    for (int base = 0; base < m; base += TR_LOCAL_SIZE) {
+        int v = base + l < m ? sums[base + l] : 0;
+        s[l] = v;
+        barrier(CLK_LOCAL_MEM_FENCE);
+        for (int w = 1; w < TR_LOCAL_SIZE; w <<= 1) {
+            int t = l >= w ? s[l - w] : 0;
+            barrier(CLK_LOCAL_MEM_FENCE);
+            s[l] += t;
+            barrier(CLK_LOCAL_MEM_FENCE);
+        }
+        if (base + l < m)
+            sums[base + l] = carry + s[l] - v;
+        barrier(CLK_LOCAL_MEM_FENCE);
+        if (l == TR_LOCAL_SIZE - 1)
+            carry += s[l];
+        barrier(CLK_LOCAL_MEM_FENCE);
+    }
+    if (l == 0)
+        out[n] = carry;
+}
+
+__kernel void scan_add(__global int *out, const int n, __global const int *sums)
+{
+    int i = get_global_id(0);
+    if (i < n)
+        out[i] += sums[i / TR_LOCAL_SIZE];
+}

@@ -172,8 +172,9 @@ inline int range_excluded(int i, int a, int b, int g, int closed, int m)
 }
 
 /* For the edge of vertex i: partners j (vertices whose edges qualify) in
- * increasing j, as grid_pairs lists them; count[i] is the full number even
- * beyond cap (then *overflow = 1); a stack overflow sets *overflow = 2. */
+ * increasing j, as grid_pairs lists them, at list + loff[i] with room for
+ * loff[i + 1] - loff[i]; count[i] is the full number even beyond that room
+ * (then *overflow = 1); a stack overflow sets *overflow = 2. */
 __kernel void tree_pairs(__global const real *x, __global const int *next, const int n,
                          __global const int *comp, __global const int *pos,
                          __global const int *comp_n, __global const int *comp_closed,
@@ -183,7 +184,7 @@ __kernel void tree_pairs(__global const real *x, __global const int *next, const
                          __global const int *node_comp, __global const int *left,
                          __global const int *right, __global const real *box,
                          __global const real *slab, const real cutoff, const real tilt,
-                         const int cap, __global int *count, __global int *list,
+                         __global const int *loff, __global int *count, __global int *list,
                          __global int *overflow)
 {
     int i = get_global_id(0);
@@ -202,7 +203,8 @@ __kernel void tree_pairs(__global const real *x, __global const int *next, const
     int ti = vedge[i], k = comp[i];
     int kclosed = comp_closed[k], kedges = comp_estart[k + 1] - comp_estart[k];
     int m = 0;
-    __global int *mine = list + (size_t)i * (size_t)cap;
+    __global int *mine = list + loff[i];
+    int cap = loff[i + 1] - loff[i];
     int stack[TREE_STACK];
     int sp = 0;
     stack[sp++] = 0;
@@ -257,4 +259,15 @@ __kernel void tree_pairs(__global const real *x, __global const int *next, const
         }
     }
     count[i] = m;
+}
+
+/* Room for edge i's partners in the next walk: the last walk's count and a
+ * quarter more (partners come and go a few at a time between steps), 0 where
+ * no edge starts. Scanned into the list offsets. */
+__kernel void list_room(__global const int *count, __global const int *next, const int n,
+                        __global int *room)
+{
+    int i = get_global_id(0);
+    if (i < n)
+        room[i] = next[i] < 0 ? 0 : count[i] + count[i] / 4 + 4;
 }

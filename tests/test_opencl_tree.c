@@ -96,6 +96,51 @@ static double seg_dist_slow(const double *p0, const double *p1, const double *q0
     return fmin(best, point_seg(m, q0, q1));
 }
 
+/* Brute force: the partners of edge i, increasing (backend.h's list). */
+static int brute_partners(const tr_curve *c, const int *next, const int *comp, const int *pos, int i,
+                          double r, double tilt, int K, int *want)
+{
+    int nv = (int)c->nv;
+    int m = 0;
+    if (next[i] >= 0)
+        for (int j = 0; j < nv; j++) {
+            if (j == i || next[j] < 0)
+                continue;
+            if (comp[i] == comp[j]) {
+                int g = abs(pos[i] - pos[j]), cn = (int)tr_comp_nv(c, comp[i]);
+                if (c->closed[comp[i]] && cn - g < g)
+                    g = cn - g;
+                if (g < K)
+                    continue;
+            }
+            const double *a = c->x + 3 * i, *b = c->x + 3 * j;
+            double ab = sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) +
+                             (a[2] - b[2]) * (a[2] - b[2]));
+            /* segments can be no closer than their start points minus both lengths */
+            const double *a1 = c->x + 3 * next[i], *b1 = c->x + 3 * next[j];
+            double la = sqrt((a1[0] - a[0]) * (a1[0] - a[0]) + (a1[1] - a[1]) * (a1[1] - a[1]) +
+                             (a1[2] - a[2]) * (a1[2] - a[2]));
+            double lb = sqrt((b1[0] - b[0]) * (b1[0] - b[0]) + (b1[1] - b[1]) * (b1[1] - b[1]) +
+                             (b1[2] - b[2]) * (b1[2] - b[2]));
+            if (ab - la - lb > r + 1e-9)
+                continue;
+            double d = seg_dist_slow(a, a1, b, b1);
+            if (tilt > 0.0 && tilt < 1.0) {
+                /* backend.h's definition, lower edge first */
+                int lo = i < j ? i : j, hi = i < j ? j : i;
+                const double *l0 = c->x + 3 * lo, *l1 = c->x + 3 * next[lo];
+                const double *h0 = c->x + 3 * hi, *h1 = c->x + 3 * next[hi];
+                double s, t;
+                d = tr_segment_distance(l0, l1, h0, h1, &s, &t);
+                if (d < r && !tr_segment_nearly_normal(l0, l1, h0, h1, s, t, d, tilt))
+                    continue;
+            }
+            if (d < r)
+                want[m++] = j;
+        }
+    return m;
+}
+
 static void run_case(const tr_cl_ctx *ctx, cl_program prog, int kind, size_t n, double r,
                      double tilt, int K, int cap)
 {
@@ -117,70 +162,66 @@ static void run_case(const tr_cl_ctx *ctx, cl_program prog, int kind, size_t n, 
     int gaps[2] = {K, K};
     cl_mem gap = clCreateBuffer(ctx->context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof gaps,
                                 gaps, &e);
-    int rc = tr_cl_tree_search(&grid, ctx, &topo, x, r, tilt, gap, K, &err);
-    CHECK_OK(rc);
-    if (rc != TR_OK)
-        fprintf(stderr, "%s\n", err.msg);
-    int nv = (int)c.nv;
-    int *cnt = malloc(c.nv * sizeof *cnt), *list = malloc(c.nv * (size_t)grid.cap * sizeof *list);
-    clEnqueueReadBuffer(ctx->queue, grid.count, CL_TRUE, 0, c.nv * sizeof(int), cnt, 0, NULL, NULL);
-    clEnqueueReadBuffer(ctx->queue, grid.list, CL_TRUE, 0, c.nv * (size_t)grid.cap * sizeof(int),
-                        list, 0, NULL, NULL);
-    long total = 0, bad = 0;
-    int *want = malloc(c.nv * sizeof *want);
-    for (int i = 0; i < nv; i++) {
-        int m = 0;
-        if (next[i] >= 0)
-            for (int j = 0; j < nv; j++) {
-                if (j == i || next[j] < 0)
-                    continue;
-                if (comp[i] == comp[j]) {
-                    int g = abs(pos[i] - pos[j]), cn = (int)tr_comp_nv(&c, comp[i]);
-                    if (c.closed[comp[i]] && cn - g < g)
-                        g = cn - g;
-                    if (g < K)
-                        continue;
-                }
-                const double *a = c.x + 3 * i, *b = c.x + 3 * j;
-                double ab = sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) +
-                                 (a[2] - b[2]) * (a[2] - b[2]));
-                /* segments can be no closer than their start points minus both lengths */
-                const double *a1 = c.x + 3 * next[i], *b1 = c.x + 3 * next[j];
-                double la = sqrt((a1[0] - a[0]) * (a1[0] - a[0]) + (a1[1] - a[1]) * (a1[1] - a[1]) +
-                                 (a1[2] - a[2]) * (a1[2] - a[2]));
-                double lb = sqrt((b1[0] - b[0]) * (b1[0] - b[0]) + (b1[1] - b[1]) * (b1[1] - b[1]) +
-                                 (b1[2] - b[2]) * (b1[2] - b[2]));
-                if (ab - la - lb > r + 1e-9)
-                    continue;
-                double d = seg_dist_slow(a, a1, b, b1);
-                if (tilt > 0.0 && tilt < 1.0) {
-                    /* backend.h's definition, lower edge first */
-                    int lo = i < j ? i : j, hi = i < j ? j : i;
-                    const double *l0 = c.x + 3 * lo, *l1 = c.x + 3 * next[lo];
-                    const double *h0 = c.x + 3 * hi, *h1 = c.x + 3 * next[hi];
-                    double s, t;
-                    d = tr_segment_distance(l0, l1, h0, h1, &s, &t);
-                    if (d < r && !tr_segment_nearly_normal(l0, l1, h0, h1, s, t, d, tilt))
-                        continue;
-                }
-                if (d < r)
-                    want[m++] = j;
-            }
-        total += m;
-        int same = cnt[i] == m && m <= grid.cap;
-        for (int k = 0; same && k < m; k++)
-            same = list[(size_t)i * grid.cap + k] == want[k];
-        if (!same && bad++ < 3)
-            fprintf(stderr, "kind %d n %d item %d: %d partners on device, %d by brute force\n", kind, nv, i,
-                    cnt[i], m);
+    tr_cl_reduce red;
+    CHECK_OK(tr_cl_reduce_init(&red, ctx, prog, c.nv + 64, &err));
+    /* every edge's partners by brute force, wall[wofs[i] ..] */
+    int *wofs = malloc((c.nv + 1) * sizeof *wofs), *wbuf = malloc(c.nv * sizeof *wbuf), *wall = NULL;
+    size_t wcap = 0;
+    wofs[0] = 0;
+    for (int i = 0; i < (int)c.nv; i++) {
+        int m = brute_partners(&c, next, comp, pos, i, r, tilt, K, wbuf);
+        wofs[i + 1] = wofs[i] + m;
+        if ((size_t)wofs[i + 1] > wcap) {
+            wcap = 2 * (size_t)wofs[i + 1];
+            wall = realloc(wall, wcap * sizeof *wall);
+        }
+        if (m)
+            memcpy(wall + wofs[i], wbuf, (size_t)m * sizeof *wall);
     }
-    CHECK(bad == 0);
-    if (tilt > 0.0)
-        CHECK(total > 0); /* the tilted case has pairs to agree on */
-    printf("kind %d n %zu r %g tilt %g: %ld pairs\n", kind, n, r, tilt, total);
-    if (cap < 4 && total > 0)
-        CHECK(grid.cap > cap); /* an overflow grew the lists */
-    free(want), free(cnt), free(list);
+    /* twice: the second walk sizes its rows from the first one's counts */
+    for (int pass = 0; pass < 2; pass++) {
+        int regrown = grid.regrown;
+        int rc = tr_cl_tree_search(&grid, ctx, &red, &topo, x, r, tilt, gap, K, &err);
+        CHECK_OK(rc);
+        if (rc != TR_OK)
+            fprintf(stderr, "%s\n", err.msg);
+        int nv = (int)c.nv;
+        int *cnt = malloc(c.nv * sizeof *cnt), *loff = malloc((c.nv + 1) * sizeof *loff);
+        int *list = malloc(grid.list_cap * sizeof *list);
+        clEnqueueReadBuffer(ctx->queue, grid.count, CL_TRUE, 0, c.nv * sizeof(int), cnt, 0, NULL, NULL);
+        clEnqueueReadBuffer(ctx->queue, grid.loff, CL_TRUE, 0, (c.nv + 1) * sizeof(int), loff, 0, NULL,
+                            NULL);
+        clEnqueueReadBuffer(ctx->queue, grid.list, CL_TRUE, 0, grid.list_cap * sizeof(int), list, 0, NULL,
+                            NULL);
+        long total = 0, bad = 0;
+        for (int i = 0; i < nv; i++) {
+            int m = wofs[i + 1] - wofs[i];
+            const int *want = wall + wofs[i];
+            total += m;
+            int same = cnt[i] == m && m <= loff[i + 1] - loff[i] && loff[i] >= 0 &&
+                       (size_t)loff[i + 1] <= grid.list_cap;
+            for (int k = 0; same && k < m; k++)
+                same = list[(size_t)loff[i] + (size_t)k] == want[k];
+            if (!same && bad++ < 3)
+                fprintf(stderr, "kind %d n %d item %d: %d partners on device, %d by brute force\n", kind, nv, i,
+                        cnt[i], m);
+        }
+        CHECK(bad == 0);
+        if (tilt > 0.0)
+            CHECK(total > 0); /* the tilted case has pairs to agree on */
+        printf("kind %d n %zu r %g tilt %g, walk %d: %ld pairs, %d regrown\n", kind, n, r, tilt, pass + 1,
+               total, grid.regrown - regrown);
+        int most = 0;
+        for (int i = 0; i < nv; i++)
+            most = cnt[i] > most ? cnt[i] : most;
+        if (pass == 0) /* the walk repeats exactly when a row of cap overflows */
+            CHECK((grid.regrown > regrown) == (most > cap));
+        if (pass == 1)
+            CHECK(grid.regrown == regrown); /* rows sized from the same curve's counts fit */
+        free(cnt), free(list), free(loff);
+    }
+    free(wofs), free(wbuf), free(wall);
+    tr_cl_reduce_free(&red);
     free(next), free(prev), free(comp), free(pos);
     clReleaseMemObject(x);
     clReleaseMemObject(gap);
