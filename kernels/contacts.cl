@@ -68,9 +68,26 @@ inline int pair_index(__global const int *list, __global const int *loff,
     return off[a] + lo - first[a];
 }
 
+/* The adjacency code of entry k of edge e's list, for the vertex at the
+ * edge's start (side 0) or end (side 1). */
+inline int adj_code(__global const int *list, __global const int *loff, __global const int *count,
+                    __global const int *first, __global const int *off, int e, int k, int side)
+{
+    int o = list[loff[e] + k];
+    if (o > e) /* pair (e, o): the vertex is a or next a */
+        return 4 * (off[e] + k - first[e]) + side;
+    /* pair (o, e): the vertex is b or next b */
+    return 4 * pair_index(list, loff, count, first, off, o, e) + 2 + side;
+}
+
 /* adj row of vertex v: codes 4 p + slot for every pair p touching v (slot 0:
  * v = a, 1: v = next a, 2: v = b, 3: v = next b), ascending, as the
- * reference's CSR (pairs in list order, slots in order within a pair). */
+ * reference's CSR (pairs in list order, slots in order within a pair).
+ * Along one edge's sorted partner list the codes ascend already (pairs are
+ * ordered by their lower edge, then the higher), so the row is the merge of
+ * two ascending runs: the edge starting at v and the edge ending there. A
+ * row can hold thousands of entries on a tight curve (see the top), where
+ * sorting by insertion took 440 ms per search at N = 10^5 on PoCL. */
 __kernel void contacts_csr(__global const int *count, __global const int *list,
                            __global const int *loff, __global const int *first,
                            __global const int *off, __global const int *next,
@@ -81,24 +98,20 @@ __kernel void contacts_csr(__global const int *count, __global const int *list,
     if (v >= n)
         return;
     __global int *row = adj + aoff[v];
-    int m = 0;
-    for (int side = 0; side < 2; side++) {
-        int e = side == 0 ? v : prev[v]; /* edge whose first (side 0) or second vertex is v */
-        if (e < 0 || next[e] < 0)
-            continue;
-        __global const int *l = list + loff[e];
-        for (int k = 0; k < count[e]; k++) {
-            int o = l[k], code;
-            if (o > e) /* pair (e, o): v is a or next a */
-                code = 4 * (off[e] + k - first[e]) + side;
-            else /* pair (o, e): v is b or next b */
-                code = 4 * pair_index(list, loff, count, first, off, o, e) + 2 + side;
-            int j = m++;
-            while (j > 0 && row[j - 1] > code) {
-                row[j] = row[j - 1];
-                j--;
-            }
-            row[j] = code;
+    int e0 = next[v] >= 0 ? v : -1, e1 = prev[v]; /* the edges starting and ending at v */
+    int n0 = e0 >= 0 ? count[e0] : 0, n1 = e1 >= 0 ? count[e1] : 0;
+    int k0 = 0, k1 = 0, m = 0;
+    int c0 = n0 > 0 ? adj_code(list, loff, count, first, off, e0, 0, 0) : 0;
+    int c1 = n1 > 0 ? adj_code(list, loff, count, first, off, e1, 0, 1) : 0;
+    while (k0 < n0 || k1 < n1) {
+        if (k1 >= n1 || (k0 < n0 && c0 < c1)) {
+            row[m++] = c0;
+            if (++k0 < n0)
+                c0 = adj_code(list, loff, count, first, off, e0, k0, 0);
+        } else {
+            row[m++] = c1;
+            if (++k1 < n1)
+                c1 = adj_code(list, loff, count, first, off, e1, k1, 1);
         }
     }
     adjn[v] = m;
