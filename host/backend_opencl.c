@@ -393,8 +393,10 @@ static int cl_find_contacts(void *sp, const tr_contact_params *prm, tr_contact_s
                                     sizeof nadj, &nadj, 0, NULL, NULL));
     /* every pair is in both edges' lists and touches four vertex rows */
     if (np < 0 || np > (1 << 28) || nadj != 4 * np) {
-        rc = tr_fail(err, TR_EGEOMETRY, "%d contact candidates (%d adjacency entries): far too many", np,
-                     nadj);
+        rc = tr_fail(err, TR_EGEOMETRY,
+                     "%d contact candidates with %d adjacency entries (want 4 each, at most 2^28 pairs): "
+                     "far too many, or the partner lists are not symmetric",
+                     np, nadj);
         goto cleanup;
     }
     if (np > s->pcap) {
@@ -431,8 +433,14 @@ static int cl_find_contacts(void *sp, const tr_contact_params *prm, tr_contact_s
         out->min_dist = mind;
     }
 cleanup:
-    if (rc != TR_OK)
+    if (rc != TR_OK) {
+        /* an empty list, as after an upload: the offsets may already be the
+         * new search's while the rows are the old one's */
         s->np = 0;
+        int izero = 0; /* unchecked: a failure here would only hide the first error */
+        (void)clEnqueueFillBuffer(s->ctx.queue, s->adjn, &izero, sizeof izero, 0, (size_t)nv * sizeof(int),
+                                  0, NULL, NULL);
+    }
     return rc;
 }
 
