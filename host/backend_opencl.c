@@ -27,8 +27,8 @@
     X(precond_diag) X(precond_edges) X(copy_rows) X(precond_edges_factor) X(curv_limits)   \
     X(tridiag_matrix) X(tridiag_level) X(tridiag_finish) X(tridiag_group)                  \
     X(twist_factor) X(twist_factor_mid) X(twist_sweep_rows) X(twist_back_rows)             \
-    X(twist_ring_fact) X(twist_ring_fix) X(adj_active)           \
-    X(act_count) X(act_scan) X(act_write)
+    X(twist_ring_fact) X(twist_ring_fix) X(adj_active_count)     \
+    X(adj_active_write) X(act_count) X(act_scan) X(act_write)
 #define ENUM(k) K_##k,
 #define NAME(k) #k,
 enum { KERNELS(ENUM) K_COUNT };
@@ -68,10 +68,13 @@ typedef struct cl_state {
     cl_mem sc;         /* scalars */
     /* contacts */
     int np, pcap;
-    size_t adjcap;      /* entries adj and aadj hold */
+    size_t adjcap;      /* entries adj holds */
     cl_mem up, first, off, pa, pb, pd;
     cl_mem adjc, aoff, adj, adjn; /* per-vertex adjacency: entries, offsets (nv + 1), CSR */
-    cl_mem aadj, aadjn; /* adj restricted to active strut rows (adj_active, per CG solve) */
+    /* adj restricted to the active strut rows, per CG solve, compact (CSR by
+     * aaoff) with each entry's weight and strut direction (adj_active_*) */
+    cl_mem aadj, aadjn, aaoff, acoef, agrad;
+    size_t aacap; /* entries aadj, acoef and agrad hold */
     /* The CG's row list (kernels/correct.cl row_of), built per solve: the
      * active strut rows in list order (pcap), block counts for building it. */
     cl_mem act, actc;
@@ -119,7 +122,8 @@ static void cl_destroy(void *sp)
                    &s->q,     &s->b,    &s->cgq,  &s->cdeb, &s->chg,
                    &s->pdiag, &s->z,    &s->po,   &s->tw,   &s->closed, &s->tset0,
                    &s->tp,    &s->tq,   &s->tuu,  &s->ebar_part, &s->curv, &s->tmid,
-                   &s->tends, &s->aadj, &s->aadjn, &s->act, &s->actc};
+                   &s->tends, &s->aadj, &s->aadjn, &s->act, &s->actc,
+                   &s->aaoff, &s->acoef, &s->agrad};
     for (size_t i = 0; i < sizeof m / sizeof m[0]; i++)
         release(m[i]);
     for (int i = 0; i < K_COUNT; i++)
@@ -411,7 +415,6 @@ static int cl_find_contacts(void *sp, const tr_contact_params *prm, tr_contact_s
     if ((size_t)nadj > s->adjcap) {
         size_t ac = (size_t)nadj + (size_t)nadj / 2 + 64;
         TR_TRY(buffer(s, &s->adj, ac * sizeof(int), err));
-        TR_TRY(buffer(s, &s->aadj, ac * sizeof(int), err));
         s->adjcap = ac;
     }
     TR_TRY(run(s, K_pairs_write, (size_t)nv, err, A(s->tree.count), A(list), A(loff), A(s->first),
@@ -473,7 +476,7 @@ static int apply_JT(cl_state *s, const tr_correct_params *prm, cl_mem y, tr_erro
     int nv = s->nv;
     double w = prm->ebar_weight;
     TR_TRY(run(s, K_jt_vertex, (size_t)nv, err, A(y), A(s->rgrad), A(s->cgq), A(s->ract), A(s->topo.next),
-               A(s->topo.prev), A(s->aadj), A(s->aadjn), A(s->aoff), A(s->rs), A(s->rt), A(s->cst),
+               A(s->topo.prev), A(s->aadj), A(s->aadjn), A(s->aaoff), A(s->acoef), A(s->agrad), A(s->cst),
                A(nv), A(s->dx), END));
     int G = s->ebar_groups;
     TR_TRY(run_groups(s, K_jt_ebar_partial, (size_t)s->ncomp * (size_t)G, err, A(y), A(s->ract),
@@ -597,9 +600,23 @@ static int cg_iterate(cl_state *s, const tr_correct_params *prm, int *iters, tr_
     double reg = prm->reg, w = prm->ebar_weight, tol2 = prm->cg_rtol * prm->cg_rtol, it;
     TR_CL_CHECK(clEnqueueWriteBuffer(s->ctx.queue, s->sc, CL_FALSE, SC_TOL2 * sizeof(double),
                                      sizeof tol2, &tol2, 0, NULL, NULL));
-    /* the active set is fixed from here to the next cg_iterate: apply_JT's adjacency */
-    TR_TRY(run(s, K_adj_active, (size_t)nv, err, A(s->adj), A(s->adjn), A(s->aoff), A(s->ract), A(nv),
-               A(s->aadj), A(s->aadjn), END));
+    /* the active set is fixed from here to the next cg_iterate: the row
+     * list, and apply_JT's adjacency (4 entries per active strut row) */
+    TR_TRY(row_list(s, err));
+    size_t nae = 4 * (size_t)(s->cg_nl - 2 * nv);
+    if (nae > s->aacap) {
+        size_t c = nae + nae / 2 + 64;
+        TR_TRY(buffer(s, &s->aadj, c * sizeof(int), err));
+        TR_TRY(buffer(s, &s->acoef, c * sizeof(double), err));
+        TR_TRY(buffer(s, &s->agrad, 3 * c * sizeof(double), err));
+        s->aacap = c;
+    }
+    TR_TRY(run(s, K_adj_active_count, (size_t)nv, err, A(s->adj), A(s->adjn), A(s->aoff), A(s->ract), A(nv),
+               A(s->aadjn), END));
+    TR_TRY(tr_cl_reduce_scan(&s->red, &s->ctx, s->aadjn, nv, s->aaoff, err));
+    TR_TRY(run(s, K_adj_active_write, (size_t)nv, err, A(s->adj), A(s->adjn), A(s->aoff), A(s->ract),
+               A(s->rs), A(s->rt), A(s->rgrad), A(nv), A(s->aaoff), A(s->aadj), A(s->acoef), A(s->agrad),
+               END));
     TR_TRY(run(s, K_precond_setup, (size_t)nr, err, A(s->rgrad), A(s->cgq), A(s->cdeb), A(s->ract),
                A(s->topo.next), A(s->topo.prev), A(s->topo.comp), A(s->ne), A(s->pa), A(s->pb),
                A(s->rs), A(s->rt), A(s->cst), A(nv), A(np), A(w), A(reg), A(s->pdiag), A(s->po), END));
@@ -615,7 +632,6 @@ static int cg_iterate(cl_state *s, const tr_correct_params *prm, int *iters, tr_
     } else
         TR_TRY(run(s, K_precond_edges_factor, (size_t)s->ncomp, err, A(s->pdiag), A(s->po),
                    A(s->start), A(s->ne), A(s->closed), A(s->ncomp), A(nv), A(s->tw), END));
-    TR_TRY(row_list(s, err));
     int nl = s->cg_nl, nfix = 2 * nv, nact = nl - nfix, mapped = 1;
     TR_TRY(precond_apply(s, s->r, err));
     TR_TRY(run(s, K_copy_rows, (size_t)nl, err, A(s->z), A(s->p), A(s->act), A(nfix), A(mapped), A(nl),
@@ -1030,7 +1046,11 @@ static int open_on(const tr_device_choice *dev, const tr_curve *c, int profiling
     TR_TRY(buffer(s, &s->adjn, nv * sizeof(int), err));
     s->adjcap = 64;
     TR_TRY(buffer(s, &s->adj, s->adjcap * sizeof(int), err));
-    TR_TRY(buffer(s, &s->aadj, s->adjcap * sizeof(int), err));
+    s->aacap = 64;
+    TR_TRY(buffer(s, &s->aadj, s->aacap * sizeof(int), err));
+    TR_TRY(buffer(s, &s->acoef, s->aacap * d, err));
+    TR_TRY(buffer(s, &s->agrad, 3 * s->aacap * d, err));
+    TR_TRY(buffer(s, &s->aaoff, (nv + 1) * sizeof(int), err));
     TR_TRY(buffer(s, &s->aadjn, nv * sizeof(int), err));
     s->pcap = 64;
     TR_TRY(buffer(s, &s->pa, (size_t)s->pcap * sizeof(int), err));

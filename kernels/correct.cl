@@ -164,33 +164,59 @@ __kernel void cg_init(__global const real *rC, __global const int *ract, const i
 }
 
 /* The strut entries of vertex i's adjacency whose rows are active, in the
- * same order. Taken once per CG solve (the active set is fixed during it):
- * on a tight curve most listed pairs are inactive (3.6 million pairs, ~75
+ * same order, taken once per CG solve (the active set is fixed during it).
+ * On a tight curve most listed pairs are inactive (3.7 million pairs, ~150
  * entries per vertex at N = 10^5), and jt_vertex, run in every CG
- * iteration, would step over them all. */
-__kernel void adj_active(__global const int *adj, __global const int *adjn,
-                         __global const int *aoff, __global const int *ract, const int nv,
-                         __global int *aadj, __global int *aadjn)
+ * iteration, would step over them all. adj_active_count counts them per
+ * vertex; after a scan into aaoff, adj_active_write stores each one
+ * compactly with what jt_vertex needs of it: the row code, the weight c of
+ * the vertex in the strut and the strut's direction n. jt_vertex then reads
+ * them in sequence instead of gathering rs, rt and rgrad out of arrays
+ * indexed by all pairs (a cache miss each). */
+__kernel void adj_active_count(__global const int *adj, __global const int *adjn,
+                               __global const int *aoff, __global const int *ract, const int nv,
+                               __global int *aadjn)
 {
     int i = get_global_id(0);
     if (i >= nv)
         return;
     __global const int *row = adj + aoff[i];
-    __global int *out = aadj + aoff[i];
     int m = 0;
     for (int k = 0; k < adjn[i]; k++)
-        if (ract[2 * nv + (row[k] >> 2)])
-            out[m++] = row[k];
+        m += ract[2 * nv + (row[k] >> 2)] ? 1 : 0;
     aadjn[i] = m;
+}
+
+__kernel void adj_active_write(__global const int *adj, __global const int *adjn,
+                               __global const int *aoff, __global const int *ract,
+                               __global const real *rs, __global const real *rt,
+                               __global const real *rgrad, const int nv,
+                               __global const int *aaoff, __global int *aadj,
+                               __global real *acoef, __global real *agrad)
+{
+    int i = get_global_id(0);
+    if (i >= nv)
+        return;
+    __global const int *row = adj + aoff[i];
+    int o = aaoff[i];
+    for (int k = 0; k < adjn[i]; k++) {
+        int code = row[k], p = code >> 2, slot = code & 3, r = 2 * nv + p;
+        if (!ract[r])
+            continue;
+        aadj[o] = code;
+        acoef[o] = slot == 0 ? 1.0 - rs[p] : slot == 1 ? rs[p] : slot == 2 ? -(1.0 - rt[p]) : -rt[p];
+        vstore3(vload3(r, rgrad), o, agrad);
+        o++;
+    }
 }
 
 /* dx_i = P_i (sum over rows y_r dC_r/dx_i), in the order backend.h fixes. */
 __kernel void jt_vertex(__global const real *y, __global const real *rgrad,
                         __global const real *cgq, __global const int *ract, __global const int *next,
-                        __global const int *prev, __global const int *adj,
-                        __global const int *adjn, __global const int *aoff, __global const real *rs,
-                        __global const real *rt, __global const real *cst, const int nv,
-                        __global real *dx)
+                        __global const int *prev, __global const int *aadj,
+                        __global const int *aadjn, __global const int *aaoff,
+                        __global const real *acoef, __global const real *agrad,
+                        __global const real *cst, const int nv, __global real *dx)
 {
     int i = get_global_id(0);
     if (i >= nv)
@@ -209,13 +235,9 @@ __kernel void jt_vertex(__global const real *y, __global const real *rgrad,
     }
     if (nx >= 0 && ract[nv + nx])
         g = g + y[nv + nx] * vload3(nv + nx, rgrad);
-    __global const int *row = adj + aoff[i];
-    for (int m = 0; m < adjn[i]; m++) {
-        int p = row[m] >> 2, slot = row[m] & 3, r = 2 * nv + p;
-        if (!ract[r])
-            continue;
-        real c = slot == 0 ? 1.0 - rs[p] : slot == 1 ? rs[p] : slot == 2 ? -(1.0 - rt[p]) : -rt[p];
-        g = g + (c * y[r]) * vload3(r, rgrad);
+    for (int k = aaoff[i], end = aaoff[i] + aadjn[i]; k < end; k++) {
+        int r = 2 * nv + (aadj[k] >> 2);
+        g = g + (acoef[k] * y[r]) * vload3(k, agrad);
     }
     vstore3(tr_project_motion(cst, i, g), i, dx);
 }
