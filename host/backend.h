@@ -147,8 +147,8 @@
  *            rr = r.r; z = M^-1 r; rz' = r.z; p = z + (rz'/rz) p; rz = rz'
  *        (a port may run a fixed count with the stop test turning the
  *        remaining iterations into no-ops, and may run the vector
- *        operations over the active rows only: y, r and p are exact zeros
- *        on the others, and no sum reads their q or z.)
+ *        operations over the active rows only, stored compactly: y, r and
+ *        p are exact zeros on the others, and no sum reads their q or z.)
  *        Preconditioner M (set up once per solve from the evaluated rows):
  *          diagonal of every active row: D_r = sum over its vertices v of
  *          |P_v dC_r/dx_v|^2 + (dC_r/debar)^2 / (ebar_weight ne_k) + reg;

@@ -77,7 +77,7 @@ typedef struct cl_state {
     size_t aacap; /* entries aadj, acoef and agrad hold */
     /* The CG's row list (kernels/correct.cl row_of), built per solve: the
      * active strut rows in list order (pcap), block counts for building it. */
-    cl_mem act, actc;
+    cl_mem act, actc, actpos; /* actpos[p]: the position in the row list of active pair p */
     int cg_nl; /* rows in the list: 2 nv + active struts */
     /* rows */
     int rcap;
@@ -122,7 +122,7 @@ static void cl_destroy(void *sp)
                    &s->q,     &s->b,    &s->cgq,  &s->cdeb, &s->chg,
                    &s->pdiag, &s->z,    &s->po,   &s->tw,   &s->closed, &s->tset0,
                    &s->tp,    &s->tq,   &s->tuu,  &s->ebar_part, &s->curv, &s->tmid,
-                   &s->tends, &s->aadj, &s->aadjn, &s->act, &s->actc,
+                   &s->tends, &s->aadj, &s->aadjn, &s->act, &s->actc, &s->actpos,
                    &s->aaoff, &s->acoef, &s->agrad};
     for (size_t i = 0; i < sizeof m / sizeof m[0]; i++)
         release(m[i]);
@@ -410,6 +410,7 @@ static int cl_find_contacts(void *sp, const tr_contact_params *prm, tr_contact_s
         TR_TRY(buffer(s, &s->pd, (size_t)pc * sizeof(double), err));
         TR_TRY(buffer(s, &s->act, (size_t)pc * sizeof(int), err));
         TR_TRY(buffer(s, &s->actc, ((size_t)pc / TR_ACT_BLOCK + 2) * sizeof(int), err));
+        TR_TRY(buffer(s, &s->actpos, (size_t)pc * sizeof(int), err));
         s->pcap = pc;
     }
     if ((size_t)nadj > s->adjcap) {
@@ -581,7 +582,7 @@ static int row_list(cl_state *s, tr_error *err)
                    A(s->actc), END));
         TR_TRY(run_groups(s, K_act_scan, 0, err, A(nb), A(s->actc), END));
         TR_TRY(run(s, K_act_write, (size_t)nb, err, A(s->ract), A(nv), A(np), A(bsize), A(nb),
-                   A(s->actc), A(s->act), END));
+                   A(s->actc), A(s->act), A(s->actpos), END));
         TR_CL_CHECK(clEnqueueReadBuffer(s->ctx.queue, s->actc, CL_TRUE, (size_t)nb * sizeof(int),
                                         sizeof nact, &nact, 0, NULL, NULL));
     }
@@ -590,18 +591,13 @@ cleanup:
     return rc;
 }
 
-/* Preconditioned CG on A y = b from y = 0, r = b (already in place), as
- * backend.h (c): the device keeps the scalars and turns iterations after
- * convergence into no-ops; the host looks at the flag every fourth iteration. */
-static int cg_iterate(cl_state *s, const tr_correct_params *prm, int *iters, tr_error *err)
+/* Fixes the active set of a solve (the caller has evaluated the rows): the
+ * CG's row list, by whose positions the solve's vectors are stored, and
+ * apply_JT's compact adjacency (4 entries per active strut row). */
+static int solve_rows(cl_state *s, tr_error *err)
 {
     int rc = TR_OK;
-    int nv = s->nv, np = s->np, nr = 2 * nv + np;
-    double reg = prm->reg, w = prm->ebar_weight, tol2 = prm->cg_rtol * prm->cg_rtol, it;
-    TR_CL_CHECK(clEnqueueWriteBuffer(s->ctx.queue, s->sc, CL_FALSE, SC_TOL2 * sizeof(double),
-                                     sizeof tol2, &tol2, 0, NULL, NULL));
-    /* the active set is fixed from here to the next cg_iterate: the row
-     * list, and apply_JT's adjacency (4 entries per active strut row) */
+    int nv = s->nv;
     TR_TRY(row_list(s, err));
     size_t nae = 4 * (size_t)(s->cg_nl - 2 * nv);
     if (nae > s->aacap) {
@@ -611,15 +607,31 @@ static int cg_iterate(cl_state *s, const tr_correct_params *prm, int *iters, tr_
         TR_TRY(buffer(s, &s->agrad, 3 * c * sizeof(double), err));
         s->aacap = c;
     }
-    TR_TRY(run(s, K_adj_active_count, (size_t)nv, err, A(s->adj), A(s->adjn), A(s->aoff), A(s->ract), A(nv),
-               A(s->aadjn), END));
+    TR_TRY(run(s, K_adj_active_count, (size_t)nv, err, A(s->adj), A(s->adjn), A(s->aoff), A(s->ract),
+               A(nv), A(s->aadjn), END));
     TR_TRY(tr_cl_reduce_scan(&s->red, &s->ctx, s->aadjn, nv, s->aaoff, err));
     TR_TRY(run(s, K_adj_active_write, (size_t)nv, err, A(s->adj), A(s->adjn), A(s->aoff), A(s->ract),
-               A(s->rs), A(s->rt), A(s->rgrad), A(nv), A(s->aaoff), A(s->aadj), A(s->acoef), A(s->agrad),
-               END));
-    TR_TRY(run(s, K_precond_setup, (size_t)nr, err, A(s->rgrad), A(s->cgq), A(s->cdeb), A(s->ract),
+               A(s->rs), A(s->rt), A(s->rgrad), A(s->actpos), A(nv), A(s->aaoff), A(s->aadj), A(s->acoef),
+               A(s->agrad), END));
+cleanup:
+    return rc;
+}
+
+/* Preconditioned CG on A y = b from y = 0, r = b (already in place, by row
+ * list position; solve_rows has run), as
+ * backend.h (c): the device keeps the scalars and turns iterations after
+ * convergence into no-ops; the host looks at the flag every fourth iteration. */
+static int cg_iterate(cl_state *s, const tr_correct_params *prm, int *iters, tr_error *err)
+{
+    int rc = TR_OK;
+    int nv = s->nv, np = s->np, nl = s->cg_nl, mapped = 1;
+    double reg = prm->reg, w = prm->ebar_weight, tol2 = prm->cg_rtol * prm->cg_rtol, it;
+    TR_CL_CHECK(clEnqueueWriteBuffer(s->ctx.queue, s->sc, CL_FALSE, SC_TOL2 * sizeof(double),
+                                     sizeof tol2, &tol2, 0, NULL, NULL));
+    TR_TRY(run(s, K_precond_setup, (size_t)nl, err, A(s->rgrad), A(s->cgq), A(s->cdeb), A(s->ract),
                A(s->topo.next), A(s->topo.prev), A(s->topo.comp), A(s->ne), A(s->pa), A(s->pb),
-               A(s->rs), A(s->rt), A(s->cst), A(nv), A(np), A(w), A(reg), A(s->pdiag), A(s->po), END));
+               A(s->rs), A(s->rt), A(s->cst), A(nv), A(s->act), A(nl), A(w), A(reg), A(s->pdiag),
+               A(s->po), END));
     if (s->tri_pcr) {
         TR_TRY(tridiag_setup(s, err));
     } else if (s->tri_twist) {
@@ -632,12 +644,10 @@ static int cg_iterate(cl_state *s, const tr_correct_params *prm, int *iters, tr_
     } else
         TR_TRY(run(s, K_precond_edges_factor, (size_t)s->ncomp, err, A(s->pdiag), A(s->po),
                    A(s->start), A(s->ne), A(s->closed), A(s->ncomp), A(nv), A(s->tw), END));
-    int nl = s->cg_nl, nfix = 2 * nv, nact = nl - nfix, mapped = 1;
     TR_TRY(precond_apply(s, s->r, err));
-    TR_TRY(run(s, K_copy_rows, (size_t)nl, err, A(s->z), A(s->p), A(s->act), A(nfix), A(mapped), A(nl),
-               END));
-    TR_TRY(tr_cl_reduce_dot_rows(&s->red, &s->ctx, s->r, s->r, nfix, s->act, nact, s->sc, SC_RR, err));
-    TR_TRY(tr_cl_reduce_dot_rows(&s->red, &s->ctx, s->r, s->z, nfix, s->act, nact, s->sc, SC_RZ, err));
+    TR_TRY(run(s, K_copy_rows, (size_t)nl, err, A(s->z), A(s->p), A(nl), END));
+    TR_TRY(tr_cl_reduce_dot(&s->red, &s->ctx, s->r, s->r, nl, s->sc, SC_RR, err));
+    TR_TRY(tr_cl_reduce_dot(&s->red, &s->ctx, s->r, s->z, nl, s->sc, SC_RZ, err));
     TR_TRY(run_groups(s, K_cg_start, 0, err, A(s->sc), END));
     for (int k = 0; k < prm->max_cg; k++) {
         TR_TRY(run_groups(s, K_cg_top, 0, err, A(s->sc), END));
@@ -652,19 +662,15 @@ static int cg_iterate(cl_state *s, const tr_correct_params *prm, int *iters, tr_
                    A(s->cgq), A(s->ract), A(s->topo.next), A(s->topo.prev), A(s->topo.comp),
                    A(s->pa), A(s->pb), A(s->rs), A(s->rt), A(s->p), A(nv), A(np), A(reg), A(s->act),
                    A(mapped), A(nl), A(s->q), END));
-        TR_TRY(tr_cl_reduce_dot_rows(&s->red, &s->ctx, s->p, s->q, nfix, s->act, nact, s->sc, SC_PQ,
-                                     err));
+        TR_TRY(tr_cl_reduce_dot(&s->red, &s->ctx, s->p, s->q, nl, s->sc, SC_PQ, err));
         TR_TRY(run_groups(s, K_cg_alpha, 0, err, A(s->sc), END));
-        TR_TRY(run(s, K_cg_yr, (size_t)nl, err, A(s->y), A(s->r), A(s->p), A(s->q), A(s->sc), A(s->act),
-                   A(nfix), A(mapped), A(nl), END));
-        TR_TRY(tr_cl_reduce_dot_rows(&s->red, &s->ctx, s->r, s->r, nfix, s->act, nact, s->sc, SC_RR,
-                                     err));
+        TR_TRY(run(s, K_cg_yr, (size_t)nl, err, A(s->y), A(s->r), A(s->p), A(s->q), A(s->sc), A(nl),
+                   END));
+        TR_TRY(tr_cl_reduce_dot(&s->red, &s->ctx, s->r, s->r, nl, s->sc, SC_RR, err));
         TR_TRY(precond_apply(s, s->r, err));
-        TR_TRY(tr_cl_reduce_dot_rows(&s->red, &s->ctx, s->r, s->z, nfix, s->act, nact, s->sc, SC_RR1,
-                                     err));
+        TR_TRY(tr_cl_reduce_dot(&s->red, &s->ctx, s->r, s->z, nl, s->sc, SC_RR1, err));
         TR_TRY(run_groups(s, K_cg_beta, 0, err, A(s->sc), END));
-        TR_TRY(run(s, K_cg_p, (size_t)nl, err, A(s->p), A(s->z), A(s->sc), A(s->act), A(nfix),
-                   A(mapped), A(nl), END));
+        TR_TRY(run(s, K_cg_p, (size_t)nl, err, A(s->p), A(s->z), A(s->sc), A(nl), END));
     }
     TR_TRY(read_scalars(s, SC_ITERS, 1, &it, err));
     *iters = (int)it;
@@ -677,7 +683,7 @@ static int cl_correct(void *sp, const tr_correct_params *prm, tr_correct_stats *
     cl_state *s = sp;
     int rc = TR_OK;
     TR_TRY(ensure_rows(s, err));
-    int nv = s->nv, np = s->np, nr = 2 * nv + np;
+    int nv = s->nv;
     double ms = prm->max_step;
     tr_correct_stats st = {0};
     int it;
@@ -690,9 +696,13 @@ static int cl_correct(void *sp, const tr_correct_params *prm, tr_correct_stats *
             st.viol_before = viol;
         if (viol <= prm->viol_tol)
             break;
-        TR_TRY(run(s, K_cg_init, (size_t)nr, err, A(s->rC), A(s->ract), A(nv), A(nr), A(s->b), A(s->y),
-                   A(s->r), A(s->p), END));
-        TR_TRY(tr_cl_reduce_count(&s->red, &s->ctx, s->ract, nr, s->sc, SC_NACT, err));
+        TR_TRY(solve_rows(s, err));
+        int nl = s->cg_nl;
+        TR_TRY(run(s, K_cg_init, (size_t)nl, err, A(s->rC), A(s->ract), A(nv), A(s->act), A(nl), A(s->b),
+                   A(s->y), A(s->r), A(s->p), END));
+        /* active rows: those of the chain counted here, the struts are the list's */
+        int nchain = 2 * nv;
+        TR_TRY(tr_cl_reduce_count(&s->red, &s->ctx, s->ract, nchain, s->sc, SC_NACT, err));
         int iters = 0;
         TR_TRY(cg_iterate(s, prm, &iters, err));
         st.cg_iters += iters;
@@ -705,7 +715,7 @@ static int cl_correct(void *sp, const tr_correct_params *prm, tr_correct_stats *
                    A(s->ncomp), END));
         double nact;
         TR_TRY(read_scalars(s, SC_NACT, 1, &nact, err));
-        st.active_rows = (size_t)nact;
+        st.active_rows = (size_t)nact + (size_t)(nl - 2 * nv);
     }
     st.newton_iters = it;
     TR_TRY(eval_rows(s, prm, err));
@@ -725,9 +735,9 @@ cleanup:
 static int project_tangent(cl_state *s, const tr_correct_params *q, cl_mem G, tr_error *err)
 {
     int rc = TR_OK;
-    int nv = s->nv, np = s->np, nr = 2 * nv + np, n3 = 3 * nv;
+    int nv = s->nv, np = s->np, n3 = 3 * nv;
     double reg0 = 0.0, zero = 0.0;
-    int izero = 0, unmapped = 0;
+    int izero = 0, mapped = 1;
     TR_TRY(eval_rows(s, q, err));
     TR_TRY(run(s, K_project_field, (size_t)nv, err, A(G), A(s->cst), A(nv), END));
     for (int pass = 0; pass < q->max_newton; pass++) {
@@ -735,22 +745,24 @@ static int project_tangent(cl_state *s, const tr_correct_params *q, cl_mem G, tr
                                         NULL, NULL));
         TR_CL_CHECK(clEnqueueFillBuffer(s->ctx.queue, s->debar, &zero, sizeof zero, 0,
                                         (size_t)s->ncomp * sizeof(double), 0, NULL, NULL));
+        TR_TRY(solve_rows(s, err));
+        int nl = s->cg_nl;
         TR_CL_CHECK(clEnqueueFillBuffer(s->ctx.queue, s->y, &zero, sizeof zero, 0,
-                                        (size_t)nr * sizeof(double), 0, NULL, NULL));
+                                        (size_t)nl * sizeof(double), 0, NULL, NULL));
         /* b = J (G, debar = 0), no regularisation term (y = 0) */
-        TR_TRY(run(s, K_j_rows, (size_t)nr, err, A(s->dx), A(s->debar), A(s->cdeb), A(s->rgrad),
+        TR_TRY(run(s, K_j_rows, (size_t)nl, err, A(s->dx), A(s->debar), A(s->cdeb), A(s->rgrad),
                    A(s->cgq), A(s->ract), A(s->topo.next), A(s->topo.prev), A(s->topo.comp),
                    A(s->pa), A(s->pb), A(s->rs), A(s->rt), A(s->y), A(nv), A(np), A(reg0),
-                   A(s->act), A(unmapped), A(nr), A(s->b), END));
-        TR_TRY(run(s, K_cg_reset, (size_t)nr, err, A(s->b), A(s->y), A(s->r), A(s->p), A(nr), END));
+                   A(s->act), A(mapped), A(nl), A(s->b), END));
+        TR_TRY(run(s, K_cg_reset, (size_t)nl, err, A(s->b), A(s->y), A(s->r), A(s->p), A(nl), END));
         int iters = 0;
         TR_TRY(cg_iterate(s, q, &iters, err));
-        if (pass + 1 < q->max_newton && nr > nv) {
+        if (pass + 1 < q->max_newton && nl > nv) {
             int changed = 0;
             TR_CL_CHECK(clEnqueueWriteBuffer(s->ctx.queue, s->chg, CL_FALSE, 0, sizeof izero, &izero, 0,
                                              NULL, NULL));
-            TR_TRY(run(s, K_release_pulling, (size_t)(nr - nv), err, A(s->ract), A(s->y), A(nv), A(nr),
-                       A(s->chg), END));
+            TR_TRY(run(s, K_release_pulling, (size_t)(nl - nv), err, A(s->ract), A(s->y), A(nv), A(s->act),
+                       A(nl), A(s->chg), END));
             TR_CL_CHECK(clEnqueueReadBuffer(s->ctx.queue, s->chg, CL_TRUE, 0, sizeof changed, &changed,
                                             0, NULL, NULL));
             if (changed)
@@ -1058,6 +1070,7 @@ static int open_on(const tr_device_choice *dev, const tr_curve *c, int profiling
     TR_TRY(buffer(s, &s->pd, (size_t)s->pcap * d, err));
     TR_TRY(buffer(s, &s->act, (size_t)s->pcap * sizeof(int), err));
     TR_TRY(buffer(s, &s->actc, ((size_t)s->pcap / TR_ACT_BLOCK + 2) * sizeof(int), err));
+    TR_TRY(buffer(s, &s->actpos, (size_t)s->pcap * sizeof(int), err));
     TR_TRY(ensure_rows(s, err));
 
     cl_command_queue q = s->ctx.queue;

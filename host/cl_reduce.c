@@ -36,7 +36,6 @@ int tr_cl_reduce_init(tr_cl_reduce *r, const tr_cl_ctx *ctx, cl_program prog, si
     TR_CL_CHECK((r->edge_lengths = clCreateKernel(prog, "edge_lengths", &e), e));
     TR_CL_CHECK((r->sum_partial = clCreateKernel(prog, "sum_partial", &e), e));
     TR_CL_CHECK((r->dot_partial = clCreateKernel(prog, "dot_partial", &e), e));
-    TR_CL_CHECK((r->dot_rows_partial = clCreateKernel(prog, "dot_rows_partial", &e), e));
     TR_CL_CHECK((r->isum_partial = clCreateKernel(prog, "isum_partial", &e), e));
     TR_CL_CHECK((r->scan_local = clCreateKernel(prog, "scan_local", &e), e));
     TR_CL_CHECK((r->scan_sums = clCreateKernel(prog, "scan_sums", &e), e));
@@ -58,7 +57,7 @@ void tr_cl_reduce_free(tr_cl_reduce *r)
 {
     cl_kernel *k[] = {&r->length_partial, &r->minmax_partial, &r->sum_final, &r->minmax_final,
                       &r->edge_lengths, &r->sum_partial, &r->dot_partial, &r->isum_partial,
-                      &r->dot_rows_partial, &r->scan_local, &r->scan_sums, &r->scan_add};
+                      &r->scan_local, &r->scan_sums, &r->scan_add};
     for (size_t i = 0; i < sizeof k / sizeof k[0]; i++)
         if (*k[i])
             clReleaseKernel(*k[i]);
@@ -206,20 +205,6 @@ int tr_cl_reduce_dot(tr_cl_reduce *r, const tr_cl_ctx *ctx, cl_mem a, cl_mem b, 
     TR_CL_CHECK(clSetKernelArg(r->dot_partial, 0, sizeof a, &a));
     TR_CL_CHECK(clSetKernelArg(r->dot_partial, 1, sizeof b, &b));
     rc = finish_sum(r, ctx, r->dot_partial, 2, n, n, out, slot, err);
-cleanup:
-    return rc;
-}
-
-int tr_cl_reduce_dot_rows(tr_cl_reduce *r, const tr_cl_ctx *ctx, cl_mem a, cl_mem b, int nfix,
-                          cl_mem act, int nact, cl_mem out, int slot, tr_error *err)
-{
-    int rc = TR_OK;
-    cl_kernel k = r->dot_rows_partial;
-    TR_CL_CHECK(clSetKernelArg(k, 0, sizeof a, &a));
-    TR_CL_CHECK(clSetKernelArg(k, 1, sizeof b, &b));
-    TR_CL_CHECK(clSetKernelArg(k, 2, sizeof nfix, &nfix));
-    TR_CL_CHECK(clSetKernelArg(k, 3, sizeof act, &act));
-    rc = finish_sum(r, ctx, k, 4, nact, nfix + nact, out, slot, err);
 cleanup:
     return rc;
 }

@@ -7,7 +7,7 @@
 
 typedef struct tr_cl_reduce {
     cl_kernel length_partial, minmax_partial, sum_final, minmax_final, edge_lengths;
-    cl_kernel sum_partial, dot_partial, isum_partial, dot_rows_partial;
+    cl_kernel sum_partial, dot_partial, isum_partial;
     cl_kernel scan_local, scan_sums, scan_add;
     cl_mem pa, pb;   /* per-work-group partials */
     size_t groups;   /* capacity of pa, pb */
@@ -37,10 +37,6 @@ int tr_cl_reduce_sum(tr_cl_reduce *r, const tr_cl_ctx *ctx, cl_mem v, int n, cl_
 int tr_cl_reduce_dot(tr_cl_reduce *r, const tr_cl_ctx *ctx, cl_mem a, cl_mem b, int n, cl_mem out,
                      int slot, tr_error *err);
 
-/* out[slot] = a . b over the CG's row list: rows 0 .. nfix-1, then rows
- * nfix + act[k] for k < nact (kernels/reduce.cl dot_rows_partial). */
-int tr_cl_reduce_dot_rows(tr_cl_reduce *r, const tr_cl_ctx *ctx, cl_mem a, cl_mem b, int nfix,
-                          cl_mem act, int nact, cl_mem out, int slot, tr_error *err);
 /* Queues out[slot] = sum of the ints v[0..n) (a count of flags), as a double. */
 int tr_cl_reduce_count(tr_cl_reduce *r, const tr_cl_ctx *ctx, cl_mem v, int n, cl_mem out,
                        int slot, tr_error *err);

@@ -148,19 +148,35 @@ __kernel void rows_strut(__global const real *x, __global const int *next,
     rv[r] = -C > 0.0 ? -C : 0.0;
 }
 
-/* b, and the CG start y = 0, r = p = b. */
-__kernel void cg_init(__global const real *rC, __global const int *ract, const int nv,
-                      const int nr, __global real *b, __global real *y, __global real *r,
-                      __global real *p)
+/* The CG's row list (backend.h: its sums skip inactive rows, which hold
+ * exact zeros): positions l < nfix (= 2 nv, the edge and curvature rows)
+ * are those rows, then the active strut rows in list order (act, built
+ * once per solve by act_count / act_scan / act_write). The CG's vectors
+ * (y, r, p, q, z, b) are stored by position l, compactly: on a tight curve
+ * most listed struts are inactive (3.7 million rows, ~10^5 active, at
+ * N = 10^5), and every CG iteration's vector operations would otherwise
+ * touch a cache line per active strut scattered over the whole list. The
+ * rows' own data (rgrad, ract, rC, pdiag; rs, rt, pa, pb by pair) stay
+ * indexed by row r = row_of(l). mapped = 0: the identity. */
+inline int row_of(int l, int nfix, int mapped, __global const int *act)
 {
-    int k = get_global_id(0);
-    if (k >= nr)
+    return (!mapped || l < nfix) ? l : nfix + act[l - nfix];
+}
+
+/* b, and the CG start y = 0, r = p = b, over the row list. */
+__kernel void cg_init(__global const real *rC, __global const int *ract, const int nv,
+                      __global const int *act, const int nl, __global real *b, __global real *y,
+                      __global real *r, __global real *p)
+{
+    int l = get_global_id(0);
+    if (l >= nl)
         return;
+    int k = row_of(l, 2 * nv, 1, act);
     real v = !ract[k] ? 0.0 : (k < nv ? -rC[k] : -fmin(rC[k], 0.0));
-    b[k] = v;
-    y[k] = 0.0;
-    r[k] = v;
-    p[k] = v;
+    b[l] = v;
+    y[l] = 0.0;
+    r[l] = v;
+    p[l] = v;
 }
 
 /* The strut entries of vertex i's adjacency whose rows are active, in the
@@ -169,8 +185,9 @@ __kernel void cg_init(__global const real *rC, __global const int *ract, const i
  * entries per vertex at N = 10^5), and jt_vertex, run in every CG
  * iteration, would step over them all. adj_active_count counts them per
  * vertex; after a scan into aaoff, adj_active_write stores each one
- * compactly with what jt_vertex needs of it: the row code, the weight c of
- * the vertex in the strut and the strut's direction n. jt_vertex then reads
+ * compactly with what jt_vertex needs of it: the strut's position in the
+ * row list (actpos, from act_write), the weight c of the vertex in the
+ * strut and the strut's direction n. jt_vertex then reads
  * them in sequence instead of gathering rs, rt and rgrad out of arrays
  * indexed by all pairs (a cache miss each). */
 __kernel void adj_active_count(__global const int *adj, __global const int *adjn,
@@ -190,8 +207,8 @@ __kernel void adj_active_count(__global const int *adj, __global const int *adjn
 __kernel void adj_active_write(__global const int *adj, __global const int *adjn,
                                __global const int *aoff, __global const int *ract,
                                __global const real *rs, __global const real *rt,
-                               __global const real *rgrad, const int nv,
-                               __global const int *aaoff, __global int *aadj,
+                               __global const real *rgrad, __global const int *actpos,
+                               const int nv, __global const int *aaoff, __global int *aadj,
                                __global real *acoef, __global real *agrad)
 {
     int i = get_global_id(0);
@@ -203,14 +220,15 @@ __kernel void adj_active_write(__global const int *adj, __global const int *adjn
         int code = row[k], p = code >> 2, slot = code & 3, r = 2 * nv + p;
         if (!ract[r])
             continue;
-        aadj[o] = code;
+        aadj[o] = 2 * nv + actpos[p];
         acoef[o] = slot == 0 ? 1.0 - rs[p] : slot == 1 ? rs[p] : slot == 2 ? -(1.0 - rt[p]) : -rt[p];
         vstore3(vload3(r, rgrad), o, agrad);
         o++;
     }
 }
 
-/* dx_i = P_i (sum over rows y_r dC_r/dx_i), in the order backend.h fixes. */
+/* dx_i = P_i (sum over rows y_r dC_r/dx_i), in the order backend.h fixes;
+ * y by row list position (the chain rows' positions are their rows). */
 __kernel void jt_vertex(__global const real *y, __global const real *rgrad,
                         __global const real *cgq, __global const int *ract, __global const int *next,
                         __global const int *prev, __global const int *aadj,
@@ -236,8 +254,7 @@ __kernel void jt_vertex(__global const real *y, __global const real *rgrad,
     if (nx >= 0 && ract[nv + nx])
         g = g + y[nv + nx] * vload3(nv + nx, rgrad);
     for (int k = aaoff[i], end = aaoff[i] + aadjn[i]; k < end; k++) {
-        int r = 2 * nv + (aadj[k] >> 2);
-        g = g + (acoef[k] * y[r]) * vload3(k, agrad);
+        g = g + (acoef[k] * y[aadj[k]]) * vload3(k, agrad);
     }
     vstore3(tr_project_motion(cst, i, g), i, dx);
 }
@@ -286,18 +303,6 @@ void jt_ebar(__global const real *part, __global const int *ne, const int groups
         debar[k] = ne[k] ? s[0] / (ebar_weight * (real)ne[k]) : 0.0;
 }
 
-/* The CG's row list (backend.h: its sums skip inactive rows, which hold
- * exact zeros): positions l < nfix (= 2 nv, the edge and curvature rows)
- * are those rows, then the active strut rows in list order (act, built
- * once per solve by act_count / act_scan / act_write). On a tight curve
- * most listed struts are inactive (3.85 million rows, ~10^5 active, at
- * N = 10^5), and every CG iteration's vector operations would sweep them.
- * mapped = 0: the identity (the full row vector). */
-inline int row_of(int l, int nfix, int mapped, __global const int *act)
-{
-    return (!mapped || l < nfix) ? l : nfix + act[l - nfix];
-}
-
 /* Active strut rows per block of bsize list entries. */
 __kernel void act_count(__global const int *ract, const int nv, const int np, const int bsize,
                         const int nblocks, __global int *counts)
@@ -323,21 +328,25 @@ __kernel void act_scan(const int nblocks, __global int *counts)
     counts[nblocks] = sum;
 }
 
-/* act[l] = the l-th active strut row's pair index, in list order. */
+/* act[l] = the l-th active strut row's pair index, in list order, and
+ * actpos[p] = l for those pairs (other entries are not written). */
 __kernel void act_write(__global const int *ract, const int nv, const int np, const int bsize,
-                        const int nblocks, __global const int *counts, __global int *act)
+                        const int nblocks, __global const int *counts, __global int *act,
+                        __global int *actpos)
 {
     int b = get_global_id(0);
     if (b >= nblocks)
         return;
     int o = counts[b], hi = min(np, (b + 1) * bsize);
     for (int p = b * bsize; p < hi; p++)
-        if (ract[2 * nv + p])
+        if (ract[2 * nv + p]) {
+            actpos[p] = o;
             act[o++] = p;
+        }
 }
 
 /* out_r = dC_r/dx . dx + dC_r/debar . debar + reg y_r on active rows, else 0;
- * one item per position of the row list (row_of). */
+ * one item per position l of the row list (row_of), y and out by l. */
 __kernel void j_rows(__global const real *dx, __global const real *debar,
                      __global const real *cdeb, __global const real *rgrad,
                      __global const real *cgq,
@@ -353,12 +362,12 @@ __kernel void j_rows(__global const real *dx, __global const real *debar,
         return;
     int r = row_of(l, 2 * nv, mapped, act);
     if (!ract[r]) {
-        out[r] = 0.0;
+        out[l] = 0.0;
         return;
     }
     if (r < nv) {
         real3 d = vload3(next[r], dx) - vload3(r, dx);
-        out[r] = tr_dot3(vload3(r, rgrad), d) - debar[comp[r]] + reg * y[r];
+        out[l] = tr_dot3(vload3(r, rgrad), d) - debar[comp[r]] + reg * y[l];
     } else if (r < 2 * nv) {
         int i = r - nv;
         real3 ga = vload3(r, rgrad), gb = vload3(i, cgq);
@@ -368,13 +377,13 @@ __kernel void j_rows(__global const real *dx, __global const real *debar,
         v += t.x;
         v += t.y;
         v += t.z;
-        out[r] = v + cdeb[i] * debar[comp[i]] + reg * y[r];
+        out[l] = v + cdeb[i] * debar[comp[i]] + reg * y[l];
     } else {
         int p = r - 2 * nv, a = pa[p], b = pb[p];
         real ss = rs[p], tt = rt[p];
         real3 d = (1.0 - ss) * vload3(a, dx) + ss * vload3(next[a], dx) -
                   (1.0 - tt) * vload3(b, dx) - tt * vload3(next[b], dx);
-        out[r] = tr_dot3(vload3(r, rgrad), d) + reg * y[r];
+        out[l] = tr_dot3(vload3(r, rgrad), d) + reg * y[l];
     }
 }
 
@@ -398,16 +407,14 @@ __kernel void cg_alpha(__global real *sc)
 }
 
 __kernel void cg_yr(__global real *y, __global real *r, __global const real *p,
-                    __global const real *q, __global const real *sc, __global const int *act,
-                    const int nfix, const int mapped, const int nl)
+                    __global const real *q, __global const real *sc, const int nl)
 {
     int l = get_global_id(0);
     if (l >= nl || sc[SC_DONE] != 0.0)
         return;
-    int k = row_of(l, nfix, mapped, act);
     real alpha = sc[SC_ALPHA];
-    y[k] += alpha * p[k];
-    r[k] -= alpha * q[k];
+    y[l] += alpha * p[l];
+    r[l] -= alpha * q[l];
 }
 
 /* rr (slot RR) was refreshed by the reduction; RR1 holds r.z of the new z. */
@@ -421,13 +428,12 @@ __kernel void cg_beta(__global real *sc)
 }
 
 __kernel void cg_p(__global real *p, __global const real *z, __global const real *sc,
-                   __global const int *act, const int nfix, const int mapped, const int nl)
+                   const int nl)
 {
     int l = get_global_id(0);
     if (l >= nl || sc[SC_DONE] != 0.0)
         return;
-    int k = row_of(l, nfix, mapped, act);
-    p[k] = z[k] + sc[SC_BETA] * p[k];
+    p[l] = z[l] + sc[SC_BETA] * p[l];
 }
 
 /* |dx_i| for the damping cap. */
@@ -480,12 +486,13 @@ __kernel void cg_reset(__global const real *b, __global real *y, __global real *
 /* Tangent projection: release the inequality rows whose multiplier pulls
  * (y_r > 0: the force would separate them); *changed = 1 if any. */
 __kernel void release_pulling(__global int *ract, __global const real *y, const int nv,
-                              const int nr, __global int *changed)
+                              __global const int *act, const int nl, __global int *changed)
 {
-    int r = get_global_id(0) + nv;
-    if (r >= nr)
+    int l = get_global_id(0) + nv;
+    if (l >= nl)
         return;
-    if (ract[r] && y[r] > 0.0) {
+    int r = row_of(l, 2 * nv, 1, act);
+    if (ract[r] && y[l] > 0.0) {
         ract[r] = 0;
         changed[0] = 1;
     }
@@ -531,13 +538,14 @@ __kernel void precond_setup(__global const real *rgrad, __global const real *cgq
                             __global const int *comp, __global const int *ne,
                             __global const int *pa, __global const int *pb,
                             __global const real *rs, __global const real *rt,
-                            __global const real *cst, const int nv, const int np,
-                            const real ebar_weight, const real reg, __global real *pd,
-                            __global real *po)
+                            __global const real *cst, const int nv, __global const int *act,
+                            const int nl, const real ebar_weight, const real reg,
+                            __global real *pd, __global real *po)
 {
-    int r = get_global_id(0);
-    if (r >= 2 * nv + np)
+    int l = get_global_id(0);
+    if (l >= nl)
         return;
+    int r = row_of(l, 2 * nv, 1, act);
     pd[r] = 1.0;
     if (!ract[r])
         return;
@@ -576,7 +584,7 @@ __kernel void precond_diag(__global const real *r, __global const real *pd,
     if (l >= nl)
         return;
     int q = row_of(l, 2 * nv, mapped, act);
-    z[q] = ract[q] ? r[q] / pd[q] : 0.0;
+    z[l] = ract[q] ? r[l] / pd[q] : 0.0;
 }
 
 /* The edge block of one component as Thomas factors (the reference's
@@ -663,12 +671,9 @@ __kernel void precond_edges(__global const real *r, __global const real *pd,
 }
 
 /* p = z */
-__kernel void copy_rows(__global const real *z, __global real *p, __global const int *act,
-                        const int nfix, const int mapped, const int nl)
+__kernel void copy_rows(__global const real *z, __global real *p, const int nl)
 {
     int l = get_global_id(0);
-    if (l < nl) {
-        int k = row_of(l, nfix, mapped, act);
-        p[k] = z[k];
-    }
+    if (l < nl)
+        p[l] = z[l];
 }

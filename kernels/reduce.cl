@@ -166,27 +166,6 @@ void dot_partial(__global const real *a, __global const real *b, const int n,
         partial[get_group_id(0)] = s[0];
 }
 
-/* Stage 1 of a . b over the CG's row list (kernels/correct.cl row_of): the
- * first nfix rows as dot_partial folds them, then rows nfix + act[0 ..
- * nact) one at a time (gathered), in one Neumaier sum per item. */
-__kernel __attribute__((reqd_work_group_size(TR_LOCAL_SIZE, 1, 1)))
-void dot_rows_partial(__global const real *a, __global const real *b, const int nfix,
-                      __global const int *act, const int nact, __global real *partial)
-{
-    __local real s[TR_LOCAL_SIZE];
-    int l = get_local_id(0), gs = get_global_size(0);
-    real r = dot_slice4(a, b, nfix), r2 = 0.0, c2 = 0.0;
-    for (int k = get_global_id(0); k < nact; k += gs) {
-        int i = nfix + act[k];
-        KAHAN_ADD(r2, c2, a[i] * b[i]);
-    }
-    s[l] = r + (r2 + c2);
-    barrier(CLK_LOCAL_MEM_FENCE);
-    TREE(tr_add, s, l)
-    if (l == 0)
-        partial[get_group_id(0)] = s[0];
-}
-
 /* Stage 1 of a count: the sum of int flags (exact in double below 2^53). */
 __kernel __attribute__((reqd_work_group_size(TR_LOCAL_SIZE, 1, 1)))
 void isum_partial(__global const int *v, const int n, __global real *partial)
