@@ -79,6 +79,7 @@ typedef struct cl_state {
      * active strut rows in list order (pcap), block counts for building it. */
     cl_mem act, actc, actpos; /* actpos[p]: the position in the row list of active pair p */
     int cg_nl; /* rows in the list: 2 nv + active struts */
+    int vcap;  /* entries of the CG's vectors y, r, p, q, b, z (by list position) */
     /* rows */
     int rcap;
     cl_mem rC, rgrad, ract, rs, rt, rv, y, r, p, q, b;
@@ -353,15 +354,9 @@ static int ensure_rows(cl_state *s, tr_error *err)
     TR_TRY(buffer(s, &s->rgrad, 3 * n * d, err));
     TR_TRY(buffer(s, &s->ract, n * sizeof(int), err));
     TR_TRY(buffer(s, &s->rv, n * d, err));
-    TR_TRY(buffer(s, &s->y, n * d, err));
-    TR_TRY(buffer(s, &s->r, n * d, err));
-    TR_TRY(buffer(s, &s->p, n * d, err));
-    TR_TRY(buffer(s, &s->q, n * d, err));
-    TR_TRY(buffer(s, &s->b, n * d, err));
     TR_TRY(buffer(s, &s->rs, n * d, err));
     TR_TRY(buffer(s, &s->rt, n * d, err));
     TR_TRY(buffer(s, &s->pdiag, n * d, err));
-    TR_TRY(buffer(s, &s->z, n * d, err));
     TR_TRY(tr_cl_reduce_reserve(&s->red, &s->ctx, n, err));
     s->rcap = cap;
 cleanup:
@@ -599,6 +594,13 @@ static int solve_rows(cl_state *s, tr_error *err)
     int rc = TR_OK;
     int nv = s->nv;
     TR_TRY(row_list(s, err));
+    if (s->cg_nl > s->vcap) { /* the CG's vectors, by row list position */
+        size_t n = (size_t)s->cg_nl + (size_t)s->cg_nl / 2 + 64, d = sizeof(double);
+        cl_mem *v[] = {&s->y, &s->r, &s->p, &s->q, &s->b, &s->z};
+        for (size_t i = 0; i < sizeof v / sizeof v[0]; i++)
+            TR_TRY(buffer(s, v[i], n * d, err));
+        s->vcap = (int)n;
+    }
     size_t nae = 4 * (size_t)(s->cg_nl - 2 * nv);
     if (nae > s->aacap) {
         size_t c = nae + nae / 2 + 64;
