@@ -39,7 +39,7 @@ void tr_cl_tree_free(tr_cl_tree *t) {
     cl_mem *m[] = {&t->tedge,     &t->vedge, &t->comp_estart, &t->node_a,  &t->node_b,
                    &t->node_comp, &t->left,  &t->right,       &t->leaf_id, &t->level_id,
                    &t->box,       &t->slab,  &t->count,       &t->list,    &t->overflow,
-                   &t->loff,      &t->room};
+                   &t->loff,      &t->room,  &t->tsum};
     for (size_t i = 0; i < sizeof m / sizeof m[0]; i++)
         release(m[i]);
     free(t->level_off);
@@ -159,6 +159,7 @@ int tr_cl_tree_init(tr_cl_tree *t, const tr_cl_ctx *ctx, cl_program prog, const 
         (t->count = clCreateBuffer(ctx->context, CL_MEM_READ_WRITE, c->nv * sizeof(int), NULL, &e), e));
     TR_CL_CHECK(
         (t->room = clCreateBuffer(ctx->context, CL_MEM_READ_WRITE, c->nv * sizeof(int), NULL, &e), e));
+    TR_CL_CHECK((t->tsum = clCreateBuffer(ctx->context, CL_MEM_READ_WRITE, sizeof(double), NULL, &e), e));
     int izero = 0; /* a curve with no edge is never walked, and has no partners */
     TR_CL_CHECK(clEnqueueFillBuffer(ctx->queue, t->count, &izero, sizeof izero, 0, c->nv * sizeof(int), 0,
                                     NULL, NULL));
@@ -239,22 +240,26 @@ cleanup:
 static int size_rows(tr_cl_tree *t, const tr_cl_ctx *ctx, tr_cl_reduce *red, const tr_cl_topology *topo,
                      tr_error *err) {
     int rc = TR_OK;
-    int most = (1 << 30) / t->nv; /* nv rooms of `most` sum to at most 2^30 */
+    /* The rooms are summed in ints, so their total is bounded first, from
+     * the counts summed exactly in doubles: 2^29 entries (a 2 GB list) is
+     * far beyond any curve the step could use, and leaves the int scan
+     * clear of wrapping. */
+    double counted = 0.0;
+    TR_TRY(tr_cl_reduce_count(red, ctx, t->count, t->nv, t->tsum, 0, err));
+    TR_CL_CHECK(clEnqueueReadBuffer(ctx->queue, t->tsum, CL_TRUE, 0, sizeof counted, &counted, 0, NULL, NULL));
+    if (!(1.25 * counted + 4.0 * t->nv <= (double)(1 << 29))) {
+        rc = tr_fail(err, TR_EGEOMETRY, "%.0f contact candidates: the curve is far too dense", counted);
+        goto cleanup;
+    }
     ARG(t->list_room, 0, t->count);
     ARG(t->list_room, 1, topo->next);
     ARG(t->list_room, 2, t->nv);
-    ARG(t->list_room, 3, most);
-    ARG(t->list_room, 4, t->room);
+    ARG(t->list_room, 3, t->room);
     TR_TRY(launch(ctx, t->list_room, (size_t)t->nv, err));
     TR_TRY(tr_cl_reduce_scan(red, ctx, t->room, t->nv, t->loff, err));
     int total = 0;
     TR_CL_CHECK(clEnqueueReadBuffer(ctx->queue, t->loff, CL_TRUE, (size_t)t->nv * sizeof(int), sizeof total,
                                     &total, 0, NULL, NULL));
-    /* far beyond any curve the step could use (a 2^29-entry list is 2 GB) */
-    if (total < 0 || total > (1 << 29)) {
-        rc = tr_fail(err, TR_EGEOMETRY, "over 2^29 contact candidates: the curve is far too dense");
-        goto cleanup;
-    }
     TR_TRY(reserve_list(t, ctx, (size_t)total, err));
 cleanup:
     return rc;
@@ -335,11 +340,9 @@ int tr_cl_tree_search(tr_cl_tree *t, const tr_cl_ctx *ctx, tr_cl_reduce *red,
         TR_TRY(size_rows(t, ctx, red, topo, err));
     }
     /* the rows were sized to the first pass's counts; a second overflow
-     * means a row was capped (list_room) or the kernel disagrees with
-     * itself, never a silent cut */
+     * means the kernel disagrees with itself, never a silent cut */
     if (flag)
-        rc = tr_fail(err, TR_EGEOMETRY,
-                     "neighbour lists still overflow after growing them: the curve is far too dense");
+        rc = tr_fail(err, TR_EOPENCL, "neighbour lists still overflow after growing them");
 cleanup:
     return rc;
 }

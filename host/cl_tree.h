@@ -22,6 +22,7 @@ typedef struct tr_cl_tree {
     cl_mem leaf_id, level_id;                      /* leaves; inner nodes by level */
     cl_mem box, slab;                              /* 6 and 8 reals per node */
     cl_mem count, loff, room, overflow;            /* nv, nv + 1, nv ints; one int */
+    cl_mem tsum;                                   /* one double: the counts' sum */
     cl_mem list;                                   /* list_cap ints */
     size_t list_cap;
     int counted; /* count holds the last walk's counts, which size the next walk's rows */

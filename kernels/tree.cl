@@ -263,15 +263,12 @@ __kernel void tree_pairs(__global const real *x, __global const int *next, const
 
 /* Room for edge i's partners in the next walk: the last walk's count and a
  * quarter more (partners come and go a few at a time between steps), 0 where
- * no edge starts, and at most `most`: the host picks it so that the rooms of
- * all n edges sum to under 2^31, and their int scan cannot wrap however
- * dense the curve. Scanned into the list offsets. */
+ * no edge starts. Scanned into the list offsets (the host has bounded the
+ * counts' sum, so the scan does not wrap). */
 __kernel void list_room(__global const int *count, __global const int *next, const int n,
-                        const int most, __global int *room)
+                        __global int *room)
 {
     int i = get_global_id(0);
-    if (i < n) {
-        long r = (long)count[i] + count[i] / 4 + 4;
-        room[i] = next[i] < 0 ? 0 : (int)min(r, (long)most);
-    }
+    if (i < n)
+        room[i] = next[i] < 0 ? 0 : count[i] + count[i] / 4 + 4;
 }
