@@ -17,18 +17,18 @@
 #include "vec3.h"
 
 /* Kernels this file launches itself (the reduction and tree modules hold their own). */
-#define KERNELS(X)                                                                         \
-    X(tension_force) X(tension_smooth) X(tension_move) X(pairs_upper) X(pairs_write) X(contacts_csr) X(pairs_dist) X(rows_chain)    \
-    X(rows_strut) X(cg_init) X(jt_vertex) X(jt_ebar_partial) X(jt_ebar) X(j_rows)          \
-    X(cg_start) X(cg_top) X(cg_alpha) X(cg_yr) X(cg_beta) X(cg_p) X(dx_norm)               \
-    X(step_scale) X(apply_dx) X(apply_debar) X(measure_edges) X(measure_minrad)            \
-    X(measure_disp) X(comp_sum) X(cg_reset) X(release_pulling) X(project_field)            \
-    X(tangent_finish) X(ebar_velocity) X(tension_smooth2) X(precond_setup)                 \
-    X(precond_diag) X(precond_edges) X(copy_rows) X(precond_edges_factor) X(curv_limits)   \
-    X(tridiag_matrix) X(tridiag_level) X(tridiag_finish) X(tridiag_group)                  \
-    X(twist_factor) X(twist_factor_mid) X(twist_sweep_rows) X(twist_back_rows)             \
-    X(twist_ring_fact) X(twist_ring_fix) X(adj_active_count)     \
-    X(adj_active_write) X(act_count) X(act_scan) X(act_write)
+#define KERNELS(X)                                                                             \
+    X(tension_force) X(tension_smooth) X(tension_move) X(pairs_upper) X(pairs_write)           \
+    X(contacts_csr) X(pairs_dist) X(rows_chain) X(rows_strut) X(cg_init) X(jt_vertex)          \
+    X(jt_ebar_partial) X(jt_ebar) X(j_rows) X(cg_start) X(cg_top) X(cg_alpha) X(cg_yr)         \
+    X(cg_beta) X(cg_p) X(dx_norm) X(step_scale) X(apply_dx) X(apply_debar) X(measure_edges)    \
+    X(measure_minrad) X(measure_disp) X(comp_sum) X(cg_reset) X(release_pulling)               \
+    X(project_field) X(tangent_finish) X(ebar_velocity) X(tension_smooth2) X(precond_setup)    \
+    X(precond_diag) X(precond_edges) X(copy_rows) X(precond_edges_factor) X(curv_limits)       \
+    X(tridiag_matrix) X(tridiag_level) X(tridiag_finish) X(tridiag_group) X(twist_factor)      \
+    X(twist_factor_mid) X(twist_sweep_rows) X(twist_back_rows) X(twist_ring_fact)              \
+    X(twist_ring_fix) X(adj_active_count) X(adj_active_write) X(act_count) X(act_scan)         \
+    X(act_write)
 #define ENUM(k) K_##k,
 #define NAME(k) #k,
 enum { KERNELS(ENUM) K_COUNT };

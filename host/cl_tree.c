@@ -246,7 +246,8 @@ static int size_rows(tr_cl_tree *t, const tr_cl_ctx *ctx, tr_cl_reduce *red, con
      * clear of wrapping. */
     double counted = 0.0;
     TR_TRY(tr_cl_reduce_count(red, ctx, t->count, t->nv, t->tsum, 0, err));
-    TR_CL_CHECK(clEnqueueReadBuffer(ctx->queue, t->tsum, CL_TRUE, 0, sizeof counted, &counted, 0, NULL, NULL));
+    TR_CL_CHECK(
+        clEnqueueReadBuffer(ctx->queue, t->tsum, CL_TRUE, 0, sizeof counted, &counted, 0, NULL, NULL));
     if (!(1.25 * counted + 4.0 * t->nv <= (double)(1 << 29))) {
         rc = tr_fail(err, TR_EGEOMETRY, "%.0f contact candidates: the curve is far too dense", counted);
         goto cleanup;

@@ -36,8 +36,9 @@ __kernel void pairs_upper(__global const int *count, __global const int *list,
 }
 
 __kernel void pairs_write(__global const int *count, __global const int *list,
-                          __global const int *loff, __global const int *first, __global const int *off, const int n,
-                          __global int *pa, __global int *pb)
+                          __global const int *loff, __global const int *first,
+                          __global const int *off, const int n, __global int *pa,
+                          __global int *pb)
 {
     int a = get_global_id(0);
     if (a >= n)

@@ -203,8 +203,8 @@ static void run_case(const tr_cl_ctx *ctx, cl_program prog, int kind, size_t n, 
             for (int k = 0; same && k < m; k++)
                 same = list[(size_t)loff[i] + (size_t)k] == want[k];
             if (!same && bad++ < 3)
-                fprintf(stderr, "kind %d n %d item %d: %d partners on device, %d by brute force\n", kind, nv, i,
-                        cnt[i], m);
+                fprintf(stderr, "kind %d n %d item %d: %d partners on device, %d by brute force\n", kind,
+                        nv, i, cnt[i], m);
         }
         CHECK(bad == 0);
         if (tilt > 0.0)
