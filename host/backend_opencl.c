@@ -530,7 +530,7 @@ cleanup:
 static int precond_apply(cl_state *s, cl_mem r, tr_error *err)
 {
     int rc = TR_OK;
-    int nv = s->nv, nl = s->cg_nl, mapped = 1;
+    int nv = s->nv, nl = s->cg_nl;
     size_t d = sizeof(double);
     if (s->tri_twist) {
         size_t items = 2 * (size_t)s->ncomp;
@@ -546,11 +546,11 @@ static int precond_apply(cl_state *s, cl_mem r, tr_error *err)
                        A(s->tw), A(s->tends), A(s->z), END));
         }
         TR_TRY(run(s, K_precond_diag, (size_t)(nl - nv), err, A(r), A(s->pdiag), A(s->ract),
-                   A(nv), A(s->act), A(mapped), A(nl), A(s->z), END));
+                   A(nv), A(s->act), A(nl), A(s->z), END));
         return TR_OK;
     }
     TR_TRY(run(s, K_precond_diag, (size_t)(nl - nv), err, A(r), A(s->pdiag), A(s->ract), A(nv),
-               A(s->act), A(mapped), A(nl), A(s->z), END));
+               A(s->act), A(nl), A(s->z), END));
     if (s->tri_pcr) {
         TR_CL_CHECK(clEnqueueCopyBuffer(s->ctx.queue, r, s->tset0, 0, 3 * (size_t)nv * d,
                                         (size_t)nv * d, 0, NULL, NULL));
@@ -626,7 +626,7 @@ cleanup:
 static int cg_iterate(cl_state *s, const tr_correct_params *prm, int *iters, tr_error *err)
 {
     int rc = TR_OK;
-    int nv = s->nv, np = s->np, nl = s->cg_nl, mapped = 1;
+    int nv = s->nv, np = s->np, nl = s->cg_nl;
     double reg = prm->reg, w = prm->ebar_weight, tol2 = prm->cg_rtol * prm->cg_rtol, it;
     TR_CL_CHECK(clEnqueueWriteBuffer(s->ctx.queue, s->sc, CL_FALSE, SC_TOL2 * sizeof(double),
                                      sizeof tol2, &tol2, 0, NULL, NULL));
@@ -663,7 +663,7 @@ static int cg_iterate(cl_state *s, const tr_correct_params *prm, int *iters, tr_
         TR_TRY(run(s, K_j_rows, (size_t)nl, err, A(s->dx), A(s->debar), A(s->cdeb), A(s->rgrad),
                    A(s->cgq), A(s->ract), A(s->topo.next), A(s->topo.prev), A(s->topo.comp),
                    A(s->pa), A(s->pb), A(s->rs), A(s->rt), A(s->p), A(nv), A(np), A(reg), A(s->act),
-                   A(mapped), A(nl), A(s->q), END));
+                   A(nl), A(s->q), END));
         TR_TRY(tr_cl_reduce_dot(&s->red, &s->ctx, s->p, s->q, nl, s->sc, SC_PQ, err));
         TR_TRY(run_groups(s, K_cg_alpha, 0, err, A(s->sc), END));
         TR_TRY(run(s, K_cg_yr, (size_t)nl, err, A(s->y), A(s->r), A(s->p), A(s->q), A(s->sc), A(nl),
@@ -739,7 +739,7 @@ static int project_tangent(cl_state *s, const tr_correct_params *q, cl_mem G, tr
     int rc = TR_OK;
     int nv = s->nv, np = s->np, n3 = 3 * nv;
     double reg0 = 0.0, zero = 0.0;
-    int izero = 0, mapped = 1;
+    int izero = 0;
     TR_TRY(eval_rows(s, q, err));
     TR_TRY(run(s, K_project_field, (size_t)nv, err, A(G), A(s->cst), A(nv), END));
     for (int pass = 0; pass < q->max_newton; pass++) {
@@ -755,7 +755,7 @@ static int project_tangent(cl_state *s, const tr_correct_params *q, cl_mem G, tr
         TR_TRY(run(s, K_j_rows, (size_t)nl, err, A(s->dx), A(s->debar), A(s->cdeb), A(s->rgrad),
                    A(s->cgq), A(s->ract), A(s->topo.next), A(s->topo.prev), A(s->topo.comp),
                    A(s->pa), A(s->pb), A(s->rs), A(s->rt), A(s->y), A(nv), A(np), A(reg0),
-                   A(s->act), A(mapped), A(nl), A(s->b), END));
+                   A(s->act), A(nl), A(s->b), END));
         TR_TRY(run(s, K_cg_reset, (size_t)nl, err, A(s->b), A(s->y), A(s->r), A(s->p), A(nl), END));
         int iters = 0;
         TR_TRY(cg_iterate(s, q, &iters, err));

@@ -157,10 +157,10 @@ __kernel void rows_strut(__global const real *x, __global const int *next,
  * N = 10^5), and every CG iteration's vector operations would otherwise
  * touch a cache line per active strut scattered over the whole list. The
  * rows' own data (rgrad, ract, rC, pdiag; rs, rt, pa, pb by pair) stay
- * indexed by row r = row_of(l). mapped = 0: the identity. */
-inline int row_of(int l, int nfix, int mapped, __global const int *act)
+ * indexed by row r = row_of(l). */
+inline int row_of(int l, int nfix, __global const int *act)
 {
-    return (!mapped || l < nfix) ? l : nfix + act[l - nfix];
+    return l < nfix ? l : nfix + act[l - nfix];
 }
 
 /* b, and the CG start y = 0, r = p = b, over the row list. */
@@ -171,7 +171,7 @@ __kernel void cg_init(__global const real *rC, __global const int *ract, const i
     int l = get_global_id(0);
     if (l >= nl)
         return;
-    int k = row_of(l, 2 * nv, 1, act);
+    int k = row_of(l, 2 * nv, act);
     real v = !ract[k] ? 0.0 : (k < nv ? -rC[k] : -fmin(rC[k], 0.0));
     b[l] = v;
     y[l] = 0.0;
@@ -354,13 +354,13 @@ __kernel void j_rows(__global const real *dx, __global const real *debar,
                      __global const int *prev, __global const int *comp,
                      __global const int *pa, __global const int *pb, __global const real *rs,
                      __global const real *rt, __global const real *y, const int nv, const int np,
-                     const real reg, __global const int *act, const int mapped, const int nl,
+                     const real reg, __global const int *act, const int nl,
                      __global real *out)
 {
     int l = get_global_id(0);
     if (l >= nl)
         return;
-    int r = row_of(l, 2 * nv, mapped, act);
+    int r = row_of(l, 2 * nv, act);
     if (!ract[r]) {
         out[l] = 0.0;
         return;
@@ -491,7 +491,7 @@ __kernel void release_pulling(__global int *ract, __global const real *y, const 
     int l = get_global_id(0) + nv;
     if (l >= nl)
         return;
-    int r = row_of(l, 2 * nv, 1, act);
+    int r = row_of(l, 2 * nv, act);
     if (ract[r] && y[l] > 0.0) {
         ract[r] = 0;
         changed[0] = 1;
@@ -545,7 +545,7 @@ __kernel void precond_setup(__global const real *rgrad, __global const real *cgq
     int l = get_global_id(0);
     if (l >= nl)
         return;
-    int r = row_of(l, 2 * nv, 1, act);
+    int r = row_of(l, 2 * nv, act);
     pd[r] = 1.0;
     if (!ract[r])
         return;
@@ -578,12 +578,12 @@ __kernel void precond_setup(__global const real *rgrad, __global const real *cgq
 /* z = r / pd on curvature and strut rows (0 when inactive). */
 __kernel void precond_diag(__global const real *r, __global const real *pd,
                            __global const int *ract, const int nv, __global const int *act,
-                           const int mapped, const int nl, __global real *z)
+                           const int nl, __global real *z)
 {
     int l = get_global_id(0) + nv;
     if (l >= nl)
         return;
-    int q = row_of(l, 2 * nv, mapped, act);
+    int q = row_of(l, 2 * nv, act);
     z[l] = ract[q] ? r[l] / pd[q] : 0.0;
 }
 
