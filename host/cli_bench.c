@@ -468,9 +468,14 @@ int tr_cmd_bench(int argc, char **argv)
             }
             printf("\"steps\": %d, \"step_s_min\": %.6g, \"step_s_median\": %.6g, "
                    "\"steps_per_s\": %.6g, \"vertex_steps_per_s\": %.6g, \"cg_iters_per_step\": %.1f, "
-                   "\"contacts_s\": %.6g, \"pairs\": %zu, \"speedup_vs_reference\": %.4g",
+                   "\"contacts_s\": %.6g, \"pairs\": %zu, \"speedup_vs_reference\": ",
                    r->steps, r->step_min, r->step_med, 1.0 / r->step_med, (double)r->n / r->step_med,
-                   r->cg_per_step, r->contacts_s, r->pairs, r->ratio);
+                   r->cg_per_step, r->contacts_s, r->pairs);
+            /* JSON has no NaN: without the reference in the run there is no ratio */
+            if (isfinite(r->ratio))
+                printf("%.4g", r->ratio);
+            else
+                printf("null");
             if (r->nk) {
                 printf(", \"kernels_per_step\": {");
                 for (int k = 0; k < r->nk; k++)
