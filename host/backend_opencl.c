@@ -19,7 +19,7 @@
 /* Kernels this file launches itself (the reduction and tree modules hold their own). */
 #define KERNELS(X)                                                                             \
     X(tension_force) X(tension_smooth) X(tension_move) X(pairs_upper) X(pairs_write)           \
-    X(contacts_csr) X(pairs_dist) X(rows_chain) X(rows_strut) X(cg_init) X(jt_vertex)          \
+    X(pairs_dist) X(rows_chain) X(rows_strut) X(cg_init) X(jt_vertex)          \
     X(jt_ebar_partial) X(jt_ebar) X(j_rows) X(cg_start) X(cg_top) X(cg_alpha) X(cg_yr)         \
     X(cg_beta) X(cg_p) X(dx_norm) X(step_scale) X(apply_dx) X(apply_debar) X(measure_edges)    \
     X(measure_minrad) X(measure_disp) X(comp_sum) X(cg_reset) X(release_pulling)               \
@@ -28,7 +28,7 @@
     X(tridiag_matrix) X(tridiag_level) X(tridiag_finish) X(tridiag_group) X(twist_factor)      \
     X(twist_factor_mid) X(twist_sweep_rows) X(twist_back_rows) X(twist_ring_fact)              \
     X(twist_ring_fix) X(adj_active_count) X(adj_active_write) X(act_count) X(act_scan)         \
-    X(act_write)
+    X(act_write) X(act_gather) X(adj_active_sort)
 #define ENUM(k) K_##k,
 #define NAME(k) #k,
 enum { KERNELS(ENUM) K_COUNT };
@@ -39,7 +39,7 @@ enum {
     SC_RR = 0, SC_PQ = 2, SC_RR1 = 4, SC_DONE = 6, SC_ITERS = 7, SC_TOL2 = 8, SC_VIOL = 9,
     SC_MAXDX = 11, SC_NACT = 14, SC_RZ = 15,
     SC_F2 = 16, SC_PRED = 17, SC_MOVE = 18, /* minmax: 18 min, 19 max */
-    SC_SMOOTH2 = 28, SC_FREE2 = 29,
+    SC_SMOOTH2 = 28, SC_FREE2 = 29, SC_LISTED = 30,
     SC_DEV = 20,                            /* 20, 21 */
     SC_STRUT = 22,                          /* 22, 23 */
     SC_MINRAD = 24,                         /* 24, 25 */
@@ -51,8 +51,6 @@ typedef struct cl_state {
     tr_cl_ctx ctx;
     cl_program prog;
     cl_kernel k[K_COUNT];
-    double prof_s[K_COUNT];
-    long prof_n[K_COUNT];
     tr_cl_reduce red;
     tr_cl_tree tree;
     int tree_ready;
@@ -68,16 +66,17 @@ typedef struct cl_state {
     cl_mem sc;         /* scalars */
     /* contacts */
     int np, pcap;
-    size_t adjcap;      /* entries adj holds */
     cl_mem up, first, off, pa, pb, pd;
-    cl_mem adjc, aoff, adj, adjn; /* per-vertex adjacency: entries, offsets (nv + 1), CSR */
-    /* adj restricted to the active strut rows, per CG solve, compact (CSR by
-     * aaoff) with each entry's weight and strut direction (adj_active_*) */
+    /* each vertex's active strut entries, per CG solve, compact (CSR by
+     * aaoff, aadjn long) with each entry's weight and strut direction
+     * (kernels/correct.cl adj_active_*) */
     cl_mem aadj, aadjn, aaoff, acoef, agrad;
     size_t aacap; /* entries aadj, acoef and agrad hold */
     /* The CG's row list (kernels/correct.cl row_of), built per solve: the
      * active strut rows in list order (pcap), block counts for building it. */
-    cl_mem act, actc, actpos; /* actpos[p]: the position in the row list of active pair p */
+    cl_mem act, actc;
+    cl_mem sab, sw; /* act_gather: the active struts' vertices, s, t and direction */
+    size_t scap;    /* active struts sab and sw hold */
     int cg_nl; /* rows in the list: 2 nv + active struts */
     int vcap;  /* entries of the CG's vectors y, r, p, q, b, z (by list position) */
     /* rows */
@@ -117,14 +116,14 @@ static void cl_destroy(void *sp)
         return;
     cl_mem *m[] = {&s->start, &s->ne,   &s->cst,  &s->gap,  &s->x,    &s->xs,   &s->ebar,
                    &s->ebar_s, &s->debar, &s->F,  &s->G,    &s->H,    &s->dx,   &s->t1,
-                   &s->t2,    &s->t3,   &s->sc,   &s->up,   &s->first, &s->off, &s->adjc, &s->aoff,
-                   &s->pa,    &s->pb,   &s->adj,  &s->adjn, &s->pd,   &s->rC,   &s->rgrad,
+                   &s->t2,    &s->t3,   &s->sc,   &s->up,   &s->first, &s->off,
+                   &s->pa,    &s->pb,   &s->pd,   &s->rC,   &s->rgrad,
                    &s->ract,  &s->rs,   &s->rt,   &s->rv,   &s->y,    &s->r,    &s->p,
                    &s->q,     &s->b,    &s->cgq,  &s->cdeb, &s->chg,
                    &s->pdiag, &s->z,    &s->po,   &s->tw,   &s->closed, &s->tset0,
                    &s->tp,    &s->tq,   &s->tuu,  &s->ebar_part, &s->curv, &s->tmid,
-                   &s->tends, &s->aadj, &s->aadjn, &s->act, &s->actc, &s->actpos,
-                   &s->aaoff, &s->acoef, &s->agrad};
+                   &s->tends, &s->aadj, &s->aadjn, &s->act, &s->actc,
+                   &s->aaoff, &s->acoef, &s->agrad, &s->sab, &s->sw};
     for (size_t i = 0; i < sizeof m / sizeof m[0]; i++)
         release(m[i]);
     for (int i = 0; i < K_COUNT; i++)
@@ -176,35 +175,23 @@ static int set_args(cl_state *s, int id, va_list ap, tr_error *err)
  * on, waits for the launch and adds its device time. */
 static int enqueue(cl_state *s, int id, size_t g, size_t l, tr_error *err)
 {
-    int rc = TR_OK;
-    cl_event ev = NULL;
-    TR_CL_CHECK(clEnqueueNDRangeKernel(s->ctx.queue, s->k[id], 1, NULL, &g, &l, 0, NULL,
-                                       s->ctx.profiling ? &ev : NULL));
-    if (ev) {
-        cl_ulong t0 = 0, t1 = 0;
-        TR_CL_CHECK(clWaitForEvents(1, &ev));
-        TR_CL_CHECK(clGetEventProfilingInfo(ev, CL_PROFILING_COMMAND_START, sizeof t0, &t0, NULL));
-        TR_CL_CHECK(clGetEventProfilingInfo(ev, CL_PROFILING_COMMAND_END, sizeof t1, &t1, NULL));
-        s->prof_s[id] += 1e-9 * (double)(t1 - t0);
-        s->prof_n[id]++;
-    }
-cleanup:
-    if (ev)
-        clReleaseEvent(ev);
+    int rc = tr_cl_launch(&s->ctx, s->k[id], g, l, err);
     if (rc != TR_OK)
         tr_fail_wrap(err, rc, "%s", kernel_names[id]);
     return rc;
 }
 
-/* Sets the arguments and launches kernel id over n items (global padded to
- * the fixed local size). */
+/* Sets the arguments and launches kernel id over its n indices (a TR_ITEMS
+ * kernel: tr_cl_launch_items). */
 static int run(cl_state *s, int id, size_t n, tr_error *err, ...)
 {
     va_list ap;
     va_start(ap, err);
     int rc = set_args(s, id, ap, err);
     va_end(ap);
-    return rc != TR_OK ? rc : enqueue(s, id, tr_cl_global(n), TR_CL_LOCAL, err);
+    if (rc == TR_OK && (rc = tr_cl_launch_items(&s->ctx, s->k[id], n, err)) != TR_OK)
+        tr_fail_wrap(err, rc, "%s", kernel_names[id]);
+    return rc;
 }
 
 /* Launches with explicit work-groups (one per component, or a single one). */
@@ -288,13 +275,7 @@ static int cl_upload(void *sp, const double *x, const double *ebar, tr_error *er
                                      NULL, NULL));
     TR_CL_CHECK(clEnqueueWriteBuffer(s->ctx.queue, s->ebar, CL_TRUE, 0, nc * sizeof(double), ebar, 0,
                                      NULL, NULL));
-    /* the contact list is emptied: no vertex has adjacent pairs */
-    int izero = 0;
-    TR_CL_CHECK(clEnqueueFillBuffer(s->ctx.queue, s->adjn, &izero, sizeof izero, 0,
-                                    (size_t)s->nv * sizeof(int), 0, NULL, NULL));
-    TR_CL_CHECK(clEnqueueFillBuffer(s->ctx.queue, s->aoff, &izero, sizeof izero, 0,
-                                    ((size_t)s->nv + 1) * sizeof(int), 0, NULL, NULL));
-    s->np = 0;
+    s->np = 0; /* the contact list is emptied */
     s->saved = 0;
 cleanup:
     free(eb);
@@ -381,21 +362,21 @@ static int cl_find_contacts(void *sp, const tr_contact_params *prm, tr_contact_s
                              s->gap, gmin, err));
     cl_mem list = s->tree.list, loff = s->tree.loff;
     TR_TRY(run(s, K_pairs_upper, (size_t)nv, err, A(s->tree.count), A(list), A(loff), A(s->topo.next),
-               A(s->topo.prev), A(nv), A(s->up), A(s->first), A(s->adjc), END));
-    /* pair offsets off[0..nv] and adjacency offsets aoff[0..nv] */
+               A(nv), A(s->up), A(s->first), END));
+    /* pair offsets off[0..nv], and the lists' total (2 np when symmetric) */
     TR_TRY(tr_cl_reduce_scan(&s->red, &s->ctx, s->up, nv, s->off, err));
-    TR_TRY(tr_cl_reduce_scan(&s->red, &s->ctx, s->adjc, nv, s->aoff, err));
-    int np = 0, nadj = 0;
+    TR_TRY(tr_cl_reduce_count(&s->red, &s->ctx, s->tree.count, nv, s->sc, SC_LISTED, err));
+    int np = 0;
+    double listed = 0.0;
     TR_CL_CHECK(clEnqueueReadBuffer(s->ctx.queue, s->off, CL_FALSE, (size_t)nv * sizeof(int), sizeof np,
                                     &np, 0, NULL, NULL));
-    TR_CL_CHECK(clEnqueueReadBuffer(s->ctx.queue, s->aoff, CL_TRUE, (size_t)nv * sizeof(int),
-                                    sizeof nadj, &nadj, 0, NULL, NULL));
-    /* every pair is in both edges' lists and touches four vertex rows */
-    if (np < 0 || np > (1 << 28) || nadj != 4 * np) {
+    TR_TRY(read_scalars(s, SC_LISTED, 1, &listed, err));
+    /* every pair is in both edges' lists */
+    if (np < 0 || np > (1 << 28) || listed != 2.0 * np) {
         rc = tr_fail(err, TR_EGEOMETRY,
-                     "%d contact candidates with %d adjacency entries (want 4 each, at most 2^28 pairs): "
-                     "far too many, or the partner lists are not symmetric",
-                     np, nadj);
+                     "%d contact candidates in partner lists of %.0f entries (want 2 each, at most 2^28 "
+                     "pairs): far too many, or the lists are not symmetric",
+                     np, listed);
         goto cleanup;
     }
     if (np > s->pcap) {
@@ -405,19 +386,10 @@ static int cl_find_contacts(void *sp, const tr_contact_params *prm, tr_contact_s
         TR_TRY(buffer(s, &s->pd, (size_t)pc * sizeof(double), err));
         TR_TRY(buffer(s, &s->act, (size_t)pc * sizeof(int), err));
         TR_TRY(buffer(s, &s->actc, ((size_t)pc / TR_ACT_BLOCK + 2) * sizeof(int), err));
-        TR_TRY(buffer(s, &s->actpos, (size_t)pc * sizeof(int), err));
         s->pcap = pc;
-    }
-    if ((size_t)nadj > s->adjcap) {
-        size_t ac = (size_t)nadj + (size_t)nadj / 2 + 64;
-        TR_TRY(buffer(s, &s->adj, ac * sizeof(int), err));
-        s->adjcap = ac;
     }
     TR_TRY(run(s, K_pairs_write, (size_t)nv, err, A(s->tree.count), A(list), A(loff), A(s->first),
                A(s->off), A(nv), A(s->pa), A(s->pb), END));
-    TR_TRY(run(s, K_contacts_csr, (size_t)nv, err, A(s->tree.count), A(list), A(loff), A(s->first),
-               A(s->off), A(s->topo.next), A(s->topo.prev), A(nv), A(s->aoff), A(s->adj), A(s->adjn),
-               END));
     s->np = np;
     TR_TRY(ensure_rows(s, err));
     double mind = INFINITY;
@@ -432,14 +404,8 @@ static int cl_find_contacts(void *sp, const tr_contact_params *prm, tr_contact_s
         out->min_dist = mind;
     }
 cleanup:
-    if (rc != TR_OK) {
-        /* an empty list, as after an upload: the offsets may already be the
-         * new search's while the rows are the old one's */
-        s->np = 0;
-        int izero = 0; /* unchecked: a failure here would only hide the first error */
-        (void)clEnqueueFillBuffer(s->ctx.queue, s->adjn, &izero, sizeof izero, 0, (size_t)nv * sizeof(int),
-                                  0, NULL, NULL);
-    }
+    if (rc != TR_OK)
+        s->np = 0; /* an empty list, as after an upload */
     return rc;
 }
 
@@ -577,7 +543,7 @@ static int row_list(cl_state *s, tr_error *err)
                    A(s->actc), END));
         TR_TRY(run_groups(s, K_act_scan, 0, err, A(nb), A(s->actc), END));
         TR_TRY(run(s, K_act_write, (size_t)nb, err, A(s->ract), A(nv), A(np), A(bsize), A(nb),
-                   A(s->actc), A(s->act), A(s->actpos), END));
+                   A(s->actc), A(s->act), END));
         TR_CL_CHECK(clEnqueueReadBuffer(s->ctx.queue, s->actc, CL_TRUE, (size_t)nb * sizeof(int),
                                         sizeof nact, &nact, 0, NULL, NULL));
     }
@@ -601,7 +567,17 @@ static int solve_rows(cl_state *s, tr_error *err)
             TR_TRY(buffer(s, v[i], n * d, err));
         s->vcap = (int)n;
     }
-    size_t nae = 4 * (size_t)(s->cg_nl - 2 * nv);
+    size_t nact = (size_t)(s->cg_nl - 2 * nv), nae = 4 * nact;
+    if (nact > s->scap || !s->sab) {
+        size_t c = nact + nact / 2 + 64;
+        TR_TRY(buffer(s, &s->sab, 2 * c * sizeof(int), err));
+        TR_TRY(buffer(s, &s->sw, 5 * c * sizeof(double), err));
+        s->scap = c;
+    }
+    int na = (int)nact;
+    if (na > 0)
+        TR_TRY(run(s, K_act_gather, nact, err, A(s->act), A(s->pa), A(s->pb), A(s->rs), A(s->rt),
+                   A(s->rgrad), A(nv), A(na), A(s->sab), A(s->sw), END));
     if (nae > s->aacap) {
         size_t c = nae + nae / 2 + 64;
         TR_TRY(buffer(s, &s->aadj, c * sizeof(int), err));
@@ -609,12 +585,22 @@ static int solve_rows(cl_state *s, tr_error *err)
         TR_TRY(buffer(s, &s->agrad, 3 * c * sizeof(double), err));
         s->aacap = c;
     }
-    TR_TRY(run(s, K_adj_active_count, (size_t)nv, err, A(s->adj), A(s->adjn), A(s->aoff), A(s->ract),
-               A(nv), A(s->aadjn), END));
+    int izero = 0;
+    TR_CL_CHECK(clEnqueueFillBuffer(s->ctx.queue, s->aadjn, &izero, sizeof izero, 0,
+                                    (size_t)nv * sizeof(int), 0, NULL, NULL));
+    if (na > 0)
+        TR_TRY(run(s, K_adj_active_count, nact, err, A(s->act), A(s->pa), A(s->pb), A(s->topo.next),
+                   A(na), A(s->aadjn), END));
     TR_TRY(tr_cl_reduce_scan(&s->red, &s->ctx, s->aadjn, nv, s->aaoff, err));
-    TR_TRY(run(s, K_adj_active_write, (size_t)nv, err, A(s->adj), A(s->adjn), A(s->aoff), A(s->ract),
-               A(s->rs), A(s->rt), A(s->rgrad), A(s->actpos), A(nv), A(s->aaoff), A(s->aadj), A(s->acoef),
-               A(s->agrad), END));
+    if (na > 0) {
+        TR_CL_CHECK(clEnqueueFillBuffer(s->ctx.queue, s->aadjn, &izero, sizeof izero, 0,
+                                        (size_t)nv * sizeof(int), 0, NULL, NULL));
+        TR_TRY(run(s, K_adj_active_write, nact, err, A(s->act), A(s->pa), A(s->pb), A(s->topo.next),
+                   A(s->rs), A(s->rt), A(s->rgrad), A(nv), A(na), A(s->aaoff), A(s->aadjn),
+                   A(s->aadj), A(s->acoef), A(s->agrad), END));
+        TR_TRY(run(s, K_adj_active_sort, (size_t)nv, err, A(s->aaoff), A(nv), A(s->aadj), A(s->acoef),
+                   A(s->agrad), END));
+    }
 cleanup:
     return rc;
 }
@@ -626,7 +612,7 @@ cleanup:
 static int cg_iterate(cl_state *s, const tr_correct_params *prm, int *iters, tr_error *err)
 {
     int rc = TR_OK;
-    int nv = s->nv, np = s->np, nl = s->cg_nl;
+    int nv = s->nv, nl = s->cg_nl;
     double reg = prm->reg, w = prm->ebar_weight, tol2 = prm->cg_rtol * prm->cg_rtol, it;
     TR_CL_CHECK(clEnqueueWriteBuffer(s->ctx.queue, s->sc, CL_FALSE, SC_TOL2 * sizeof(double),
                                      sizeof tol2, &tol2, 0, NULL, NULL));
@@ -662,8 +648,7 @@ static int cg_iterate(cl_state *s, const tr_correct_params *prm, int *iters, tr_
         TR_TRY(apply_JT(s, prm, s->p, err));
         TR_TRY(run(s, K_j_rows, (size_t)nl, err, A(s->dx), A(s->debar), A(s->cdeb), A(s->rgrad),
                    A(s->cgq), A(s->ract), A(s->topo.next), A(s->topo.prev), A(s->topo.comp),
-                   A(s->pa), A(s->pb), A(s->rs), A(s->rt), A(s->p), A(nv), A(np), A(reg), A(s->act),
-                   A(nl), A(s->q), END));
+                   A(s->sab), A(s->sw), A(s->p), A(nv), A(reg), A(s->act), A(nl), A(s->q), END));
         TR_TRY(tr_cl_reduce_dot(&s->red, &s->ctx, s->p, s->q, nl, s->sc, SC_PQ, err));
         TR_TRY(run_groups(s, K_cg_alpha, 0, err, A(s->sc), END));
         TR_TRY(run(s, K_cg_yr, (size_t)nl, err, A(s->y), A(s->r), A(s->p), A(s->q), A(s->sc), A(nl),
@@ -737,7 +722,7 @@ cleanup:
 static int project_tangent(cl_state *s, const tr_correct_params *q, cl_mem G, tr_error *err)
 {
     int rc = TR_OK;
-    int nv = s->nv, np = s->np, n3 = 3 * nv;
+    int nv = s->nv, n3 = 3 * nv;
     double reg0 = 0.0, zero = 0.0;
     int izero = 0;
     TR_TRY(eval_rows(s, q, err));
@@ -754,8 +739,7 @@ static int project_tangent(cl_state *s, const tr_correct_params *q, cl_mem G, tr
         /* b = J (G, debar = 0), no regularisation term (y = 0) */
         TR_TRY(run(s, K_j_rows, (size_t)nl, err, A(s->dx), A(s->debar), A(s->cdeb), A(s->rgrad),
                    A(s->cgq), A(s->ract), A(s->topo.next), A(s->topo.prev), A(s->topo.comp),
-                   A(s->pa), A(s->pb), A(s->rs), A(s->rt), A(s->y), A(nv), A(np), A(reg0),
-                   A(s->act), A(nl), A(s->b), END));
+                   A(s->sab), A(s->sw), A(s->y), A(nv), A(reg0), A(s->act), A(nl), A(s->b), END));
         TR_TRY(run(s, K_cg_reset, (size_t)nl, err, A(s->b), A(s->y), A(s->r), A(s->p), A(nl), END));
         int iters = 0;
         TR_TRY(cg_iterate(s, q, &iters, err));
@@ -1055,11 +1039,6 @@ static int open_on(const tr_device_choice *dev, const tr_curve *c, int profiling
     TR_TRY(buffer(s, &s->up, nv * sizeof(int), err));
     TR_TRY(buffer(s, &s->first, nv * sizeof(int), err));
     TR_TRY(buffer(s, &s->off, (nv + 1) * sizeof(int), err));
-    TR_TRY(buffer(s, &s->adjc, nv * sizeof(int), err));
-    TR_TRY(buffer(s, &s->aoff, (nv + 1) * sizeof(int), err));
-    TR_TRY(buffer(s, &s->adjn, nv * sizeof(int), err));
-    s->adjcap = 64;
-    TR_TRY(buffer(s, &s->adj, s->adjcap * sizeof(int), err));
     s->aacap = 64;
     TR_TRY(buffer(s, &s->aadj, s->aacap * sizeof(int), err));
     TR_TRY(buffer(s, &s->acoef, s->aacap * d, err));
@@ -1072,7 +1051,6 @@ static int open_on(const tr_device_choice *dev, const tr_curve *c, int profiling
     TR_TRY(buffer(s, &s->pd, (size_t)s->pcap * d, err));
     TR_TRY(buffer(s, &s->act, (size_t)s->pcap * sizeof(int), err));
     TR_TRY(buffer(s, &s->actc, ((size_t)s->pcap / TR_ACT_BLOCK + 2) * sizeof(int), err));
-    TR_TRY(buffer(s, &s->actpos, (size_t)s->pcap * sizeof(int), err));
     TR_TRY(ensure_rows(s, err));
 
     cl_command_queue q = s->ctx.queue;
@@ -1148,15 +1126,14 @@ int tr_backend_opencl_kernel_times(const tr_backend *b, tr_kernel_time *out, int
 {
     if (!b || b->ops != &opencl_ops)
         return 0;
-    const cl_state *s = b->state;
+    const tr_cl_prof *p = ((const cl_state *)b->state)->ctx.prof;
     int n = 0;
-    for (int i = 0; i < K_COUNT && n < max; i++)
-        if (s->prof_n[i]) {
-            out[n].kernel = kernel_names[i];
-            out[n].launches = s->prof_n[i];
-            out[n].seconds = s->prof_s[i];
-            n++;
-        }
+    for (int i = 0; p && i < p->count && n < max; i++) {
+        snprintf(out[n].kernel, sizeof out[n].kernel, "%s", p->name[i]);
+        out[n].launches = p->launches[i];
+        out[n].seconds = p->seconds[i];
+        n++;
+    }
     return n;
 }
 

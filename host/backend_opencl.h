@@ -16,7 +16,7 @@ int tr_backend_opencl_open_profiled(const char *spec, const tr_curve *c, tr_back
                                     tr_error *err);
 
 typedef struct tr_kernel_time {
-    const char *kernel; /* kernel function name */
+    char kernel[48]; /* kernel function name */
     long launches;
     double seconds;     /* summed device execution time (profiling events) */
 } tr_kernel_time;

@@ -316,6 +316,19 @@ int tr_cl_ctx_open(tr_cl_ctx *ctx, const tr_cl_device_info *dev, int profiling, 
     memset(ctx, 0, sizeof *ctx);
     ctx->info = *dev;
     ctx->profiling = profiling;
+    int blocks = (dev->type & CL_DEVICE_TYPE_CPU) != 0;
+    const char *v = getenv("TIGHTROPE_CL_ITEMS");
+    if (v && *v) {
+        if (strcmp(v, "one") && strcmp(v, "blocks"))
+            return tr_fail(err, TR_EINVAL, "TIGHTROPE_CL_ITEMS='%s': use one or blocks", v);
+        blocks = !strcmp(v, "blocks");
+    }
+    /* a few blocks per core, so that uneven ones (a tight knot's crowded
+     * stretches) still balance */
+    size_t units = dev->compute_units ? dev->compute_units : 1;
+    ctx->block_items = blocks ? TR_CL_BLOCKS_PER_UNIT * units : 0;
+    if (profiling && !(ctx->prof = calloc(1, sizeof *ctx->prof)))
+        return tr_fail(err, TR_ENOMEM, "out of memory for the kernel profile");
     cl_context_properties props[] = {CL_CONTEXT_PLATFORM, (cl_context_properties)dev->pid, 0};
     TR_CL_CHECK((ctx->context = clCreateContext(props, 1, &dev->did, NULL, NULL, &e), e));
     TR_CL_CHECK((ctx->queue = clCreateCommandQueue(ctx->context, dev->did,
@@ -333,8 +346,58 @@ void tr_cl_ctx_close(tr_cl_ctx *ctx)
         clReleaseCommandQueue(ctx->queue);
     if (ctx->context)
         clReleaseContext(ctx->context);
+    free(ctx->prof);
     ctx->queue = NULL;
     ctx->context = NULL;
+    ctx->prof = NULL;
+}
+
+/* The profile entry of kernel k, added on first sight (NULL when full). */
+static int prof_slot(tr_cl_prof *p, cl_kernel k)
+{
+    char name[48] = "";
+    if (clGetKernelInfo(k, CL_KERNEL_FUNCTION_NAME, sizeof name, name, NULL) != CL_SUCCESS)
+        snprintf(name, sizeof name, "?");
+    name[sizeof name - 1] = 0;
+    for (int i = 0; i < p->count; i++)
+        if (!strcmp(p->name[i], name))
+            return i;
+    if (p->count == TR_CL_PROF_MAX)
+        return -1;
+    snprintf(p->name[p->count], sizeof p->name[0], "%s", name);
+    return p->count++;
+}
+
+int tr_cl_launch(const tr_cl_ctx *ctx, cl_kernel k, size_t global, size_t local, tr_error *err)
+{
+    int rc = TR_OK;
+    cl_event ev = NULL;
+    TR_CL_CHECK(clEnqueueNDRangeKernel(ctx->queue, k, 1, NULL, &global, &local, 0, NULL,
+                                       ctx->prof ? &ev : NULL));
+    if (ev) {
+        cl_ulong t0 = 0, t1 = 0;
+        TR_CL_CHECK(clWaitForEvents(1, &ev));
+        TR_CL_CHECK(clGetEventProfilingInfo(ev, CL_PROFILING_COMMAND_START, sizeof t0, &t0, NULL));
+        TR_CL_CHECK(clGetEventProfilingInfo(ev, CL_PROFILING_COMMAND_END, sizeof t1, &t1, NULL));
+        int i = prof_slot(ctx->prof, k);
+        if (i >= 0) {
+            ctx->prof->seconds[i] += 1e-9 * (double)(t1 - t0);
+            ctx->prof->launches[i]++;
+        }
+    }
+cleanup:
+    if (ev)
+        clReleaseEvent(ev);
+    return rc;
+}
+
+int tr_cl_launch_items(const tr_cl_ctx *ctx, cl_kernel k, size_t n, tr_error *err)
+{
+    if (!ctx->block_items)
+        return tr_cl_launch(ctx, k, tr_cl_global(n), TR_CL_LOCAL, err);
+    /* always one item per group: PoCL compiles a kernel again for every local size */
+    size_t g = n < ctx->block_items ? (n ? n : 1) : ctx->block_items;
+    return tr_cl_launch(ctx, k, g, 1, err);
 }
 
 /* One-line error text: the build log's line breaks become " | ". */

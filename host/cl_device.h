@@ -66,16 +66,44 @@ const char *tr_device_spec_default(void);
  * missing device is an error, never a silent fallback. */
 int tr_device_select(const char *spec, tr_device_choice *out, tr_error *err);
 
-/* A context and an in-order queue on one device. */
+/* Device time per kernel function, summed over the launches of a profiled
+ * context (tr_cl_launch), whichever module launched them. */
+#define TR_CL_PROF_MAX 128
+typedef struct tr_cl_prof {
+    int count;
+    char name[TR_CL_PROF_MAX][48];
+    long launches[TR_CL_PROF_MAX];
+    double seconds[TR_CL_PROF_MAX];
+} tr_cl_prof;
+
+/* A context and an in-order queue on one device; prof is allocated only
+ * when profiling is on. */
 typedef struct tr_cl_ctx {
     tr_cl_device_info info;
     cl_context context;
     cl_command_queue queue;
     int profiling;
+    tr_cl_prof *prof;
+    /* Work-items of a launch over indices (tr_cl_launch_items) on a device
+     * that wants blocks of them; 0: one index per work-item. */
+    size_t block_items;
 } tr_cl_ctx;
 
 int tr_cl_ctx_open(tr_cl_ctx *ctx, const tr_cl_device_info *dev, int profiling, tr_error *err);
 void tr_cl_ctx_close(tr_cl_ctx *ctx);
+
+/* Enqueues k (arguments set) over global items in work-groups of local. In
+ * a profiling context it waits for the launch and adds its device time to
+ * ctx->prof under the kernel's function name. */
+int tr_cl_launch(const tr_cl_ctx *ctx, cl_kernel k, size_t global, size_t local, tr_error *err);
+
+/* Launches a kernel that loops over the indices [0, n) (kernels/common.clh
+ * TR_ITEMS). On a GPU, one index per work-item in groups of TR_CL_LOCAL; on a
+ * CPU device, ctx->block_items work-items of one each, every one walking a
+ * contiguous block of indices: PoCL runs an axpy over 2 x 10^5 entries
+ * 2.5-3x faster so (bench/RESULTS.md). TIGHTROPE_CL_ITEMS=one|blocks
+ * overrides the choice (tr_cl_ctx_open). */
+int tr_cl_launch_items(const tr_cl_ctx *ctx, cl_kernel k, size_t n, tr_error *err);
 
 /* Builds one program from common.clh followed by the named kernel files
  * (embedded, or from TIGHTROPE_KERNEL_DIR). On failure err holds the call,
@@ -86,6 +114,9 @@ int tr_cl_build(const tr_cl_ctx *ctx, const char *const *files, int nfiles, cons
 /* Work-group size all Tightrope kernels are launched with: fixed, because
  * PoCL compiles a kernel anew for every local size it meets. */
 #define TR_CL_LOCAL 64
+
+/* Blocks of indices per compute unit of a CPU device (tr_cl_launch_items). */
+#define TR_CL_BLOCKS_PER_UNIT 8
 
 /* Global size padded up to a multiple of TR_CL_LOCAL (at least one group). */
 static inline size_t tr_cl_global(size_t n)

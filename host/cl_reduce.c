@@ -86,7 +86,7 @@ static int sum_stage2(tr_cl_reduce *r, const tr_cl_ctx *ctx, int m, cl_mem out, 
     TR_CL_CHECK(clSetKernelArg(r->sum_final, 1, sizeof m, &m));
     TR_CL_CHECK(clSetKernelArg(r->sum_final, 2, sizeof out, &out));
     TR_CL_CHECK(clSetKernelArg(r->sum_final, 3, sizeof slot, &slot));
-    TR_CL_CHECK(clEnqueueNDRangeKernel(ctx->queue, r->sum_final, 1, NULL, &l, &l, 0, NULL, NULL));
+    TR_TRY(tr_cl_launch(ctx, r->sum_final, l, l, err));
 cleanup:
     return rc;
 }
@@ -103,7 +103,7 @@ int tr_cl_reduce_length(tr_cl_reduce *r, const tr_cl_ctx *ctx, cl_mem x, cl_mem 
     TR_CL_CHECK(clSetKernelArg(r->length_partial, 1, sizeof next, &next));
     TR_CL_CHECK(clSetKernelArg(r->length_partial, 2, sizeof n, &n));
     TR_CL_CHECK(clSetKernelArg(r->length_partial, 3, sizeof r->pa, &r->pa));
-    TR_CL_CHECK(clEnqueueNDRangeKernel(ctx->queue, r->length_partial, 1, NULL, &g, &l, 0, NULL, NULL));
+    TR_TRY(tr_cl_launch(ctx, r->length_partial, g, l, err));
     rc = sum_stage2(r, ctx, m, out, slot, err);
 cleanup:
     return rc;
@@ -121,13 +121,13 @@ int tr_cl_reduce_minmax(tr_cl_reduce *r, const tr_cl_ctx *ctx, cl_mem v, int n, 
     TR_CL_CHECK(clSetKernelArg(r->minmax_partial, 1, sizeof n, &n));
     TR_CL_CHECK(clSetKernelArg(r->minmax_partial, 2, sizeof r->pa, &r->pa));
     TR_CL_CHECK(clSetKernelArg(r->minmax_partial, 3, sizeof r->pb, &r->pb));
-    TR_CL_CHECK(clEnqueueNDRangeKernel(ctx->queue, r->minmax_partial, 1, NULL, &g, &l, 0, NULL, NULL));
+    TR_TRY(tr_cl_launch(ctx, r->minmax_partial, g, l, err));
     TR_CL_CHECK(clSetKernelArg(r->minmax_final, 0, sizeof r->pa, &r->pa));
     TR_CL_CHECK(clSetKernelArg(r->minmax_final, 1, sizeof r->pb, &r->pb));
     TR_CL_CHECK(clSetKernelArg(r->minmax_final, 2, sizeof m, &m));
     TR_CL_CHECK(clSetKernelArg(r->minmax_final, 3, sizeof out, &out));
     TR_CL_CHECK(clSetKernelArg(r->minmax_final, 4, sizeof slot, &slot));
-    TR_CL_CHECK(clEnqueueNDRangeKernel(ctx->queue, r->minmax_final, 1, NULL, &l, &l, 0, NULL, NULL));
+    TR_TRY(tr_cl_launch(ctx, r->minmax_final, l, l, err));
 cleanup:
     return rc;
 }
@@ -136,12 +136,11 @@ int tr_cl_edge_lengths(tr_cl_reduce *r, const tr_cl_ctx *ctx, cl_mem x, cl_mem n
                        cl_mem len, tr_error *err)
 {
     int rc = TR_OK;
-    size_t g = tr_cl_global((size_t)n), l = TR_CL_LOCAL;
     TR_CL_CHECK(clSetKernelArg(r->edge_lengths, 0, sizeof x, &x));
     TR_CL_CHECK(clSetKernelArg(r->edge_lengths, 1, sizeof next, &next));
     TR_CL_CHECK(clSetKernelArg(r->edge_lengths, 2, sizeof n, &n));
     TR_CL_CHECK(clSetKernelArg(r->edge_lengths, 3, sizeof len, &len));
-    TR_CL_CHECK(clEnqueueNDRangeKernel(ctx->queue, r->edge_lengths, 1, NULL, &g, &l, 0, NULL, NULL));
+    TR_TRY(tr_cl_launch_items(ctx, r->edge_lengths, (size_t)n, err));
 cleanup:
     return rc;
 }
@@ -182,7 +181,7 @@ static int finish_sum(tr_cl_reduce *r, const tr_cl_ctx *ctx, cl_kernel k, int ar
     int m = (int)(g / l);
     TR_CL_CHECK(clSetKernelArg(k, (cl_uint)argn, sizeof n, &n));
     TR_CL_CHECK(clSetKernelArg(k, (cl_uint)argn + 1, sizeof r->pa, &r->pa));
-    TR_CL_CHECK(clEnqueueNDRangeKernel(ctx->queue, k, 1, NULL, &g, &l, 0, NULL, NULL));
+    TR_TRY(tr_cl_launch(ctx, k, g, l, err));
     rc = sum_stage2(r, ctx, m, out, slot, err);
 cleanup:
     return rc;
@@ -234,16 +233,16 @@ int tr_cl_reduce_scan(tr_cl_reduce *r, const tr_cl_ctx *ctx, cl_mem in, int n, c
     TR_CL_CHECK(clSetKernelArg(r->scan_local, 1, sizeof n, &n));
     TR_CL_CHECK(clSetKernelArg(r->scan_local, 2, sizeof out, &out));
     TR_CL_CHECK(clSetKernelArg(r->scan_local, 3, sizeof r->pb, &r->pb));
-    TR_CL_CHECK(clEnqueueNDRangeKernel(ctx->queue, r->scan_local, 1, NULL, &g, &l, 0, NULL, NULL));
+    TR_TRY(tr_cl_launch(ctx, r->scan_local, g, l, err));
     TR_CL_CHECK(clSetKernelArg(r->scan_sums, 0, sizeof r->pb, &r->pb));
     TR_CL_CHECK(clSetKernelArg(r->scan_sums, 1, sizeof groups, &groups));
     TR_CL_CHECK(clSetKernelArg(r->scan_sums, 2, sizeof out, &out));
     TR_CL_CHECK(clSetKernelArg(r->scan_sums, 3, sizeof n, &n));
-    TR_CL_CHECK(clEnqueueNDRangeKernel(ctx->queue, r->scan_sums, 1, NULL, &l, &l, 0, NULL, NULL));
+    TR_TRY(tr_cl_launch(ctx, r->scan_sums, l, l, err));
     TR_CL_CHECK(clSetKernelArg(r->scan_add, 0, sizeof out, &out));
     TR_CL_CHECK(clSetKernelArg(r->scan_add, 1, sizeof n, &n));
     TR_CL_CHECK(clSetKernelArg(r->scan_add, 2, sizeof r->pb, &r->pb));
-    TR_CL_CHECK(clEnqueueNDRangeKernel(ctx->queue, r->scan_add, 1, NULL, &g, &l, 0, NULL, NULL));
+    TR_TRY(tr_cl_launch_items(ctx, r->scan_add, (size_t)n, err));
 cleanup:
     return rc;
 }

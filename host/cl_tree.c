@@ -189,13 +189,6 @@ cleanup:
     return rc;
 }
 
-static int launch(const tr_cl_ctx *ctx, cl_kernel k, size_t n, tr_error *err) {
-    int rc = TR_OK;
-    size_t gsz = tr_cl_global(n), l = TR_CL_LOCAL;
-    TR_CL_CHECK(clEnqueueNDRangeKernel(ctx->queue, k, 1, NULL, &gsz, &l, 0, NULL, NULL));
-cleanup:
-    return rc;
-}
 
 /* The arguments the per-leaf kernels (tree_leaf_box, tree_leaf_slab) share:
  * positions, next, the tree's edge order, its leaves and their edge ranges. */
@@ -218,7 +211,7 @@ static int refit(tr_cl_tree *t, const tr_cl_ctx *ctx, const tr_cl_topology *topo
     int rc = TR_OK;
     TR_TRY(leaf_args(t, t->leaf_box, topo, x, err));
     ARG(t->leaf_box, 7, t->box);
-    TR_TRY(launch(ctx, t->leaf_box, (size_t)t->nleaf, err));
+    TR_TRY(tr_cl_launch_items(ctx, t->leaf_box, (size_t)t->nleaf, err));
     ARG(t->inner_box, 0, t->level_id);
     ARG(t->inner_box, 3, t->left);
     ARG(t->inner_box, 4, t->right);
@@ -229,7 +222,7 @@ static int refit(tr_cl_tree *t, const tr_cl_ctx *ctx, const tr_cl_topology *topo
             continue;
         ARG(t->inner_box, 1, off);
         ARG(t->inner_box, 2, n);
-        TR_TRY(launch(ctx, t->inner_box, (size_t)n, err));
+        TR_TRY(tr_cl_launch_items(ctx, t->inner_box, (size_t)n, err));
     }
 cleanup:
     return rc;
@@ -256,7 +249,7 @@ static int size_rows(tr_cl_tree *t, const tr_cl_ctx *ctx, tr_cl_reduce *red, con
     ARG(t->list_room, 1, topo->next);
     ARG(t->list_room, 2, t->nv);
     ARG(t->list_room, 3, t->room);
-    TR_TRY(launch(ctx, t->list_room, (size_t)t->nv, err));
+    TR_TRY(tr_cl_launch_items(ctx, t->list_room, (size_t)t->nv, err));
     TR_TRY(tr_cl_reduce_scan(red, ctx, t->room, t->nv, t->loff, err));
     /* the rooms' total is at most the bound above, so the list is sized from
      * it without reading the scan's total back */
@@ -289,7 +282,7 @@ int tr_cl_tree_search(tr_cl_tree *t, const tr_cl_ctx *ctx, tr_cl_reduce *red,
         ARG(t->leaf_slab, 7, cutoff);
         ARG(t->leaf_slab, 8, pad);
         ARG(t->leaf_slab, 9, t->slab);
-        TR_TRY(launch(ctx, t->leaf_slab, (size_t)t->nleaf, err));
+        TR_TRY(tr_cl_launch_items(ctx, t->leaf_slab, (size_t)t->nleaf, err));
     }
     if (t->counted)
         TR_TRY(size_rows(t, ctx, red, topo, err));
@@ -324,7 +317,7 @@ int tr_cl_tree_search(tr_cl_tree *t, const tr_cl_ctx *ctx, tr_cl_reduce *red,
         ARG(t->pairs, 22, t->count);
         ARG(t->pairs, 23, t->list);
         ARG(t->pairs, 24, t->overflow);
-        TR_TRY(launch(ctx, t->pairs, (size_t)t->nv, err));
+        TR_TRY(tr_cl_launch_items(ctx, t->pairs, (size_t)t->nv, err));
         TR_CL_CHECK(
             clEnqueueReadBuffer(ctx->queue, t->overflow, CL_TRUE, 0, sizeof flag, &flag, 0, NULL, NULL));
         if (flag == 2) {

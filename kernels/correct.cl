@@ -28,12 +28,11 @@
 __kernel void curv_limits(__global const real *ebar, const int ncomp, const real minrad,
                           __global real *lim)
 {
-    int k = get_global_id(0);
-    if (k >= ncomp)
-        return;
-    real eb = ebar[k], rr = minrad;
-    lim[2 * k] = 2.0 * atan(eb / (2.0 * rr));
-    lim[2 * k + 1] = eb * (1.0 / rr) / (1.0 + eb * eb / (4.0 * rr * rr));
+    TR_ITEMS(k, ncomp) {
+        real eb = ebar[k], rr = minrad;
+        lim[2 * k] = 2.0 * atan(eb / (2.0 * rr));
+        lim[2 * k + 1] = eb * (1.0 / rr) / (1.0 + eb * eb / (4.0 * rr * rr));
+    }
 }
 
 /* Edge row i and curvature row nv + i; rv holds each row's violation (>= 0).
@@ -49,47 +48,46 @@ __kernel void rows_chain(__global const real *x, __global const int *next,
                          __global int *ract, __global real *rv, __global real *cgq,
                          __global real *cdeb)
 {
-    int i = get_global_id(0);
-    if (i >= nv)
-        return;
-    int nx = next[i], pv = prev[i];
-    ract[i] = 0;
-    rv[i] = 0.0;
-    if (nx >= 0) {
-        real3 u = vload3(nx, x) - vload3(i, x);
-        real l = tr_norm3(u);
-        u = u * (1.0 / l);
-        vstore3(u, i, rgrad);
-        real C = l - ebar[comp[i]];
-        rC[i] = C;
-        ract[i] = 1;
-        rv[i] = fabs(C);
-    }
-    int r = nv + i;
-    ract[r] = 0;
-    rv[r] = 0.0;
-    if (pv >= 0 && nx >= 0) {
-        real3 xi = vload3(i, x);
-        real3 pe = xi - vload3(pv, x), qe = vload3(nx, x) - xi;
-        real3 cr = tr_cross3(pe, qe);
-        real lp = tr_norm3(pe), lq = tr_norm3(qe), sn = tr_norm3(cr), cs = tr_dot3(pe, qe);
-        real theta = atan2(sn, cs);
-        int k = comp[i];
-        real eb = ebar[k], tmax = lim[2 * k];
-        real C = eb * (tmax - theta);
-        rC[r] = C;
-        cdeb[i] = (tmax - theta) + lim[2 * k + 1];
-        real3 ga = (real3)(0.0), gb = (real3)(0.0);
-        if (!(sn < 1e-12 * lp * lq)) {
-            real c = cs / (lp * lq), sinv = lp * lq / sn;
-            real3 ph = pe / lp, qh = qe / lq;
-            ga = eb * (c * ph - qh) / lp * sinv;
-            gb = eb * (c * qh - ph) / lq * sinv;
-            ract[r] = C < active_curv;
+    TR_ITEMS(i, nv) {
+        int nx = next[i], pv = prev[i];
+        ract[i] = 0;
+        rv[i] = 0.0;
+        if (nx >= 0) {
+            real3 u = vload3(nx, x) - vload3(i, x);
+            real l = tr_norm3(u);
+            u = u * (1.0 / l);
+            vstore3(u, i, rgrad);
+            real C = l - ebar[comp[i]];
+            rC[i] = C;
+            ract[i] = 1;
+            rv[i] = fabs(C);
         }
-        vstore3(ga, r, rgrad);
-        vstore3(gb, i, cgq);
-        rv[r] = -C > 0.0 ? -C : 0.0;
+        int r = nv + i;
+        ract[r] = 0;
+        rv[r] = 0.0;
+        if (pv >= 0 && nx >= 0) {
+            real3 xi = vload3(i, x);
+            real3 pe = xi - vload3(pv, x), qe = vload3(nx, x) - xi;
+            real3 cr = tr_cross3(pe, qe);
+            real lp = tr_norm3(pe), lq = tr_norm3(qe), sn = tr_norm3(cr), cs = tr_dot3(pe, qe);
+            real theta = atan2(sn, cs);
+            int k = comp[i];
+            real eb = ebar[k], tmax = lim[2 * k];
+            real C = eb * (tmax - theta);
+            rC[r] = C;
+            cdeb[i] = (tmax - theta) + lim[2 * k + 1];
+            real3 ga = (real3)(0.0), gb = (real3)(0.0);
+            if (!(sn < 1e-12 * lp * lq)) {
+                real c = cs / (lp * lq), sinv = lp * lq / sn;
+                real3 ph = pe / lp, qh = qe / lq;
+                ga = eb * (c * ph - qh) / lp * sinv;
+                gb = eb * (c * qh - ph) / lq * sinv;
+                ract[r] = C < active_curv;
+            }
+            vstore3(ga, r, rgrad);
+            vstore3(gb, i, cgq);
+            rv[r] = -C > 0.0 ? -C : 0.0;
+        }
     }
 }
 
@@ -131,21 +129,20 @@ __kernel void rows_strut(__global const real *x, __global const int *next,
                          __global real *rgrad, __global int *ract, __global real *rs,
                          __global real *rt, __global real *rv)
 {
-    int p = get_global_id(0);
-    if (p >= np)
-        return;
-    int r = 2 * nv + p, a = pa[p], b = pb[p];
-    real3 p0 = vload3(a, x), p1 = vload3(next[a], x), q0 = vload3(b, x), q1 = vload3(next[b], x);
-    real ss, tt;
-    real d = tr_segment_distance(p0, p1, q0, q1, &ss, &tt);
-    real3 n = ((p0 + ss * (p1 - p0)) - (q0 + tt * (q1 - q0))) / d;
-    vstore3(n, r, rgrad);
-    rs[p] = ss;
-    rt[p] = tt;
-    real C = d - strut_dist;
-    rC[r] = C;
-    ract[r] = C < active_strut && strut_local_min(x, next, prev, a, b, d);
-    rv[r] = -C > 0.0 ? -C : 0.0;
+    TR_ITEMS(p, np) {
+        int r = 2 * nv + p, a = pa[p], b = pb[p];
+        real3 p0 = vload3(a, x), p1 = vload3(next[a], x), q0 = vload3(b, x), q1 = vload3(next[b], x);
+        real ss, tt;
+        real d = tr_segment_distance(p0, p1, q0, q1, &ss, &tt);
+        real3 n = ((p0 + ss * (p1 - p0)) - (q0 + tt * (q1 - q0))) / d;
+        vstore3(n, r, rgrad);
+        rs[p] = ss;
+        rt[p] = tt;
+        real C = d - strut_dist;
+        rC[r] = C;
+        ract[r] = C < active_strut && strut_local_min(x, next, prev, a, b, d);
+        rv[r] = -C > 0.0 ? -C : 0.0;
+    }
 }
 
 /* The CG's row list (backend.h: its sums skip inactive rows, which hold
@@ -168,62 +165,87 @@ __kernel void cg_init(__global const real *rC, __global const int *ract, const i
                       __global const int *act, const int nl, __global real *b, __global real *y,
                       __global real *r, __global real *p)
 {
-    int l = get_global_id(0);
-    if (l >= nl)
-        return;
-    int k = row_of(l, 2 * nv, act);
-    real v = !ract[k] ? 0.0 : (k < nv ? -rC[k] : -fmin(rC[k], 0.0));
-    b[l] = v;
-    y[l] = 0.0;
-    r[l] = v;
-    p[l] = v;
+    TR_ITEMS(l, nl) {
+        int k = row_of(l, 2 * nv, act);
+        real v = !ract[k] ? 0.0 : (k < nv ? -rC[k] : -fmin(rC[k], 0.0));
+        b[l] = v;
+        y[l] = 0.0;
+        r[l] = v;
+        p[l] = v;
+    }
 }
 
-/* The strut entries of vertex i's adjacency whose rows are active, in the
- * same order, taken once per CG solve (the active set is fixed during it).
- * On a tight curve most listed pairs are inactive (3.7 million pairs, ~150
- * entries per vertex at N = 10^5), and jt_vertex, run in every CG
- * iteration, would step over them all. adj_active_count counts them per
- * vertex; after a scan into aaoff, adj_active_write stores each one
- * compactly with what jt_vertex needs of it: the strut's position in the
- * row list (actpos, from act_write), the weight c of the vertex in the
- * strut and the strut's direction n. jt_vertex then reads
- * them in sequence instead of gathering rs, rt and rgrad out of arrays
- * indexed by all pairs (a cache miss each). */
-__kernel void adj_active_count(__global const int *adj, __global const int *adjn,
-                               __global const int *aoff, __global const int *ract, const int nv,
-                               __global int *aadjn)
+/* Each vertex's active strut entries, taken once per CG solve (the active
+ * set is fixed during it), with what jt_vertex needs of each: the strut's
+ * position in the row list, the weight c of the vertex in the strut and the
+ * strut's direction n. jt_vertex then reads them in sequence instead of
+ * gathering rs, rt and rgrad out of arrays over all listed pairs.
+ *
+ * They are built from the active struts alone (nact of them in the row list,
+ * about 10^5 against 3.7 million listed pairs on a tight trefoil at
+ * N = 10^5), not by walking every vertex's adjacency over all listed pairs:
+ * adj_active_count counts the four entries of each active strut per vertex
+ * (atomic increments on ints), a scan gives the offsets aaoff, and
+ * adj_active_write puts each entry in a free slot of its vertex's row
+ * (atomic again, so in no fixed order); adj_active_sort then orders every row
+ * by row list position, which is the order of the pairs in the list and so
+ * the reference's order of summation (a vertex is in a strut only once: the
+ * index gap keeps a strut's four vertices apart). Rows are short, a few
+ * active struts per vertex, so the insertion sort costs little. */
+__kernel void adj_active_count(__global const int *act, __global const int *pa,
+                               __global const int *pb, __global const int *next,
+                               const int nact, __global int *aadjn)
 {
-    int i = get_global_id(0);
-    if (i >= nv)
-        return;
-    __global const int *row = adj + aoff[i];
-    int m = 0;
-    for (int k = 0; k < adjn[i]; k++)
-        m += ract[2 * nv + (row[k] >> 2)] ? 1 : 0;
-    aadjn[i] = m;
+    TR_ITEMS(m, nact) {
+        int p = act[m], a = pa[p], b = pb[p];
+        atomic_inc(aadjn + a);
+        atomic_inc(aadjn + next[a]);
+        atomic_inc(aadjn + b);
+        atomic_inc(aadjn + next[b]);
+    }
 }
 
-__kernel void adj_active_write(__global const int *adj, __global const int *adjn,
-                               __global const int *aoff, __global const int *ract,
+/* fill: zeros on entry, the rows' lengths on exit. */
+__kernel void adj_active_write(__global const int *act, __global const int *pa,
+                               __global const int *pb, __global const int *next,
                                __global const real *rs, __global const real *rt,
-                               __global const real *rgrad, __global const int *actpos,
-                               const int nv, __global const int *aaoff, __global int *aadj,
-                               __global real *acoef, __global real *agrad)
+                               __global const real *rgrad, const int nv, const int nact,
+                               __global const int *aaoff, __global int *fill,
+                               __global int *aadj, __global real *acoef, __global real *agrad)
 {
-    int i = get_global_id(0);
-    if (i >= nv)
-        return;
-    __global const int *row = adj + aoff[i];
-    int o = aaoff[i];
-    for (int k = 0; k < adjn[i]; k++) {
-        int code = row[k], p = code >> 2, slot = code & 3, r = 2 * nv + p;
-        if (!ract[r])
-            continue;
-        aadj[o] = 2 * nv + actpos[p];
-        acoef[o] = slot == 0 ? 1.0 - rs[p] : slot == 1 ? rs[p] : slot == 2 ? -(1.0 - rt[p]) : -rt[p];
-        vstore3(vload3(r, rgrad), o, agrad);
-        o++;
+    TR_ITEMS(m, nact) {
+        int p = act[m], a = pa[p], b = pb[p];
+        real ss = rs[p], tt = rt[p];
+        real3 n = vload3(2 * nv + p, rgrad);
+        int v[4] = {a, next[a], b, next[b]};
+        real c[4] = {1.0 - ss, ss, -(1.0 - tt), -tt};
+        for (int k = 0; k < 4; k++) {
+            int o = aaoff[v[k]] + atomic_inc(fill + v[k]);
+            aadj[o] = 2 * nv + m;
+            acoef[o] = c[k];
+            vstore3(n, o, agrad);
+        }
+    }
+}
+
+__kernel void adj_active_sort(__global const int *aaoff, const int nv, __global int *aadj,
+                              __global real *acoef, __global real *agrad)
+{
+    TR_ITEMS(i, nv) {
+        for (int k = aaoff[i] + 1; k < aaoff[i + 1]; k++) {
+            int key = aadj[k], q = k;
+            real c = acoef[k];
+            real3 n = vload3(k, agrad);
+            while (q > aaoff[i] && aadj[q - 1] > key) {
+                aadj[q] = aadj[q - 1];
+                acoef[q] = acoef[q - 1];
+                vstore3(vload3(q - 1, agrad), q, agrad);
+                q--;
+            }
+            aadj[q] = key;
+            acoef[q] = c;
+            vstore3(n, q, agrad);
+        }
     }
 }
 
@@ -236,9 +258,7 @@ __kernel void jt_vertex(__global const real *y, __global const real *rgrad,
                         __global const real *acoef, __global const real *agrad,
                         __global const real *cst, const int nv, __global real *dx)
 {
-    int i = get_global_id(0);
-    if (i >= nv)
-        return;
+    TR_ITEMS(i, nv) {
     real3 g = (real3)(0.0);
     int pv = prev[i], nx = next[i];
     if (pv >= 0)
@@ -257,6 +277,7 @@ __kernel void jt_vertex(__global const real *y, __global const real *rgrad,
         g = g + (acoef[k] * y[aadj[k]]) * vload3(k, agrad);
     }
     vstore3(tr_project_motion(cst, i, g), i, dx);
+    }
 }
 
 /* debar_k = (sum over rows of component k of y_r dC_r/debar_k) / (w ne_k),
@@ -307,13 +328,12 @@ void jt_ebar(__global const real *part, __global const int *ne, const int groups
 __kernel void act_count(__global const int *ract, const int nv, const int np, const int bsize,
                         const int nblocks, __global int *counts)
 {
-    int b = get_global_id(0);
-    if (b >= nblocks)
-        return;
-    int c = 0, hi = min(np, (b + 1) * bsize);
-    for (int p = b * bsize; p < hi; p++)
-        c += ract[2 * nv + p] != 0;
-    counts[b] = c;
+    TR_ITEMS(b, nblocks) {
+        int c = 0, hi = min(np, (b + 1) * bsize);
+        for (int p = b * bsize; p < hi; p++)
+            c += ract[2 * nv + p] != 0;
+        counts[b] = c;
+    }
 }
 
 /* One item: exclusive prefix sums of the block counts; counts[nblocks] = total. */
@@ -328,62 +348,77 @@ __kernel void act_scan(const int nblocks, __global int *counts)
     counts[nblocks] = sum;
 }
 
-/* act[l] = the l-th active strut row's pair index, in list order, and
- * actpos[p] = l for those pairs (other entries are not written). */
+/* act[l] = the l-th active strut row's pair index, in list order. */
 __kernel void act_write(__global const int *ract, const int nv, const int np, const int bsize,
-                        const int nblocks, __global const int *counts, __global int *act,
-                        __global int *actpos)
+                        const int nblocks, __global const int *counts, __global int *act)
 {
-    int b = get_global_id(0);
-    if (b >= nblocks)
-        return;
-    int o = counts[b], hi = min(np, (b + 1) * bsize);
-    for (int p = b * bsize; p < hi; p++)
-        if (ract[2 * nv + p]) {
-            actpos[p] = o;
-            act[o++] = p;
-        }
+    TR_ITEMS(b, nblocks) {
+        int o = counts[b], hi = min(np, (b + 1) * bsize);
+        for (int p = b * bsize; p < hi; p++)
+            if (ract[2 * nv + p])
+                act[o++] = p;
+    }
+}
+
+/* What j_rows needs of the l-th active strut row (pair p = act[l]), in row
+ * list order: its vertices a, b (sab[2 l], sab[2 l + 1]) and s, t and the
+ * strut direction n (sw[5 l ..]). Gathered once per solve, so that j_rows,
+ * run in every CG iteration, reads them in sequence instead of from arrays
+ * over all listed pairs (millions on a tight curve, a cache miss each). */
+__kernel void act_gather(__global const int *act, __global const int *pa, __global const int *pb,
+                         __global const real *rs, __global const real *rt,
+                         __global const real *rgrad, const int nv, const int nact,
+                         __global int *sab, __global real *sw)
+{
+    TR_ITEMS(l, nact) {
+        int p = act[l];
+        real3 n = vload3(2 * nv + p, rgrad);
+        sab[2 * l] = pa[p];
+        sab[2 * l + 1] = pb[p];
+        sw[5 * l] = rs[p];
+        sw[5 * l + 1] = rt[p];
+        sw[5 * l + 2] = n.x;
+        sw[5 * l + 3] = n.y;
+        sw[5 * l + 4] = n.z;
+    }
 }
 
 /* out_r = dC_r/dx . dx + dC_r/debar . debar + reg y_r on active rows, else 0;
  * one item per position l of the row list (row_of), y and out by l. */
 __kernel void j_rows(__global const real *dx, __global const real *debar,
                      __global const real *cdeb, __global const real *rgrad,
-                     __global const real *cgq,
-                     __global const int *ract, __global const int *next,
-                     __global const int *prev, __global const int *comp,
-                     __global const int *pa, __global const int *pb, __global const real *rs,
-                     __global const real *rt, __global const real *y, const int nv, const int np,
+                     __global const real *cgq, __global const int *ract,
+                     __global const int *next, __global const int *prev,
+                     __global const int *comp, __global const int *sab,
+                     __global const real *sw, __global const real *y, const int nv,
                      const real reg, __global const int *act, const int nl,
                      __global real *out)
 {
-    int l = get_global_id(0);
-    if (l >= nl)
-        return;
-    int r = row_of(l, 2 * nv, act);
-    if (!ract[r]) {
-        out[l] = 0.0;
-        return;
-    }
-    if (r < nv) {
-        real3 d = vload3(next[r], dx) - vload3(r, dx);
-        out[l] = tr_dot3(vload3(r, rgrad), d) - debar[comp[r]] + reg * y[l];
-    } else if (r < 2 * nv) {
-        int i = r - nv;
-        real3 ga = vload3(r, rgrad), gb = vload3(i, cgq);
-        real3 dp = vload3(prev[i], dx), di = vload3(i, dx), dn = vload3(next[i], dx);
-        real3 t = ga * dp + (gb - ga) * di - gb * dn;
-        real v = 0.0;
-        v += t.x;
-        v += t.y;
-        v += t.z;
-        out[l] = v + cdeb[i] * debar[comp[i]] + reg * y[l];
-    } else {
-        int p = r - 2 * nv, a = pa[p], b = pb[p];
-        real ss = rs[p], tt = rt[p];
-        real3 d = (1.0 - ss) * vload3(a, dx) + ss * vload3(next[a], dx) -
-                  (1.0 - tt) * vload3(b, dx) - tt * vload3(next[b], dx);
-        out[l] = tr_dot3(vload3(r, rgrad), d) + reg * y[l];
+    TR_ITEMS(l, nl) {
+        int r = row_of(l, 2 * nv, act);
+        if (!ract[r]) {
+            out[l] = 0.0;
+        } else if (r < nv) {
+            real3 d = vload3(next[r], dx) - vload3(r, dx);
+            out[l] = tr_dot3(vload3(r, rgrad), d) - debar[comp[r]] + reg * y[l];
+        } else if (r < 2 * nv) {
+            int i = r - nv;
+            real3 ga = vload3(r, rgrad), gb = vload3(i, cgq);
+            real3 dp = vload3(prev[i], dx), di = vload3(i, dx), dn = vload3(next[i], dx);
+            real3 t = ga * dp + (gb - ga) * di - gb * dn;
+            real v = 0.0;
+            v += t.x;
+            v += t.y;
+            v += t.z;
+            out[l] = v + cdeb[i] * debar[comp[i]] + reg * y[l];
+        } else { /* an active strut row: act_gather's copy */
+            int m = l - 2 * nv, a = sab[2 * m], b = sab[2 * m + 1];
+            real ss = sw[5 * m], tt = sw[5 * m + 1];
+            real3 n = (real3)(sw[5 * m + 2], sw[5 * m + 3], sw[5 * m + 4]);
+            real3 d = (1.0 - ss) * vload3(a, dx) + ss * vload3(next[a], dx) -
+                      (1.0 - tt) * vload3(b, dx) - tt * vload3(next[b], dx);
+            out[l] = tr_dot3(n, d) + reg * y[l];
+        }
     }
 }
 
@@ -409,12 +444,13 @@ __kernel void cg_alpha(__global real *sc)
 __kernel void cg_yr(__global real *y, __global real *r, __global const real *p,
                     __global const real *q, __global const real *sc, const int nl)
 {
-    int l = get_global_id(0);
-    if (l >= nl || sc[SC_DONE] != 0.0)
+    if (sc[SC_DONE] != 0.0)
         return;
     real alpha = sc[SC_ALPHA];
-    y[l] += alpha * p[l];
-    r[l] -= alpha * q[l];
+    TR_ITEMS(l, nl) {
+        y[l] += alpha * p[l];
+        r[l] -= alpha * q[l];
+    }
 }
 
 /* rr (slot RR) was refreshed by the reduction; RR1 holds r.z of the new z. */
@@ -430,18 +466,19 @@ __kernel void cg_beta(__global real *sc)
 __kernel void cg_p(__global real *p, __global const real *z, __global const real *sc,
                    const int nl)
 {
-    int l = get_global_id(0);
-    if (l >= nl || sc[SC_DONE] != 0.0)
+    if (sc[SC_DONE] != 0.0)
         return;
-    p[l] = z[l] + sc[SC_BETA] * p[l];
+    real beta = sc[SC_BETA];
+    TR_ITEMS(l, nl)
+        p[l] = z[l] + beta * p[l];
 }
 
 /* |dx_i| for the damping cap. */
 __kernel void dx_norm(__global const real *dx, const int nv, __global real *m)
 {
-    int i = get_global_id(0);
-    if (i < nv)
+    TR_ITEMS(i, nv) {
         m[i] = tr_norm3(vload3(i, dx));
+    }
 }
 
 __kernel void step_scale(__global real *sc, const real max_step)
@@ -453,34 +490,32 @@ __kernel void step_scale(__global real *sc, const real max_step)
 __kernel void apply_dx(__global real *x, __global const real *dx, __global const real *cst,
                        __global const real *sc, const int nv)
 {
-    int i = get_global_id(0);
-    if (i >= nv)
-        return;
-    real scale = sc[SC_SCALE];
-    real3 d = vload3(i, dx);
-    if (scale != 1.0)
-        d = scale * d;
-    vstore3(tr_snap(cst, i, vload3(i, x) + d), i, x);
+    TR_ITEMS(i, nv) {
+        real scale = sc[SC_SCALE];
+        real3 d = vload3(i, dx);
+        if (scale != 1.0)
+            d = scale * d;
+        vstore3(tr_snap(cst, i, vload3(i, x) + d), i, x);
+    }
 }
 
 __kernel void apply_debar(__global real *ebar, __global const real *debar,
                           __global const real *sc, const int ncomp)
 {
-    int k = get_global_id(0);
-    if (k < ncomp)
+    TR_ITEMS(k, ncomp) {
         ebar[k] += sc[SC_SCALE] * debar[k];
+    }
 }
 
 /* CG start from a given right-hand side: y = 0, r = p = b. */
 __kernel void cg_reset(__global const real *b, __global real *y, __global real *r,
                        __global real *p, const int nr)
 {
-    int k = get_global_id(0);
-    if (k >= nr)
-        return;
-    y[k] = 0.0;
-    r[k] = b[k];
-    p[k] = b[k];
+    TR_ITEMS(k, nr) {
+        y[k] = 0.0;
+        r[k] = b[k];
+        p[k] = b[k];
+    }
 }
 
 /* Tangent projection: release the inequality rows whose multiplier pulls
@@ -488,38 +523,38 @@ __kernel void cg_reset(__global const real *b, __global real *y, __global real *
 __kernel void release_pulling(__global int *ract, __global const real *y, const int nv,
                               __global const int *act, const int nl, __global int *changed)
 {
-    int l = get_global_id(0) + nv;
-    if (l >= nl)
-        return;
-    int r = row_of(l, 2 * nv, act);
-    if (ract[r] && y[l] > 0.0) {
-        ract[r] = 0;
-        changed[0] = 1;
+    TR_ITEMS(l_, nl - nv) {
+        int l = l_ + nv;
+        int r = row_of(l, 2 * nv, act);
+        if (ract[r] && y[l] > 0.0) {
+            ract[r] = 0;
+            changed[0] = 1;
+        }
     }
 }
 
 /* G_i <- P_i G_i (before the tangent projection). */
 __kernel void project_field(__global real *G, __global const real *cst, const int nv)
 {
-    int i = get_global_id(0);
-    if (i < nv)
+    TR_ITEMS(i, nv) {
         vstore3(tr_project_motion(cst, i, vload3(i, G)), i, G);
+    }
 }
 
 /* G -= dx (flat), and debar <- -debar (the ebar velocity). */
 __kernel void tangent_finish(__global real *G, __global const real *dx, const int n3)
 {
-    int k = get_global_id(0);
-    if (k < n3)
+    TR_ITEMS(k, n3) {
         G[k] -= dx[k];
+    }
 }
 
 __kernel void ebar_velocity(__global real *ebar, __global real *debar, const real h,
                             const int ncomp)
 {
-    int k = get_global_id(0);
-    if (k < ncomp)
+    TR_ITEMS(k, ncomp) {
         ebar[k] += h * (-debar[k]);
+    }
 }
 
 /* ---- preconditioner (backend.h correct (c)) ---- */
@@ -542,36 +577,35 @@ __kernel void precond_setup(__global const real *rgrad, __global const real *cgq
                             const int nl, const real ebar_weight, const real reg,
                             __global real *pd, __global real *po)
 {
-    int l = get_global_id(0);
-    if (l >= nl)
-        return;
-    int r = row_of(l, 2 * nv, act);
-    pd[r] = 1.0;
-    if (!ract[r])
-        return;
-    if (r < nv) {
-        int a = r, k = comp[a], nx = next[a];
-        real3 u = vload3(a, rgrad);
-        pd[r] = proj_norm2(cst, a, u, 1.0) + proj_norm2(cst, nx, u, 1.0) +
-                1.0 / (ebar_weight * (real)ne[k]) + reg;
-        real o = 0.0;
-        if (next[nx] >= 0 && ract[nx]) {
-            real3 t = tr_project_motion(cst, nx, u);
-            o = -tr_dot3(t, vload3(nx, rgrad));
+    TR_ITEMS(l, nl) {
+        int r = row_of(l, 2 * nv, act);
+        pd[r] = 1.0;
+        if (!ract[r])
+            continue;
+        if (r < nv) {
+            int a = r, k = comp[a], nx = next[a];
+            real3 u = vload3(a, rgrad);
+            pd[r] = proj_norm2(cst, a, u, 1.0) + proj_norm2(cst, nx, u, 1.0) +
+                    1.0 / (ebar_weight * (real)ne[k]) + reg;
+            real o = 0.0;
+            if (next[nx] >= 0 && ract[nx]) {
+                real3 t = tr_project_motion(cst, nx, u);
+                o = -tr_dot3(t, vload3(nx, rgrad));
+            }
+            po[a] = o;
+        } else if (r < 2 * nv) {
+            int i = r - nv, k = comp[i];
+            real3 ga = vload3(r, rgrad), gb = vload3(i, cgq);
+            real3 gm = gb - ga;
+            pd[r] = proj_norm2(cst, prev[i], ga, 1.0) + proj_norm2(cst, i, gm, 1.0) +
+                    proj_norm2(cst, next[i], gb, 1.0) +
+                    cdeb[i] * cdeb[i] / (ebar_weight * (real)ne[k]) + reg;
+        } else {
+            int p = r - 2 * nv, a = pa[p], b = pb[p];
+            real3 n = vload3(r, rgrad);
+            pd[r] = proj_norm2(cst, a, n, 1.0 - rs[p]) + proj_norm2(cst, next[a], n, rs[p]) +
+                    proj_norm2(cst, b, n, 1.0 - rt[p]) + proj_norm2(cst, next[b], n, rt[p]) + reg;
         }
-        po[a] = o;
-    } else if (r < 2 * nv) {
-        int i = r - nv, k = comp[i];
-        real3 ga = vload3(r, rgrad), gb = vload3(i, cgq);
-        real3 gm = gb - ga;
-        pd[r] = proj_norm2(cst, prev[i], ga, 1.0) + proj_norm2(cst, i, gm, 1.0) +
-                proj_norm2(cst, next[i], gb, 1.0) +
-                cdeb[i] * cdeb[i] / (ebar_weight * (real)ne[k]) + reg;
-    } else {
-        int p = r - 2 * nv, a = pa[p], b = pb[p];
-        real3 n = vload3(r, rgrad);
-        pd[r] = proj_norm2(cst, a, n, 1.0 - rs[p]) + proj_norm2(cst, next[a], n, rs[p]) +
-                proj_norm2(cst, b, n, 1.0 - rt[p]) + proj_norm2(cst, next[b], n, rt[p]) + reg;
     }
 }
 
@@ -580,11 +614,10 @@ __kernel void precond_diag(__global const real *r, __global const real *pd,
                            __global const int *ract, const int nv, __global const int *act,
                            const int nl, __global real *z)
 {
-    int l = get_global_id(0) + nv;
-    if (l >= nl)
-        return;
-    int q = row_of(l, 2 * nv, act);
-    z[l] = ract[q] ? r[l] / pd[q] : 0.0;
+    TR_ITEMS(m, nl - nv) {
+        int l = m + nv, q = row_of(l, 2 * nv, act);
+        z[l] = ract[q] ? r[l] / pd[q] : 0.0;
+    }
 }
 
 /* The edge block of one component as Thomas factors (the reference's
@@ -621,25 +654,24 @@ __kernel void precond_edges_factor(__global const real *pd, __global const real 
                                    __global const int *closed, const int ncomp, const int nv,
                                    __global real *tw)
 {
-    int k = get_global_id(0);
-    if (k >= ncomp)
-        return;
-    int st = start[k], n = ne[k];
-    __global real *w = tw + st, *ib = tw + nv + st, *uu = tw + 2 * nv + st;
-    __global const real *d = pd + st;
-    if (n == 0)
-        return;
-    if (!closed[k] || n < 3) {
-        thomas_factor(po, d, d[0], d[n - 1], st, n, w, ib);
-        return;
+    TR_ITEMS(k, ncomp) {
+        int st = start[k], n = ne[k];
+        __global real *w = tw + st, *ib = tw + nv + st, *uu = tw + 2 * nv + st;
+        __global const real *d = pd + st;
+        if (n == 0)
+            continue;
+        if (!closed[k] || n < 3) {
+            thomas_factor(po, d, d[0], d[n - 1], st, n, w, ib);
+            continue;
+        }
+        real alpha = po[st + n - 1], beta = alpha, gamma = -d[0];
+        thomas_factor(po, d, d[0] - gamma, d[n - 1] - alpha * beta / gamma, st, n, w, ib);
+        for (int j = 0; j < n; j++)
+            uu[j] = 0.0;
+        uu[0] = gamma;
+        uu[n - 1] = alpha;
+        thomas_subst(po, st, n, w, ib, uu, uu);
     }
-    real alpha = po[st + n - 1], beta = alpha, gamma = -d[0];
-    thomas_factor(po, d, d[0] - gamma, d[n - 1] - alpha * beta / gamma, st, n, w, ib);
-    for (int j = 0; j < n; j++)
-        uu[j] = 0.0;
-    uu[0] = gamma;
-    uu[n - 1] = alpha;
-    thomas_subst(po, st, n, w, ib, uu, uu);
 }
 
 /* Edge block of component k from precond_edges_factor's factors (one item
@@ -650,30 +682,28 @@ __kernel void precond_edges(__global const real *r, __global const real *pd,
                             __global const int *ne, __global const int *closed, const int ncomp,
                             const int nv, __global const real *tw, __global real *z)
 {
-    int k = get_global_id(0);
-    if (k >= ncomp)
-        return;
-    int st = start[k], n = ne[k];
-    __global const real *w = tw + st, *ib = tw + nv + st, *uu = tw + 2 * nv + st;
-    __global real *x = z + st;
-    /* the row of an open rope's last vertex has no edge: keep it out of the dot products */
-    for (int j = n; j < start[k + 1] - st; j++)
-        x[j] = 0.0;
-    if (n == 0)
-        return;
-    thomas_subst(po, st, n, w, ib, r + st, x);
-    if (!closed[k] || n < 3)
-        return;
-    real beta = po[st + n - 1], gamma = -pd[st];
-    real fact = (x[0] + beta * x[n - 1] / gamma) / (1.0 + uu[0] + beta * uu[n - 1] / gamma);
-    for (int j = 0; j < n; j++)
-        x[j] -= fact * uu[j];
+    TR_ITEMS(k, ncomp) {
+        int st = start[k], n = ne[k];
+        __global const real *w = tw + st, *ib = tw + nv + st, *uu = tw + 2 * nv + st;
+        __global real *x = z + st;
+        /* the row of an open rope's last vertex has no edge: keep it out of the dot products */
+        for (int j = n; j < start[k + 1] - st; j++)
+            x[j] = 0.0;
+        if (n == 0)
+            continue;
+        thomas_subst(po, st, n, w, ib, r + st, x);
+        if (!closed[k] || n < 3)
+            continue;
+        real beta = po[st + n - 1], gamma = -pd[st];
+        real fact = (x[0] + beta * x[n - 1] / gamma) / (1.0 + uu[0] + beta * uu[n - 1] / gamma);
+        for (int j = 0; j < n; j++)
+            x[j] -= fact * uu[j];
+    }
 }
 
 /* p = z */
 __kernel void copy_rows(__global const real *z, __global real *p, const int nl)
 {
-    int l = get_global_id(0);
-    if (l < nl)
+    TR_ITEMS(l, nl)
         p[l] = z[l];
 }

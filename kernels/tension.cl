@@ -13,33 +13,31 @@ inline real3 tension_unit(__global const real *x, int a, int b)
 __kernel void tension_force(__global const real *x, __global const int *next,
                             __global const int *prev, const int n, __global real *F)
 {
-    int i = get_global_id(0);
-    if (i >= n)
-        return;
-    real3 f = (real3)(0.0);
-    if (next[i] >= 0)
-        f = f + tension_unit(x, i, next[i]);
-    if (prev[i] >= 0)
-        f = f - tension_unit(x, prev[i], i);
-    vstore3(f, i, F);
+    TR_ITEMS(i, n) {
+        real3 f = (real3)(0.0);
+        if (next[i] >= 0)
+            f = f + tension_unit(x, i, next[i]);
+        if (prev[i] >= 0)
+            f = f - tension_unit(x, prev[i], i);
+        vstore3(f, i, F);
+    }
 }
 
 /* H = S G: (G_prev + 2 G_i + G_next)/4 inside, (3 G_i + G_nb)/4 at an open end. */
 __kernel void tension_smooth(__global const real *G, __global const int *next,
                              __global const int *prev, const int n, __global real *H)
 {
-    int i = get_global_id(0);
-    if (i >= n)
-        return;
-    int pv = prev[i], nx = next[i];
-    real3 g = vload3(i, G), h;
-    if (pv >= 0 && nx >= 0)
-        h = (vload3(pv, G) + 2.0 * g + vload3(nx, G)) / 4.0;
-    else if (pv >= 0 || nx >= 0)
-        h = (3.0 * g + vload3(pv >= 0 ? pv : nx, G)) / 4.0;
-    else
-        h = g;
-    vstore3(h, i, H);
+    TR_ITEMS(i, n) {
+        int pv = prev[i], nx = next[i];
+        real3 g = vload3(i, G), h;
+        if (pv >= 0 && nx >= 0)
+            h = (vload3(pv, G) + 2.0 * g + vload3(nx, G)) / 4.0;
+        else if (pv >= 0 || nx >= 0)
+            h = (3.0 * g + vload3(pv >= 0 ? pv : nx, G)) / 4.0;
+        else
+            h = g;
+        vstore3(h, i, H);
+    }
 }
 
 /* dx = h P G capped at max_move; x += dx; snap. Per-vertex terms of the
@@ -49,30 +47,28 @@ __kernel void tension_move(__global real *x, __global const real *F, __global co
                            const real max_move, __global real *f2, __global real *pred,
                            __global real *mv)
 {
-    int i = get_global_id(0);
-    if (i >= n)
-        return;
-    real3 Fi = vload3(i, F);
-    real3 f = tr_project_motion(cst, i, Fi);
-    f2[i] = tr_dot3(f, f);
-    real3 d = tr_project_motion(cst, i, h * vload3(i, G));
-    real m = tr_norm3(d);
-    if (m > max_move) {
-        d = (max_move / m) * d;
-        m = max_move;
+    TR_ITEMS(i, n) {
+        real3 Fi = vload3(i, F);
+        real3 f = tr_project_motion(cst, i, Fi);
+        f2[i] = tr_dot3(f, f);
+        real3 d = tr_project_motion(cst, i, h * vload3(i, G));
+        real m = tr_norm3(d);
+        if (m > max_move) {
+            d = (max_move / m) * d;
+            m = max_move;
+        }
+        mv[i] = m;
+        pred[i] = tr_dot3(Fi, d);
+        vstore3(tr_snap(cst, i, vload3(i, x) + d), i, x);
     }
-    mv[i] = m;
-    pred[i] = tr_dot3(Fi, d);
-    vstore3(tr_snap(cst, i, vload3(i, x) + d), i, x);
 }
 
 /* s2[i] = |P_i G_i|^2 (the smoothed force's share of the KKT residual). */
 __kernel void tension_smooth2(__global const real *G, __global const real *cst, const int n,
                               __global real *s2)
 {
-    int i = get_global_id(0);
-    if (i >= n)
-        return;
-    real3 g = tr_project_motion(cst, i, vload3(i, G));
-    s2[i] = tr_dot3(g, g);
+    TR_ITEMS(i, n) {
+        real3 g = tr_project_motion(cst, i, vload3(i, G));
+        s2[i] = tr_dot3(g, g);
+    }
 }

@@ -89,31 +89,30 @@ __kernel void tridiag_matrix(__global const real *pd, __global const real *po,
                              __global const int *ne, __global const int *closed, const int nv,
                              __global real *set)
 {
-    int j = get_global_id(0);
-    if (j >= nv)
-        return;
-    int k = comp[j], st = start[k], n = ne[k];
-    real a = 0.0, b = 1.0, c = 0.0, d = 0.0;
-    if (j < st + n) {
-        a = j > st ? po[j - 1] : 0.0;
-        c = j + 1 < st + n ? po[j] : 0.0;
-        b = pd[j];
-        if (closed[k] && n >= 3) {
-            real alpha = po[st + n - 1], gamma = -pd[st];
-            if (j == st) {
-                b = pd[j] - gamma;
-                d = gamma;
-            }
-            if (j == st + n - 1) {
-                b = pd[j] - alpha * alpha / gamma;
-                d = alpha;
+    TR_ITEMS(j, nv) {
+        int k = comp[j], st = start[k], n = ne[k];
+        real a = 0.0, b = 1.0, c = 0.0, d = 0.0;
+        if (j < st + n) {
+            a = j > st ? po[j - 1] : 0.0;
+            c = j + 1 < st + n ? po[j] : 0.0;
+            b = pd[j];
+            if (closed[k] && n >= 3) {
+                real alpha = po[st + n - 1], gamma = -pd[st];
+                if (j == st) {
+                    b = pd[j] - gamma;
+                    d = gamma;
+                }
+                if (j == st + n - 1) {
+                    b = pd[j] - alpha * alpha / gamma;
+                    d = alpha;
+                }
             }
         }
+        set[j] = a;
+        set[nv + j] = b;
+        set[2 * nv + j] = c;
+        set[3 * nv + j] = d;
     }
-    set[j] = a;
-    set[nv + j] = b;
-    set[2 * nv + j] = c;
-    set[3 * nv + j] = d;
 }
 
 /* One level over every row (large systems: one launch per level). */
@@ -121,12 +120,11 @@ __kernel void tridiag_level(const int s, __global const int *comp, __global cons
                             __global const int *ne, const int nv, __global const real *src,
                             __global real *dst)
 {
-    int j = get_global_id(0);
-    if (j >= nv)
-        return;
-    int lo, hi;
-    tri_bounds(j, comp, start, ne, &lo, &hi);
-    pcr_row(j, s, lo, hi, nv, src, dst);
+    TR_ITEMS(j, nv) {
+        int lo, hi;
+        tri_bounds(j, comp, start, ne, &lo, &hi);
+        pcr_row(j, s, lo, hi, nv, src, dst);
+    }
 }
 
 __kernel void tridiag_finish(__global const real *set, __global const real *pd,
@@ -135,9 +133,9 @@ __kernel void tridiag_finish(__global const real *set, __global const real *pd,
                              __global const int *closed, __global const real *uu, const int sm,
                              const int nv, __global real *z)
 {
-    int j = get_global_id(0);
-    if (j < nv)
+    TR_ITEMS(j, nv) {
         z[j] = pcr_finish(j, nv, set, pd, po, comp, start, ne, closed, uu, sm);
+    }
 }
 
 /* Small systems: every level and the finish in one work-group (global-memory

@@ -275,7 +275,6 @@ __kernel void twist_ring_fix(__global const int *comp, const int ncomp, const in
                              __global const real *tw, __global const real *ends,
                              __global real *z)
 {
-    int q = get_global_id(0);
-    if (q < nv)
+    TR_ITEMS(q, nv)
         z[q] -= ends[2 * ncomp + comp[q]] * tw[2 * nv + q];
 }

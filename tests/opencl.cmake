@@ -47,6 +47,20 @@ foreach(_solver pcr-group pcr-levels thomas twisted)
     WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR}
     PASS_REGULAR_EXPRESSION "\\[${_solver}\\]: pairs.*all checks passed|skipped")
 endforeach()
+# The other launch shape of the index-looping kernels (common.clh TR_ITEMS):
+# one index per work-item, as on a GPU, where the default on CPU devices is
+# a block of indices per work-item.
+foreach(_t test_opencl_backend test_opencl_tree)
+  add_test(NAME ${_t}_items_one COMMAND ${_t})
+  set_tests_properties(${_t}_items_one PROPERTIES SKIP_RETURN_CODE 77
+    ENVIRONMENT "${TR_TEST_ENV};TIGHTROPE_CL_ITEMS=one"
+    WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR}
+    PASS_REGULAR_EXPRESSION "all checks passed|skipped")
+endforeach()
+add_test(NAME cli_bench_bad_items COMMAND ${_tr} bench --n 300 --steps 1 --device opencl)
+set_tests_properties(cli_bench_bad_items PROPERTIES
+  ENVIRONMENT "${TR_TEST_ENV};TIGHTROPE_CL_ITEMS=bogus"
+  PASS_REGULAR_EXPRESSION "TIGHTROPE_CL_ITEMS='bogus': use one or blocks")
 add_test(NAME cli_bench_bad_tridiag COMMAND ${_tr} bench --n 300 --steps 1 --device opencl)
 set_tests_properties(cli_bench_bad_tridiag PROPERTIES
   ENVIRONMENT "${TR_TEST_ENV};TIGHTROPE_CL_TRIDIAG=bogus"
