@@ -19,7 +19,7 @@
 /* Kernels this file launches itself (the reduction and tree modules hold their own). */
 #define KERNELS(X)                                                                             \
     X(tension_force) X(tension_smooth) X(tension_move) X(pairs_upper) X(pairs_write)           \
-    X(pairs_dist) X(rows_chain) X(rows_strut) X(cg_init) X(jt_vertex)          \
+    X(pairs_min_dist) X(rows_chain) X(rows_strut) X(cg_init) X(jt_vertex)          \
     X(jt_ebar_partial) X(jt_ebar) X(j_rows) X(cg_start) X(cg_top) X(cg_alpha) X(cg_yr)         \
     X(cg_beta) X(cg_p) X(dx_norm) X(step_scale) X(apply_dx) X(apply_debar) X(measure_edges)    \
     X(measure_minrad) X(measure_disp) X(comp_sum) X(cg_reset) X(release_pulling)               \
@@ -28,7 +28,7 @@
     X(tridiag_matrix) X(tridiag_level) X(tridiag_finish) X(tridiag_group) X(twist_factor)      \
     X(twist_factor_mid) X(twist_sweep_rows) X(twist_back_rows) X(twist_ring_fact)              \
     X(twist_ring_fix) X(adj_active_count) X(adj_active_write) X(act_count) X(act_scan)         \
-    X(act_write) X(act_gather) X(adj_active_sort)
+    X(act_write) X(act_gather) X(adj_active_sort) X(pairs_neighbours) X(rows_strut_min)
 #define ENUM(k) K_##k,
 #define NAME(k) #k,
 enum { KERNELS(ENUM) K_COUNT };
@@ -66,7 +66,12 @@ typedef struct cl_state {
     cl_mem sc;         /* scalars */
     /* contacts */
     int np, pcap;
-    cl_mem up, first, off, pa, pb, pd;
+    cl_mem up, first, off, pa, pb;
+    cl_mem dist, nbr; /* each pair's distance (rows_strut); its neighbours in the list (pairs_neighbours) */
+    /* one partial result per work-item of a folding kernel (rows_chain and
+     * rows_strut: largest violations; pairs_min_dist: closest pairs) */
+    cl_mem part;
+    size_t partcap;
     /* each vertex's active strut entries, per CG solve, compact (CSR by
      * aaoff, aadjn long) with each entry's weight and strut direction
      * (kernels/correct.cl adj_active_*) */
@@ -117,13 +122,13 @@ static void cl_destroy(void *sp)
     cl_mem *m[] = {&s->start, &s->ne,   &s->cst,  &s->gap,  &s->x,    &s->xs,   &s->ebar,
                    &s->ebar_s, &s->debar, &s->F,  &s->G,    &s->H,    &s->dx,   &s->t1,
                    &s->t2,    &s->t3,   &s->sc,   &s->up,   &s->first, &s->off,
-                   &s->pa,    &s->pb,   &s->pd,   &s->rC,   &s->rgrad,
-                   &s->ract,  &s->rs,   &s->rt,   &s->rv,   &s->y,    &s->r,    &s->p,
+                   &s->pa,    &s->pb,   &s->part, &s->rC,   &s->rgrad,
+                   &s->ract,  &s->rs,   &s->rt,   &s->y,    &s->r,    &s->p,
                    &s->q,     &s->b,    &s->cgq,  &s->cdeb, &s->chg,
                    &s->pdiag, &s->z,    &s->po,   &s->tw,   &s->closed, &s->tset0,
                    &s->tp,    &s->tq,   &s->tuu,  &s->ebar_part, &s->curv, &s->tmid,
                    &s->tends, &s->aadj, &s->aadjn, &s->act, &s->actc,
-                   &s->aaoff, &s->acoef, &s->agrad, &s->sab, &s->sw};
+                   &s->aaoff, &s->acoef, &s->agrad, &s->sab, &s->sw, &s->dist, &s->nbr};
     for (size_t i = 0; i < sizeof m / sizeof m[0]; i++)
         release(m[i]);
     for (int i = 0; i < K_COUNT; i++)
@@ -334,7 +339,6 @@ static int ensure_rows(cl_state *s, tr_error *err)
     TR_TRY(buffer(s, &s->rC, n * d, err));
     TR_TRY(buffer(s, &s->rgrad, 3 * n * d, err));
     TR_TRY(buffer(s, &s->ract, n * sizeof(int), err));
-    TR_TRY(buffer(s, &s->rv, n * d, err));
     TR_TRY(buffer(s, &s->rs, n * d, err));
     TR_TRY(buffer(s, &s->rt, n * d, err));
     TR_TRY(buffer(s, &s->pdiag, n * d, err));
@@ -345,6 +349,31 @@ cleanup:
 }
 
 /* ---- neighbour search ---- */
+
+/* Room for n partial results (part). */
+static int partials(cl_state *s, size_t n, tr_error *err)
+{
+    if (n <= s->partcap && s->part)
+        return TR_OK;
+    size_t c = n + n / 2 + 64;
+    int rc = buffer(s, &s->part, c * sizeof(double), err);
+    s->partcap = rc == TR_OK ? c : 0;
+    return rc;
+}
+
+/* sc[SC_STRUT] = the smallest distance of a listed pair (np > 0). */
+static int closest_pair(cl_state *s, tr_error *err)
+{
+    int rc = TR_OK;
+    int np = s->np;
+    size_t g = tr_cl_items_global(&s->ctx, (size_t)np);
+    TR_TRY(partials(s, g, err));
+    TR_TRY(run(s, K_pairs_min_dist, (size_t)np, err, A(s->x), A(s->topo.next), A(s->pa), A(s->pb),
+               A(np), A(s->part), END));
+    TR_TRY(tr_cl_reduce_minmax(&s->red, &s->ctx, s->part, (int)g, s->sc, SC_STRUT, err));
+cleanup:
+    return rc;
+}
 
 static int cl_find_contacts(void *sp, const tr_contact_params *prm, tr_contact_stats *out,
                             tr_error *err)
@@ -383,20 +412,22 @@ static int cl_find_contacts(void *sp, const tr_contact_params *prm, tr_contact_s
         int pc = np + np / 2 + 64;
         TR_TRY(buffer(s, &s->pa, (size_t)pc * sizeof(int), err));
         TR_TRY(buffer(s, &s->pb, (size_t)pc * sizeof(int), err));
-        TR_TRY(buffer(s, &s->pd, (size_t)pc * sizeof(double), err));
         TR_TRY(buffer(s, &s->act, (size_t)pc * sizeof(int), err));
+        TR_TRY(buffer(s, &s->dist, (size_t)pc * sizeof(double), err));
+        TR_TRY(buffer(s, &s->nbr, 4 * (size_t)pc * sizeof(int), err));
         TR_TRY(buffer(s, &s->actc, ((size_t)pc / TR_ACT_BLOCK + 2) * sizeof(int), err));
         s->pcap = pc;
     }
     TR_TRY(run(s, K_pairs_write, (size_t)nv, err, A(s->tree.count), A(list), A(loff), A(s->first),
                A(s->off), A(nv), A(s->pa), A(s->pb), END));
+    if (np > 0)
+        TR_TRY(run(s, K_pairs_neighbours, (size_t)nv, err, A(list), A(loff), A(s->tree.count),
+                   A(s->first), A(s->off), A(s->topo.next), A(s->topo.prev), A(nv), A(s->nbr), END));
     s->np = np;
     TR_TRY(ensure_rows(s, err));
     double mind = INFINITY;
     if (np > 0) {
-        TR_TRY(run(s, K_pairs_dist, (size_t)np, err, A(s->x), A(s->topo.next), A(s->pa), A(s->pb),
-                   A(np), A(s->pd), END));
-        TR_TRY(tr_cl_reduce_minmax(&s->red, &s->ctx, s->pd, np, s->sc, SC_STRUT, err));
+        TR_TRY(closest_pair(s, err));
         TR_TRY(read_scalars(s, SC_STRUT, 1, &mind, err));
     }
     if (out) {
@@ -414,19 +445,26 @@ cleanup:
 static int eval_rows(cl_state *s, const tr_correct_params *prm, tr_error *err)
 {
     int rc = TR_OK;
-    int nv = s->nv, np = s->np, nr = 2 * nv + np;
+    int nv = s->nv, np = s->np;
     double minrad = prm->minrad, ac = prm->active_curv, sd = prm->strut_dist, as = prm->active_strut;
+    /* the largest violation: one partial per work-item, chain rows' first */
+    size_t gc = tr_cl_items_global(&s->ctx, (size_t)nv);
+    size_t gs = np > 0 ? tr_cl_items_global(&s->ctx, (size_t)np) : 0;
+    int voff = (int)gc;
+    TR_TRY(partials(s, gc + gs, err));
     TR_TRY(run(s, K_curv_limits, (size_t)s->ncomp, err, A(s->ebar), A(s->ncomp), A(minrad),
                A(s->curv), END));
     TR_TRY(run(s, K_rows_chain, (size_t)nv, err, A(s->x), A(s->topo.next), A(s->topo.prev),
                A(s->topo.comp), A(s->ebar), A(s->curv), A(nv), A(ac), A(s->rC), A(s->rgrad),
-               A(s->ract), A(s->rv), A(s->cgq), A(s->cdeb), END));
+               A(s->ract), A(s->part), A(s->cgq), A(s->cdeb), END));
     if (np > 0)
         TR_TRY(run(s, K_rows_strut, (size_t)np, err, A(s->x), A(s->topo.next), A(s->topo.prev),
-                   A(s->pa), A(s->pb),
-                   A(nv), A(np), A(sd), A(as), A(s->rC), A(s->rgrad), A(s->ract), A(s->rs),
-                   A(s->rt), A(s->rv), END));
-    TR_TRY(tr_cl_reduce_minmax(&s->red, &s->ctx, s->rv, nr, s->sc, SC_VIOL, err));
+                   A(s->pa), A(s->pb), A(nv), A(np), A(sd), A(as), A(s->rC), A(s->rgrad), A(s->ract),
+                   A(s->rs), A(s->rt), A(s->dist), A(s->part), A(voff), END));
+    if (np > 0)
+        TR_TRY(run(s, K_rows_strut_min, (size_t)np, err, A(s->x), A(s->topo.next), A(s->topo.prev),
+                   A(s->pa), A(s->pb), A(s->dist), A(s->nbr), A(nv), A(np), A(s->ract), END));
+    TR_TRY(tr_cl_reduce_minmax(&s->red, &s->ctx, s->part, (int)(gc + gs), s->sc, SC_VIOL, err));
 cleanup:
     return rc;
 }
@@ -829,9 +867,7 @@ static int cl_measure(void *sp, tr_measure *out, double *comp_length, double *co
                A(s->t3), END));
     TR_TRY(tr_cl_reduce_minmax(&s->red, &s->ctx, s->t3, nv, s->sc, SC_MINRAD, err));
     if (np > 0) {
-        TR_TRY(run(s, K_pairs_dist, (size_t)np, err, A(s->x), A(s->topo.next), A(s->pa), A(s->pb),
-                   A(np), A(s->pd), END));
-        TR_TRY(tr_cl_reduce_minmax(&s->red, &s->ctx, s->pd, np, s->sc, SC_STRUT, err));
+        TR_TRY(closest_pair(s, err));
     }
     if (s->saved) {
         TR_TRY(run(s, K_measure_disp, (size_t)nv, err, A(s->x), A(s->xs), A(nv), A(s->t1), END));
@@ -1048,8 +1084,9 @@ static int open_on(const tr_device_choice *dev, const tr_curve *c, int profiling
     s->pcap = 64;
     TR_TRY(buffer(s, &s->pa, (size_t)s->pcap * sizeof(int), err));
     TR_TRY(buffer(s, &s->pb, (size_t)s->pcap * sizeof(int), err));
-    TR_TRY(buffer(s, &s->pd, (size_t)s->pcap * d, err));
     TR_TRY(buffer(s, &s->act, (size_t)s->pcap * sizeof(int), err));
+    TR_TRY(buffer(s, &s->dist, (size_t)s->pcap * sizeof(double), err));
+    TR_TRY(buffer(s, &s->nbr, 4 * (size_t)s->pcap * sizeof(int), err));
     TR_TRY(buffer(s, &s->actc, ((size_t)s->pcap / TR_ACT_BLOCK + 2) * sizeof(int), err));
     TR_TRY(ensure_rows(s, err));
 

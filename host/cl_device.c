@@ -391,13 +391,18 @@ cleanup:
     return rc;
 }
 
-int tr_cl_launch_items(const tr_cl_ctx *ctx, cl_kernel k, size_t n, tr_error *err)
+size_t tr_cl_items_global(const tr_cl_ctx *ctx, size_t n)
 {
     if (!ctx->block_items)
-        return tr_cl_launch(ctx, k, tr_cl_global(n), TR_CL_LOCAL, err);
-    /* always one item per group: PoCL compiles a kernel again for every local size */
-    size_t g = n < ctx->block_items ? (n ? n : 1) : ctx->block_items;
-    return tr_cl_launch(ctx, k, g, 1, err);
+        return tr_cl_global(n);
+    return n < ctx->block_items ? (n ? n : 1) : ctx->block_items;
+}
+
+int tr_cl_launch_items(const tr_cl_ctx *ctx, cl_kernel k, size_t n, tr_error *err)
+{
+    /* blocks: always one item per group, since PoCL compiles a kernel again
+     * for every local size it meets */
+    return tr_cl_launch(ctx, k, tr_cl_items_global(ctx, n), ctx->block_items ? 1 : TR_CL_LOCAL, err);
 }
 
 /* One-line error text: the build log's line breaks become " | ". */

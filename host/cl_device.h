@@ -105,6 +105,10 @@ int tr_cl_launch(const tr_cl_ctx *ctx, cl_kernel k, size_t global, size_t local,
  * overrides the choice (tr_cl_ctx_open). */
 int tr_cl_launch_items(const tr_cl_ctx *ctx, cl_kernel k, size_t n, tr_error *err);
 
+/* The work-items tr_cl_launch_items launches for n indices (a kernel that
+ * folds its indices writes one partial result per work-item). */
+size_t tr_cl_items_global(const tr_cl_ctx *ctx, size_t n);
+
 /* Builds one program from common.clh followed by the named kernel files
  * (embedded, or from TIGHTROPE_KERNEL_DIR). On failure err holds the call,
  * the options and the build log folded onto one line. */

@@ -44,15 +44,18 @@ __kernel void pairs_write(__global const int *count, __global const int *list,
     }
 }
 
-/* d[p] = segment distance of pair p (for the list's statistics). */
-__kernel void pairs_dist(__global const real *x, __global const int *next,
-                         __global const int *pa, __global const int *pb, const int np,
-                         __global real *d)
+/* dmin[item] = the smallest segment distance of the work-item's pairs
+ * (INFINITY for none): the list's closest pair, folded by the host. */
+__kernel void pairs_min_dist(__global const real *x, __global const int *next,
+                             __global const int *pa, __global const int *pb, const int np,
+                             __global real *dmin)
 {
+    real m = INFINITY;
     TR_ITEMS(p, np) {
         int a = pa[p], b = pb[p];
         real s, t;
-        d[p] = tr_segment_distance(vload3(a, x), vload3(next[a], x), vload3(b, x), vload3(next[b], x),
-                                   &s, &t);
+        m = fmin(m, tr_segment_distance(vload3(a, x), vload3(next[a], x), vload3(b, x),
+                                        vload3(next[b], x), &s, &t));
     }
+    dmin[get_global_id(0)] = m;
 }

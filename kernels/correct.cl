@@ -35,7 +35,11 @@ __kernel void curv_limits(__global const real *ebar, const int ncomp, const real
     }
 }
 
-/* Edge row i and curvature row nv + i; rv holds each row's violation (>= 0).
+/* Edge row i and curvature row nv + i; vmax[item] is the largest violation
+ * (>= 0) of the work-item's rows (rows_strut: vmax[voff + item]), which the
+ * host folds into the largest of all: each row's violation written out and
+ * read back ran 13 ms a call over the 2 x 10^7 strut rows of a tight
+ * trefoil at N = 10^6 on PoCL.
  * The curvature row is the turning-angle form of MinRad >= minrad:
  * C = ebar (theta_max - theta), theta = atan2(|p x q|, p.q) for the edges p,
  * q at vertex i; its gradient is ga (stored with the row) on the incoming
@@ -45,13 +49,13 @@ __kernel void rows_chain(__global const real *x, __global const int *next,
                          __global const int *prev, __global const int *comp,
                          __global const real *ebar, __global const real *lim, const int nv,
                          const real active_curv, __global real *rC, __global real *rgrad,
-                         __global int *ract, __global real *rv, __global real *cgq,
+                         __global int *ract, __global real *vmax, __global real *cgq,
                          __global real *cdeb)
 {
+    real vm = 0.0;
     TR_ITEMS(i, nv) {
         int nx = next[i], pv = prev[i];
         ract[i] = 0;
-        rv[i] = 0.0;
         if (nx >= 0) {
             real3 u = vload3(nx, x) - vload3(i, x);
             real l = tr_norm3(u);
@@ -60,11 +64,10 @@ __kernel void rows_chain(__global const real *x, __global const int *next,
             real C = l - ebar[comp[i]];
             rC[i] = C;
             ract[i] = 1;
-            rv[i] = fabs(C);
+            vm = fmax(vm, fabs(C));
         }
         int r = nv + i;
         ract[r] = 0;
-        rv[r] = 0.0;
         if (pv >= 0 && nx >= 0) {
             real3 xi = vload3(i, x);
             real3 pe = xi - vload3(pv, x), qe = vload3(nx, x) - xi;
@@ -86,9 +89,10 @@ __kernel void rows_chain(__global const real *x, __global const int *next,
             }
             vstore3(ga, r, rgrad);
             vstore3(gb, i, cgq);
-            rv[r] = -C > 0.0 ? -C : 0.0;
+            vm = fmax(vm, -C > 0.0 ? -C : 0.0);
         }
     }
+    vmax[get_global_id(0)] = vm;
 }
 
 inline real pair_distance(__global const real *x, __global const int *next, int a, int b)
@@ -99,36 +103,121 @@ inline real pair_distance(__global const real *x, __global const int *next, int 
 }
 
 /* The pair is a local minimum of the distance along both strands (backend.h):
- * no neighbouring edge pair, sharing no vertex, is strictly closer. */
+ * no neighbouring edge pair, sharing no vertex, is strictly closer. The
+ * neighbours are k = 0, 1: (prev a, b), (next a, b); k = 2, 3: (a, prev b),
+ * (a, next b), measured in that argument order as the reference does. Where
+ * that neighbour is itself a listed pair in the same order (nbr[4 p + k],
+ * pairs_neighbours) its distance is the one rows_strut has just stored in
+ * dist, the same bits; else it is measured here. Measuring all four each
+ * time was half of rows_strut's time (PoCL, tight trefoil, N = 10^5). */
 inline int strut_local_min(__global const real *x, __global const int *next,
-                           __global const int *prev, int a, int b, real d)
+                           __global const int *prev, __global const real *dist,
+                           __global const int *nbr, int p, int a, int b, real d)
 {
-    for (int side = 0; side < 2; side++) {
-        int me = side == 0 ? a : b, other = side == 0 ? b : a;
-        for (int k = 0; k < 2; k++) {
-            int nb = k == 0 ? prev[me] : next[me];
-            if (nb < 0 || next[nb] < 0 || nb == other)
-                continue;
-            if (next[nb] == other || next[other] == nb)
-                continue;
-            real dn = side == 0 ? pair_distance(x, next, nb, other) : pair_distance(x, next, other, nb);
-            if (dn < d)
-                return 0;
-        }
+    for (int k = 0; k < 4; k++) {
+        int me = k < 2 ? a : b, other = k < 2 ? b : a;
+        int nb = (k & 1) == 0 ? prev[me] : next[me];
+        if (nb < 0 || next[nb] < 0 || nb == other)
+            continue;
+        if (next[nb] == other || next[other] == nb)
+            continue;
+        int q = nbr[4 * p + k];
+        real dn = q >= 0  ? dist[q]
+                  : k < 2 ? pair_distance(x, next, nb, other)
+                          : pair_distance(x, next, other, nb);
+        if (dn < d)
+            return 0;
     }
     return 1;
 }
 
+/* The pairs' neighbours in the list (strut_local_min): nbr[4 p + k] = the
+ * index of pair (prev a, b), (next a, b), (a, prev b) or (a, next b) for
+ * k = 0 .. 3 where the list holds it in that order, else -1. Fixed while the
+ * list is, so built once per search and used by every row evaluation. One
+ * item per edge a walks a's partners b > a in ascending order and, beside
+ * them, the partner lists of edges prev a and next a (sorted too, so each
+ * pointer only moves forward); (a, b +- 1) is next to b in a's own list
+ * unless b's ring wraps there, then a binary search finds it. */
+inline int partner_at(__global const int *l, int i, int j, int want)
+{
+    while (i < j) { /* the first entry >= want in l[i .. j) */
+        int mid = (i + j) / 2;
+        if (l[mid] < want)
+            i = mid + 1;
+        else
+            j = mid;
+    }
+    return i;
+}
+
+__kernel void pairs_neighbours(__global const int *list, __global const int *loff,
+                               __global const int *count, __global const int *first,
+                               __global const int *off, __global const int *next,
+                               __global const int *prev, const int nv, __global int *nbr)
+{
+    TR_ITEMS(a, nv) {
+        __global const int *l = list + loff[a];
+        int f = first[a], m = count[a];
+        int na[2] = {prev[a], next[a]}, at[2];
+        for (int k = 0; k < 2; k++)
+            at[k] = na[k] >= 0 ? first[na[k]] : 0;
+        for (int j = f; j < m; j++) {
+            int b = l[j], p = off[a] + j - f;
+            for (int k = 0; k < 2; k++) { /* (nb, b), nb = prev a, next a */
+                int nb = na[k], q = -1;
+                if (nb >= 0 && nb < b) {
+                    __global const int *ln = list + loff[nb];
+                    while (at[k] < count[nb] && ln[at[k]] < b)
+                        at[k]++;
+                    if (at[k] < count[nb] && ln[at[k]] == b)
+                        q = off[nb] + at[k] - first[nb];
+                }
+                nbr[4 * p + k] = q;
+            }
+            for (int k = 2; k < 4; k++) { /* (a, nb), nb = prev b, next b */
+                int nb = k == 2 ? prev[b] : next[b], q = -1;
+                if (nb > a) {
+                    int i = nb < b ? j - 1 : j + 1;
+                    if (!(i >= f && i < m && l[i] == nb))
+                        i = partner_at(l, f, m, nb);
+                    if (i < m && l[i] == nb)
+                        q = off[a] + i - f;
+                }
+                nbr[4 * p + k] = q;
+            }
+        }
+    }
+}
+
+/* Strut rows in the band that are not local minima become inactive (after
+ * rows_strut has stored every pair's distance). */
+__kernel void rows_strut_min(__global const real *x, __global const int *next,
+                             __global const int *prev, __global const int *pa,
+                             __global const int *pb, __global const real *dist,
+                             __global const int *nbr, const int nv, const int np,
+                             __global int *ract)
+{
+    TR_ITEMS(p, np) {
+        int r = 2 * nv + p;
+        if (ract[r] && !strut_local_min(x, next, prev, dist, nbr, p, pa[p], pb[p], dist[p]))
+            ract[r] = 0;
+    }
+}
+
 /* Strut row 2 nv + p for candidate pair p = (a, b): C = d - strut_dist,
  * gradient n split over the four vertices by the closest-point parameters;
- * active in the band and only at local distance minima. */
+ * active in the band (and, after rows_strut_min, only at local distance
+ * minima); dist[p] = d. */
 __kernel void rows_strut(__global const real *x, __global const int *next,
                          __global const int *prev, __global const int *pa,
                          __global const int *pb, const int nv, const int np,
                          const real strut_dist, const real active_strut, __global real *rC,
                          __global real *rgrad, __global int *ract, __global real *rs,
-                         __global real *rt, __global real *rv)
+                         __global real *rt, __global real *dist, __global real *vmax,
+                         const int voff)
 {
+    real vm = 0.0;
     TR_ITEMS(p, np) {
         int r = 2 * nv + p, a = pa[p], b = pb[p];
         real3 p0 = vload3(a, x), p1 = vload3(next[a], x), q0 = vload3(b, x), q1 = vload3(next[b], x);
@@ -140,9 +229,11 @@ __kernel void rows_strut(__global const real *x, __global const int *next,
         rt[p] = tt;
         real C = d - strut_dist;
         rC[r] = C;
-        ract[r] = C < active_strut && strut_local_min(x, next, prev, a, b, d);
-        rv[r] = -C > 0.0 ? -C : 0.0;
+        dist[p] = d;
+        ract[r] = C < active_strut; /* and a local minimum: rows_strut_min */
+        vm = fmax(vm, -C > 0.0 ? -C : 0.0);
     }
+    vmax[voff + get_global_id(0)] = vm;
 }
 
 /* The CG's row list (backend.h: its sums skip inactive rows, which hold
@@ -293,8 +384,14 @@ void jt_ebar_partial(__global const real *y, __global const int *ract,
     __local real s[TR_LOCAL_SIZE];
     int G = groups_per_comp, k = get_group_id(0) / G, g = get_group_id(0) % G,
         l = get_local_id(0);
+    /* group g takes the g-th of G contiguous slices of the component, its
+     * items striding through it: interleaving the groups' items over the
+     * whole component (a stride of G x 64) ran 3.5 ms a call at N = 10^6 on
+     * PoCL, where the rows no longer fit in cache */
+    int st = start[k], len = start[k + 1] - st;
+    int lo = st + (int)((long)len * g / G), hi = st + (int)((long)len * (g + 1) / G);
     real sum = 0.0;
-    for (int a = start[k] + g * TR_LOCAL_SIZE + l; a < start[k + 1]; a += G * TR_LOCAL_SIZE) {
+    for (int a = lo + l; a < hi; a += TR_LOCAL_SIZE) {
         if (ract[a])
             sum += -y[a];
         if (ract[nv + a])

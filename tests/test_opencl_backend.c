@@ -13,6 +13,7 @@
 #include "backend.h"
 #include "backend_opencl.h"
 #include "cl_device.h"
+#include "curve_io.h"
 #include "generate.h"
 #include "testlib.h"
 #include "thickness.h"
@@ -398,6 +399,21 @@ int main(void)
         } else {
             tr_test_failures++;
             fprintf(stderr, "hopf: %s\n", err.msg);
+        }
+    }
+    /* A tight trefoil (ropelength 32.74): thousands of listed pairs and
+     * hundreds in the band of active struts, where the rows' local-minimum
+     * test (rows_strut_min, with the neighbours' distances looked up in the
+     * list where it holds them) decides which are active. */
+    {
+        char path[1024];
+        snprintf(path, sizeof path, "%s/bench/data/trefoil_2400.vect", TR_SOURCE_DIR);
+        if (tr_curve_read(path, TR_FORMAT_AUTO, &c, &err) == TR_OK) {
+            ops_case("tight trefoil", &c, 2.1, 1);
+            tr_curve_free(&c);
+        } else {
+            tr_test_failures++;
+            fprintf(stderr, "tight trefoil: %s\n", err.msg);
         }
     }
     if (tr_make_torus(&c, 2, 3, 96, &err) == TR_OK) {
