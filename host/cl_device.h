@@ -100,8 +100,8 @@ int tr_cl_launch(const tr_cl_ctx *ctx, cl_kernel k, size_t global, size_t local,
 /* Launches a kernel that loops over the indices [0, n) (kernels/common.clh
  * TR_ITEMS). On a GPU, one index per work-item in groups of TR_CL_LOCAL; on a
  * CPU device, ctx->block_items work-items of one each, every one walking a
- * contiguous block of indices: PoCL runs an axpy over 2 x 10^5 entries
- * 2.5-3x faster so (bench/RESULTS.md). TIGHTROPE_CL_ITEMS=one|blocks
+ * contiguous block of indices: PoCL runs the CG's axpy over 2 x 10^5
+ * entries 5x faster so, over 2 x 10^6 3x (bench/launch_shapes). TIGHTROPE_CL_ITEMS=one|blocks
  * overrides the choice (tr_cl_ctx_open). */
 int tr_cl_launch_items(const tr_cl_ctx *ctx, cl_kernel k, size_t n, tr_error *err);
 

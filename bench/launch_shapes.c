@@ -1,0 +1,98 @@
+/* launch_shapes [DEVICE] [N]: wall time of the CG's axpy kernel (cg_yr,
+ * kernels/correct.cl) over N entries (default 2 x 10^5, the row list of a
+ * loose N = 10^5 curve) in the two launch shapes of tr_cl_launch_items: one
+ * index per work-item in groups of 64 to 4096, and a few work-items of one
+ * each, every one walking a contiguous block (common.clh TR_ITEMS). 200
+ * launches back to back after one untimed launch per shape; prints ms per
+ * launch. The measurement behind the choice of blocks on CPU devices. */
+#include <stdio.h>
+#include <stdlib.h>
+#include <time.h>
+
+#include "cl_device.h"
+#include "cl_error.h"
+#include "cl_reduce.h"
+
+static double now(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+
+/* ms per launch of k over global items in groups of local (arguments set). */
+static int time_shape(const tr_cl_ctx *ctx, cl_kernel k, size_t global, size_t local, double *ms,
+                      tr_error *err)
+{
+    int rc = TR_OK;
+    const int reps = 200;
+    TR_TRY(tr_cl_launch(ctx, k, global, local, err)); /* PoCL compiles for a new local size */
+    TR_CL_CHECK(clFinish(ctx->queue));
+    double t = now();
+    for (int i = 0; i < reps; i++)
+        TR_TRY(tr_cl_launch(ctx, k, global, local, err));
+    TR_CL_CHECK(clFinish(ctx->queue));
+    *ms = 1e3 * (now() - t) / reps;
+cleanup:
+    return rc;
+}
+
+int main(int argc, char **argv)
+{
+    const char *spec = argc > 1 ? argv[1] : "opencl";
+    int n = argc > 2 ? atoi(argv[2]) : 200000;
+    tr_error error = {0}, *err = &error;
+    tr_device_choice ch;
+    tr_cl_ctx ctx = {0};
+    cl_program prog = NULL;
+    cl_kernel k = NULL;
+    cl_mem v[5] = {NULL};
+    cl_int e = CL_SUCCESS;
+    int rc = TR_OK;
+    if (n < 1)
+        n = 200000;
+    TR_TRY(tr_device_select(spec, &ch, err));
+    if (ch.kind != TR_DEVICE_OPENCL) {
+        fprintf(stderr, "launch_shapes: '%s' is not an OpenCL device\n", spec);
+        return 2;
+    }
+    TR_TRY(tr_cl_ctx_open(&ctx, &ch.cl, 0, err));
+    TR_TRY(tr_cl_build_all(&ctx, &prog, err));
+    TR_CL_CHECK((k = clCreateKernel(prog, "cg_yr", &e), e));
+    for (int i = 0; i < 5; i++) {
+        size_t bytes = i < 4 ? (size_t)n * sizeof(double) : 64 * sizeof(double);
+        TR_CL_CHECK((v[i] = clCreateBuffer(ctx.context, CL_MEM_READ_WRITE, bytes, NULL, &e), e));
+        double zero = 0.0;
+        TR_CL_CHECK(clEnqueueFillBuffer(ctx.queue, v[i], &zero, sizeof zero, 0, bytes, 0, NULL, NULL));
+        TR_CL_CHECK(clSetKernelArg(k, (cl_uint)i, sizeof v[i], &v[i]));
+    }
+    TR_CL_CHECK(clSetKernelArg(k, 5, sizeof n, &n));
+    printf("%s, cg_yr over %d entries, ms per launch (200 launches)\n", ch.cl.name, n);
+    const size_t locals[] = {64, 256, 1024, 4096};
+    for (size_t i = 0; i < sizeof locals / sizeof locals[0]; i++) {
+        size_t g = ((size_t)n + locals[i] - 1) / locals[i] * locals[i];
+        double ms;
+        TR_TRY(time_shape(&ctx, k, g, locals[i], &ms, err));
+        printf("  one index per item, groups of %4zu: %.4f\n", locals[i], ms);
+    }
+    const size_t items[] = {2, 4, 8, 16, 32, 64};
+    for (size_t i = 0; i < sizeof items / sizeof items[0]; i++) {
+        double ms;
+        TR_TRY(time_shape(&ctx, k, items[i], 1, &ms, err));
+        printf("  blocks: %2zu work-items of one:    %.4f\n", items[i], ms);
+    }
+cleanup:
+    for (int i = 0; i < 5; i++)
+        if (v[i])
+            clReleaseMemObject(v[i]);
+    if (k)
+        clReleaseKernel(k);
+    if (prog)
+        clReleaseProgram(prog);
+    tr_cl_ctx_close(&ctx);
+    if (rc != TR_OK) {
+        fprintf(stderr, "launch_shapes: %s\n", err->msg);
+        return 1;
+    }
+    return 0;
+}
