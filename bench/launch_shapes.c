@@ -70,6 +70,8 @@ int main(int argc, char **argv)
     printf("%s, cg_yr over %d entries, ms per launch (200 launches)\n", ch.cl.name, n);
     const size_t locals[] = {64, 256, 1024, 4096};
     for (size_t i = 0; i < sizeof locals / sizeof locals[0]; i++) {
+        if (locals[i] > ch.cl.max_work_group)
+            continue;
         size_t g = ((size_t)n + locals[i] - 1) / locals[i] * locals[i];
         double ms;
         TR_TRY(time_shape(&ctx, k, g, locals[i], &ms, err));

@@ -86,7 +86,7 @@ typedef struct cl_state {
     int vcap;  /* entries of the CG's vectors y, r, p, q, b, z (by list position) */
     /* rows */
     int rcap;
-    cl_mem rC, rgrad, ract, rs, rt, rv, y, r, p, q, b;
+    cl_mem rC, rgrad, ract, rs, rt, y, r, p, q, b;
     cl_mem cgq, cdeb, chg; /* curvature rows' second gradient and ebar derivative; a flag */
     cl_mem pdiag, z, po, tw, closed; /* preconditioner: diagonal, M^-1 r, edge off-diagonal, work */
     /* The edge block by parallel cyclic reduction (kernels/tridiag.cl) instead
@@ -336,6 +336,7 @@ static int ensure_rows(cl_state *s, tr_error *err)
         return TR_OK;
     int cap = need + need / 2 + 64;
     size_t n = (size_t)cap, d = sizeof(double);
+    s->rcap = 0; /* until every buffer of the group is there */
     TR_TRY(buffer(s, &s->rC, n * d, err));
     TR_TRY(buffer(s, &s->rgrad, 3 * n * d, err));
     TR_TRY(buffer(s, &s->ract, n * sizeof(int), err));
@@ -350,13 +351,17 @@ cleanup:
 
 /* ---- neighbour search ---- */
 
-/* Room for n partial results (part). */
+/* Room for n partial results (part), and a reduction over them. On a GPU
+ * each folding kernel's partials are its padded global size, so the chain
+ * rows' and strut rows' together can outnumber the rows (a few dozen
+ * vertices, a few dozen pairs). */
 static int partials(cl_state *s, size_t n, tr_error *err)
 {
-    if (n <= s->partcap && s->part)
-        return TR_OK;
+    int rc = tr_cl_reduce_reserve(&s->red, &s->ctx, n, err);
+    if (rc != TR_OK || (n <= s->partcap && s->part))
+        return rc;
     size_t c = n + n / 2 + 64;
-    int rc = buffer(s, &s->part, c * sizeof(double), err);
+    rc = buffer(s, &s->part, c * sizeof(double), err);
     s->partcap = rc == TR_OK ? c : 0;
     return rc;
 }
@@ -410,6 +415,7 @@ static int cl_find_contacts(void *sp, const tr_contact_params *prm, tr_contact_s
     }
     if (np > s->pcap) {
         int pc = np + np / 2 + 64;
+        s->pcap = 0; /* until every buffer of the group is there */
         TR_TRY(buffer(s, &s->pa, (size_t)pc * sizeof(int), err));
         TR_TRY(buffer(s, &s->pb, (size_t)pc * sizeof(int), err));
         TR_TRY(buffer(s, &s->act, (size_t)pc * sizeof(int), err));
@@ -600,6 +606,7 @@ static int solve_rows(cl_state *s, tr_error *err)
     TR_TRY(row_list(s, err));
     if (s->cg_nl > s->vcap) { /* the CG's vectors, by row list position */
         size_t n = (size_t)s->cg_nl + (size_t)s->cg_nl / 2 + 64, d = sizeof(double);
+        s->vcap = 0;
         cl_mem *v[] = {&s->y, &s->r, &s->p, &s->q, &s->b, &s->z};
         for (size_t i = 0; i < sizeof v / sizeof v[0]; i++)
             TR_TRY(buffer(s, v[i], n * d, err));
@@ -608,6 +615,7 @@ static int solve_rows(cl_state *s, tr_error *err)
     size_t nact = (size_t)(s->cg_nl - 2 * nv), nae = 4 * nact;
     if (nact > s->scap || !s->sab) {
         size_t c = nact + nact / 2 + 64;
+        s->scap = 0;
         TR_TRY(buffer(s, &s->sab, 2 * c * sizeof(int), err));
         TR_TRY(buffer(s, &s->sw, 5 * c * sizeof(double), err));
         s->scap = c;
@@ -618,6 +626,7 @@ static int solve_rows(cl_state *s, tr_error *err)
                    A(s->rgrad), A(nv), A(na), A(s->sab), A(s->sw), END));
     if (nae > s->aacap) {
         size_t c = nae + nae / 2 + 64;
+        s->aacap = 0;
         TR_TRY(buffer(s, &s->aadj, c * sizeof(int), err));
         TR_TRY(buffer(s, &s->acoef, c * sizeof(double), err));
         TR_TRY(buffer(s, &s->agrad, 3 * c * sizeof(double), err));

@@ -39,7 +39,7 @@
 
 #define MAX_DEV 8
 #define MAX_N 16
-#define MAX_K 64
+#define MAX_K TR_CL_PROF_MAX
 
 static double now(void)
 {

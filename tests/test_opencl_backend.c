@@ -377,6 +377,32 @@ int main(void)
         ops_case("two segments", &c, 3.0, 1);
         tr_curve_free(&c);
     }
+    /* A few vertices and every pair past the index gap listed: one index per
+     * work-item (TIGHTROPE_CL_ITEMS=one) pads the chain rows' and the strut
+     * rows' partial results to 64 each, more than the rows themselves. */
+    {
+        /* a 16-gon along T(2,3), scaled to mean edge 0.9: the index gap is
+         * ceil(pi / 0.9) = 4, so 16 x 9 / 2 = 72 pairs */
+        size_t n = 16;
+        unsigned char closed = 1;
+        CHECK_OK(tr_curve_alloc(&c, 1, &n, &closed, &err));
+        double len = 0.0;
+        for (size_t i = 0; i < n; i++) {
+            double t = 2.0 * 3.14159265358979 * (double)i / (double)n;
+            c.x[3 * i] = (2.0 + cos(3.0 * t)) * cos(2.0 * t);
+            c.x[3 * i + 1] = (2.0 + cos(3.0 * t)) * sin(2.0 * t);
+            c.x[3 * i + 2] = sin(3.0 * t);
+        }
+        for (size_t i = 0; i < n; i++) {
+            size_t j = (i + 1) % n;
+            len += sqrt(pow(c.x[3 * j] - c.x[3 * i], 2) + pow(c.x[3 * j + 1] - c.x[3 * i + 1], 2) +
+                        pow(c.x[3 * j + 2] - c.x[3 * i + 2], 2));
+        }
+        for (size_t i = 0; i < 3 * n; i++)
+            c.x[i] *= 0.9 * (double)n / len;
+        ops_case("small trefoil", &c, 50.0, 0);
+        tr_curve_free(&c);
+    }
     const size_t sizes[] = {120, 1021, 1024};
     for (size_t s = 0; s < 3; s++) {
         if (tr_make_clasp(&c, sizes[s] / 2, 4.0, &err) == TR_OK) {
