@@ -64,9 +64,9 @@ int main(int argc, char **argv)
         TR_CL_CHECK((v[i] = clCreateBuffer(ctx.context, CL_MEM_READ_WRITE, bytes, NULL, &e), e));
         double zero = 0.0;
         TR_CL_CHECK(clEnqueueFillBuffer(ctx.queue, v[i], &zero, sizeof zero, 0, bytes, 0, NULL, NULL));
-        TR_CL_CHECK(clSetKernelArg(k, (cl_uint)i, sizeof v[i], &v[i]));
+        TR_CL_ARG(k, (cl_uint)i, v[i]);
     }
-    TR_CL_CHECK(clSetKernelArg(k, 5, sizeof n, &n));
+    TR_CL_ARG(k, 5, n);
     printf("%s, cg_yr over %d entries, ms per launch (200 launches)\n", ch.cl.name, n);
     const size_t locals[] = {64, 256, 1024, 4096};
     for (size_t i = 0; i < sizeof locals / sizeof locals[0]; i++) {

@@ -30,6 +30,9 @@ int tr_cl_fail(tr_error *err, cl_int code, const char *call_text, const char *fi
         }                                                                             \
     } while (0)
 
+/* Sets argument i of kernel k to the variable v (a cl_mem, int or double). */
+#define TR_CL_ARG(k, i, v) TR_CL_CHECK(clSetKernelArg((k), (i), sizeof(v), &(v)))
+
 /* Same for library calls returning a tr status: keep their message. */
 #define TR_TRY(expr)                                                                  \
     do {                                                                              \

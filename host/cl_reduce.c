@@ -82,10 +82,10 @@ static int sum_stage2(tr_cl_reduce *r, const tr_cl_ctx *ctx, int m, cl_mem out, 
 {
     int rc = TR_OK;
     size_t l = TR_CL_LOCAL;
-    TR_CL_CHECK(clSetKernelArg(r->sum_final, 0, sizeof r->pa, &r->pa));
-    TR_CL_CHECK(clSetKernelArg(r->sum_final, 1, sizeof m, &m));
-    TR_CL_CHECK(clSetKernelArg(r->sum_final, 2, sizeof out, &out));
-    TR_CL_CHECK(clSetKernelArg(r->sum_final, 3, sizeof slot, &slot));
+    TR_CL_ARG(r->sum_final, 0, r->pa);
+    TR_CL_ARG(r->sum_final, 1, m);
+    TR_CL_ARG(r->sum_final, 2, out);
+    TR_CL_ARG(r->sum_final, 3, slot);
     TR_TRY(tr_cl_launch(ctx, r->sum_final, l, l, err));
 cleanup:
     return rc;
@@ -99,10 +99,10 @@ int tr_cl_reduce_length(tr_cl_reduce *r, const tr_cl_ctx *ctx, cl_mem x, cl_mem 
         return rc;
     size_t g = stage1_global((size_t)n), l = TR_CL_LOCAL;
     int m = (int)(g / l);
-    TR_CL_CHECK(clSetKernelArg(r->length_partial, 0, sizeof x, &x));
-    TR_CL_CHECK(clSetKernelArg(r->length_partial, 1, sizeof next, &next));
-    TR_CL_CHECK(clSetKernelArg(r->length_partial, 2, sizeof n, &n));
-    TR_CL_CHECK(clSetKernelArg(r->length_partial, 3, sizeof r->pa, &r->pa));
+    TR_CL_ARG(r->length_partial, 0, x);
+    TR_CL_ARG(r->length_partial, 1, next);
+    TR_CL_ARG(r->length_partial, 2, n);
+    TR_CL_ARG(r->length_partial, 3, r->pa);
     TR_TRY(tr_cl_launch(ctx, r->length_partial, g, l, err));
     rc = sum_stage2(r, ctx, m, out, slot, err);
 cleanup:
@@ -117,16 +117,16 @@ int tr_cl_reduce_minmax(tr_cl_reduce *r, const tr_cl_ctx *ctx, cl_mem v, int n, 
         return rc;
     size_t g = stage1_global((size_t)n), l = TR_CL_LOCAL;
     int m = (int)(g / l);
-    TR_CL_CHECK(clSetKernelArg(r->minmax_partial, 0, sizeof v, &v));
-    TR_CL_CHECK(clSetKernelArg(r->minmax_partial, 1, sizeof n, &n));
-    TR_CL_CHECK(clSetKernelArg(r->minmax_partial, 2, sizeof r->pa, &r->pa));
-    TR_CL_CHECK(clSetKernelArg(r->minmax_partial, 3, sizeof r->pb, &r->pb));
+    TR_CL_ARG(r->minmax_partial, 0, v);
+    TR_CL_ARG(r->minmax_partial, 1, n);
+    TR_CL_ARG(r->minmax_partial, 2, r->pa);
+    TR_CL_ARG(r->minmax_partial, 3, r->pb);
     TR_TRY(tr_cl_launch(ctx, r->minmax_partial, g, l, err));
-    TR_CL_CHECK(clSetKernelArg(r->minmax_final, 0, sizeof r->pa, &r->pa));
-    TR_CL_CHECK(clSetKernelArg(r->minmax_final, 1, sizeof r->pb, &r->pb));
-    TR_CL_CHECK(clSetKernelArg(r->minmax_final, 2, sizeof m, &m));
-    TR_CL_CHECK(clSetKernelArg(r->minmax_final, 3, sizeof out, &out));
-    TR_CL_CHECK(clSetKernelArg(r->minmax_final, 4, sizeof slot, &slot));
+    TR_CL_ARG(r->minmax_final, 0, r->pa);
+    TR_CL_ARG(r->minmax_final, 1, r->pb);
+    TR_CL_ARG(r->minmax_final, 2, m);
+    TR_CL_ARG(r->minmax_final, 3, out);
+    TR_CL_ARG(r->minmax_final, 4, slot);
     TR_TRY(tr_cl_launch(ctx, r->minmax_final, l, l, err));
 cleanup:
     return rc;
@@ -136,10 +136,10 @@ int tr_cl_edge_lengths(tr_cl_reduce *r, const tr_cl_ctx *ctx, cl_mem x, cl_mem n
                        cl_mem len, tr_error *err)
 {
     int rc = TR_OK;
-    TR_CL_CHECK(clSetKernelArg(r->edge_lengths, 0, sizeof x, &x));
-    TR_CL_CHECK(clSetKernelArg(r->edge_lengths, 1, sizeof next, &next));
-    TR_CL_CHECK(clSetKernelArg(r->edge_lengths, 2, sizeof n, &n));
-    TR_CL_CHECK(clSetKernelArg(r->edge_lengths, 3, sizeof len, &len));
+    TR_CL_ARG(r->edge_lengths, 0, x);
+    TR_CL_ARG(r->edge_lengths, 1, next);
+    TR_CL_ARG(r->edge_lengths, 2, n);
+    TR_CL_ARG(r->edge_lengths, 3, len);
     TR_TRY(tr_cl_launch_items(ctx, r->edge_lengths, (size_t)n, err));
 cleanup:
     return rc;
@@ -179,8 +179,8 @@ static int finish_sum(tr_cl_reduce *r, const tr_cl_ctx *ctx, cl_kernel k, int ar
         return rc;
     size_t g = stage1_global((size_t)items), l = TR_CL_LOCAL;
     int m = (int)(g / l);
-    TR_CL_CHECK(clSetKernelArg(k, (cl_uint)argn, sizeof n, &n));
-    TR_CL_CHECK(clSetKernelArg(k, (cl_uint)argn + 1, sizeof r->pa, &r->pa));
+    TR_CL_ARG(k, (cl_uint)argn, n);
+    TR_CL_ARG(k, (cl_uint)argn + 1, r->pa);
     TR_TRY(tr_cl_launch(ctx, k, g, l, err));
     rc = sum_stage2(r, ctx, m, out, slot, err);
 cleanup:
@@ -191,7 +191,7 @@ int tr_cl_reduce_sum(tr_cl_reduce *r, const tr_cl_ctx *ctx, cl_mem v, int n, cl_
                      tr_error *err)
 {
     int rc = TR_OK;
-    TR_CL_CHECK(clSetKernelArg(r->sum_partial, 0, sizeof v, &v));
+    TR_CL_ARG(r->sum_partial, 0, v);
     rc = finish_sum(r, ctx, r->sum_partial, 1, n, n, out, slot, err);
 cleanup:
     return rc;
@@ -201,8 +201,8 @@ int tr_cl_reduce_dot(tr_cl_reduce *r, const tr_cl_ctx *ctx, cl_mem a, cl_mem b, 
                      int slot, tr_error *err)
 {
     int rc = TR_OK;
-    TR_CL_CHECK(clSetKernelArg(r->dot_partial, 0, sizeof a, &a));
-    TR_CL_CHECK(clSetKernelArg(r->dot_partial, 1, sizeof b, &b));
+    TR_CL_ARG(r->dot_partial, 0, a);
+    TR_CL_ARG(r->dot_partial, 1, b);
     rc = finish_sum(r, ctx, r->dot_partial, 2, n, n, out, slot, err);
 cleanup:
     return rc;
@@ -212,7 +212,7 @@ int tr_cl_reduce_count(tr_cl_reduce *r, const tr_cl_ctx *ctx, cl_mem v, int n, c
                        int slot, tr_error *err)
 {
     int rc = TR_OK;
-    TR_CL_CHECK(clSetKernelArg(r->isum_partial, 0, sizeof v, &v));
+    TR_CL_ARG(r->isum_partial, 0, v);
     rc = finish_sum(r, ctx, r->isum_partial, 1, n, n, out, slot, err);
 cleanup:
     return rc;
@@ -229,19 +229,19 @@ int tr_cl_reduce_scan(tr_cl_reduce *r, const tr_cl_ctx *ctx, cl_mem in, int n, c
         return rc;
     size_t g = tr_cl_global((size_t)n), l = TR_CL_LOCAL;
     int groups = (int)(g / l);
-    TR_CL_CHECK(clSetKernelArg(r->scan_local, 0, sizeof in, &in));
-    TR_CL_CHECK(clSetKernelArg(r->scan_local, 1, sizeof n, &n));
-    TR_CL_CHECK(clSetKernelArg(r->scan_local, 2, sizeof out, &out));
-    TR_CL_CHECK(clSetKernelArg(r->scan_local, 3, sizeof r->pb, &r->pb));
+    TR_CL_ARG(r->scan_local, 0, in);
+    TR_CL_ARG(r->scan_local, 1, n);
+    TR_CL_ARG(r->scan_local, 2, out);
+    TR_CL_ARG(r->scan_local, 3, r->pb);
     TR_TRY(tr_cl_launch(ctx, r->scan_local, g, l, err));
-    TR_CL_CHECK(clSetKernelArg(r->scan_sums, 0, sizeof r->pb, &r->pb));
-    TR_CL_CHECK(clSetKernelArg(r->scan_sums, 1, sizeof groups, &groups));
-    TR_CL_CHECK(clSetKernelArg(r->scan_sums, 2, sizeof out, &out));
-    TR_CL_CHECK(clSetKernelArg(r->scan_sums, 3, sizeof n, &n));
+    TR_CL_ARG(r->scan_sums, 0, r->pb);
+    TR_CL_ARG(r->scan_sums, 1, groups);
+    TR_CL_ARG(r->scan_sums, 2, out);
+    TR_CL_ARG(r->scan_sums, 3, n);
     TR_TRY(tr_cl_launch(ctx, r->scan_sums, l, l, err));
-    TR_CL_CHECK(clSetKernelArg(r->scan_add, 0, sizeof out, &out));
-    TR_CL_CHECK(clSetKernelArg(r->scan_add, 1, sizeof n, &n));
-    TR_CL_CHECK(clSetKernelArg(r->scan_add, 2, sizeof r->pb, &r->pb));
+    TR_CL_ARG(r->scan_add, 0, out);
+    TR_CL_ARG(r->scan_add, 1, n);
+    TR_CL_ARG(r->scan_add, 2, r->pb);
     TR_TRY(tr_cl_launch_items(ctx, r->scan_add, (size_t)n, err));
 cleanup:
     return rc;

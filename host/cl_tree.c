@@ -7,8 +7,6 @@
 #include "cl_error.h"
 #include "neighbour_search.h"
 
-#define ARG(k, i, v) TR_CL_CHECK(clSetKernelArg((k), (i), sizeof(v), &(v)))
-
 static void release(cl_mem *m) {
     if (*m)
         clReleaseMemObject(*m);
@@ -195,13 +193,13 @@ cleanup:
 static int leaf_args(const tr_cl_tree *t, cl_kernel k, const tr_cl_topology *topo, cl_mem x,
                      tr_error *err) {
     int rc = TR_OK;
-    ARG(k, 0, x);
-    ARG(k, 1, topo->next);
-    ARG(k, 2, t->tedge);
-    ARG(k, 3, t->leaf_id);
-    ARG(k, 4, t->nleaf);
-    ARG(k, 5, t->node_a);
-    ARG(k, 6, t->node_b);
+    TR_CL_ARG(k, 0, x);
+    TR_CL_ARG(k, 1, topo->next);
+    TR_CL_ARG(k, 2, t->tedge);
+    TR_CL_ARG(k, 3, t->leaf_id);
+    TR_CL_ARG(k, 4, t->nleaf);
+    TR_CL_ARG(k, 5, t->node_a);
+    TR_CL_ARG(k, 6, t->node_b);
 cleanup:
     return rc;
 }
@@ -210,18 +208,18 @@ cleanup:
 static int refit(tr_cl_tree *t, const tr_cl_ctx *ctx, const tr_cl_topology *topo, cl_mem x, tr_error *err) {
     int rc = TR_OK;
     TR_TRY(leaf_args(t, t->leaf_box, topo, x, err));
-    ARG(t->leaf_box, 7, t->box);
+    TR_CL_ARG(t->leaf_box, 7, t->box);
     TR_TRY(tr_cl_launch_items(ctx, t->leaf_box, (size_t)t->nleaf, err));
-    ARG(t->inner_box, 0, t->level_id);
-    ARG(t->inner_box, 3, t->left);
-    ARG(t->inner_box, 4, t->right);
-    ARG(t->inner_box, 5, t->box);
+    TR_CL_ARG(t->inner_box, 0, t->level_id);
+    TR_CL_ARG(t->inner_box, 3, t->left);
+    TR_CL_ARG(t->inner_box, 4, t->right);
+    TR_CL_ARG(t->inner_box, 5, t->box);
     for (int L = 0; L < t->nlevels; L++) {
         int off = t->level_off[L], n = t->level_off[L + 1] - off;
         if (n == 0)
             continue;
-        ARG(t->inner_box, 1, off);
-        ARG(t->inner_box, 2, n);
+        TR_CL_ARG(t->inner_box, 1, off);
+        TR_CL_ARG(t->inner_box, 2, n);
         TR_TRY(tr_cl_launch_items(ctx, t->inner_box, (size_t)n, err));
     }
 cleanup:
@@ -245,10 +243,10 @@ static int size_rows(tr_cl_tree *t, const tr_cl_ctx *ctx, tr_cl_reduce *red, con
         rc = tr_fail(err, TR_EGEOMETRY, "%.0f contact candidates: the curve is far too dense", counted);
         goto cleanup;
     }
-    ARG(t->list_room, 0, t->count);
-    ARG(t->list_room, 1, topo->next);
-    ARG(t->list_room, 2, t->nv);
-    ARG(t->list_room, 3, t->room);
+    TR_CL_ARG(t->list_room, 0, t->count);
+    TR_CL_ARG(t->list_room, 1, topo->next);
+    TR_CL_ARG(t->list_room, 2, t->nv);
+    TR_CL_ARG(t->list_room, 3, t->room);
     TR_TRY(tr_cl_launch_items(ctx, t->list_room, (size_t)t->nv, err));
     TR_TRY(tr_cl_reduce_scan(red, ctx, t->room, t->nv, t->loff, err));
     /* the rooms' total is at most the bound above, so the list is sized from
@@ -279,9 +277,9 @@ int tr_cl_tree_search(tr_cl_tree *t, const tr_cl_ctx *ctx, tr_cl_reduce *red,
     if (use_slab) {
         double pad = tilt * cutoff;
         TR_TRY(leaf_args(t, t->leaf_slab, topo, x, err));
-        ARG(t->leaf_slab, 7, cutoff);
-        ARG(t->leaf_slab, 8, pad);
-        ARG(t->leaf_slab, 9, t->slab);
+        TR_CL_ARG(t->leaf_slab, 7, cutoff);
+        TR_CL_ARG(t->leaf_slab, 8, pad);
+        TR_CL_ARG(t->leaf_slab, 9, t->slab);
         TR_TRY(tr_cl_launch_items(ctx, t->leaf_slab, (size_t)t->nleaf, err));
     }
     if (t->counted)
@@ -292,31 +290,31 @@ int tr_cl_tree_search(tr_cl_tree *t, const tr_cl_ctx *ctx, tr_cl_reduce *red,
         int zero = 0;
         TR_CL_CHECK(
             clEnqueueWriteBuffer(ctx->queue, t->overflow, CL_FALSE, 0, sizeof zero, &zero, 0, NULL, NULL));
-        ARG(t->pairs, 0, x);
-        ARG(t->pairs, 1, topo->next);
-        ARG(t->pairs, 2, t->nv);
-        ARG(t->pairs, 3, topo->comp);
-        ARG(t->pairs, 4, topo->pos);
-        ARG(t->pairs, 5, topo->comp_n);
-        ARG(t->pairs, 6, topo->comp_closed);
-        ARG(t->pairs, 7, gap);
-        ARG(t->pairs, 8, min_gap);
-        ARG(t->pairs, 9, t->vedge);
-        ARG(t->pairs, 10, t->tedge);
-        ARG(t->pairs, 11, t->comp_estart);
-        ARG(t->pairs, 12, t->node_a);
-        ARG(t->pairs, 13, t->node_b);
-        ARG(t->pairs, 14, t->node_comp);
-        ARG(t->pairs, 15, t->left);
-        ARG(t->pairs, 16, t->right);
-        ARG(t->pairs, 17, t->box);
-        ARG(t->pairs, 18, t->slab);
-        ARG(t->pairs, 19, cutoff);
-        ARG(t->pairs, 20, tilt);
-        ARG(t->pairs, 21, t->loff);
-        ARG(t->pairs, 22, t->count);
-        ARG(t->pairs, 23, t->list);
-        ARG(t->pairs, 24, t->overflow);
+        TR_CL_ARG(t->pairs, 0, x);
+        TR_CL_ARG(t->pairs, 1, topo->next);
+        TR_CL_ARG(t->pairs, 2, t->nv);
+        TR_CL_ARG(t->pairs, 3, topo->comp);
+        TR_CL_ARG(t->pairs, 4, topo->pos);
+        TR_CL_ARG(t->pairs, 5, topo->comp_n);
+        TR_CL_ARG(t->pairs, 6, topo->comp_closed);
+        TR_CL_ARG(t->pairs, 7, gap);
+        TR_CL_ARG(t->pairs, 8, min_gap);
+        TR_CL_ARG(t->pairs, 9, t->vedge);
+        TR_CL_ARG(t->pairs, 10, t->tedge);
+        TR_CL_ARG(t->pairs, 11, t->comp_estart);
+        TR_CL_ARG(t->pairs, 12, t->node_a);
+        TR_CL_ARG(t->pairs, 13, t->node_b);
+        TR_CL_ARG(t->pairs, 14, t->node_comp);
+        TR_CL_ARG(t->pairs, 15, t->left);
+        TR_CL_ARG(t->pairs, 16, t->right);
+        TR_CL_ARG(t->pairs, 17, t->box);
+        TR_CL_ARG(t->pairs, 18, t->slab);
+        TR_CL_ARG(t->pairs, 19, cutoff);
+        TR_CL_ARG(t->pairs, 20, tilt);
+        TR_CL_ARG(t->pairs, 21, t->loff);
+        TR_CL_ARG(t->pairs, 22, t->count);
+        TR_CL_ARG(t->pairs, 23, t->list);
+        TR_CL_ARG(t->pairs, 24, t->overflow);
         TR_TRY(tr_cl_launch_items(ctx, t->pairs, (size_t)t->nv, err));
         TR_CL_CHECK(
             clEnqueueReadBuffer(ctx->queue, t->overflow, CL_TRUE, 0, sizeof flag, &flag, 0, NULL, NULL));
