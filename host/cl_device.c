@@ -445,6 +445,15 @@ int tr_cl_build(const tr_cl_ctx *ctx, const char *const *files, int nfiles, cons
                  e));
     if (!options)
         options = "";
+    /* kernels/common.clh GROUP_SLICE_FOR: the shape of a work-group's loop
+     * follows the launch shape (tr_cl_launch_items) */
+    char opts[512];
+    if (snprintf(opts, sizeof opts, "%s%s", options, ctx->block_items ? " -DTR_BLOCK_ITEMS" : "") >=
+        (int)sizeof opts) {
+        rc = tr_fail(err, TR_EINVAL, "OpenCL build options too long: '%s'", options);
+        goto cleanup;
+    }
+    options = opts;
     e = clBuildProgram(prog, 1, &ctx->info.did, options, NULL, NULL);
     if (e != CL_SUCCESS) {
         size_t n = 0;

@@ -385,13 +385,13 @@ void jt_ebar_partial(__global const real *y, __global const int *ract,
     int G = groups_per_comp, k = get_group_id(0) / G, g = get_group_id(0) % G,
         l = get_local_id(0);
     /* group g takes the g-th of G contiguous slices of the component, its
-     * items striding through it: interleaving the groups' items over the
+     * items sharing it (GROUP_SLICE_FOR): interleaving the groups' items over the
      * whole component (a stride of G x 64) ran 3.5 ms a call at N = 10^6 on
      * PoCL, where the rows no longer fit in cache */
     int st = start[k], len = start[k + 1] - st;
     int lo = st + (int)((long)len * g / G), hi = st + (int)((long)len * (g + 1) / G);
     real sum = 0.0;
-    for (int a = lo + l; a < hi; a += TR_LOCAL_SIZE) {
+    GROUP_SLICE_FOR(a, lo, hi) {
         if (ract[a])
             sum += -y[a];
         if (ract[nv + a])

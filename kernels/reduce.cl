@@ -17,16 +17,14 @@
         (s) = t_;                                                               \
     } while (0)
 
-/* The first index of [0, n) that this item folds and the stride to the
- * next: work-group g takes the g-th of the groups' contiguous slices and its
- * items stride through that slice. Interleaving the groups over the whole
- * range (a stride of the global size) streamed memory about half as fast on
- * PoCL once the vectors outgrow the cache (N = 10^6). */
+/* This item's indices of [0, n): work-group g takes the g-th of the
+ * groups' contiguous slices and its items share that slice
+ * (GROUP_SLICE_FOR). Interleaving the groups over the whole range (a stride
+ * of the global size) streamed memory about half as fast on PoCL once the
+ * vectors outgrow the cache (N = 10^6). */
 #define SLICE_FOR(i, n)                                                                    \
-    for (int i##_g = get_group_id(0), i##_G = get_num_groups(0),                            \
-             i##_hi = (int)((long)(n) * (i##_g + 1) / i##_G),                               \
-             i = (int)((long)(n) * i##_g / i##_G) + (int)get_local_id(0);                   \
-         i < i##_hi; i += TR_LOCAL_SIZE)
+    GROUP_SLICE_FOR(i, (int)((long)(n) * get_group_id(0) / get_num_groups(0)),              \
+                    (int)((long)(n) * (get_group_id(0) + 1) / get_num_groups(0)))
 
 /* Length of the edge from vertex i to next[i] (0 where next[i] < 0: the end of an open rope). */
 inline real edge_len(__global const real *x, __global const int *next, int i)
@@ -205,7 +203,7 @@ void isum_partial(__global const int *v, const int n, __global real *partial)
 }
 
 /* Per-component sums: work-group k adds v[start[k] .. start[k+1]) into
- * out[slot + k] (strided Neumaier sums, then the tree). */
+ * out[slot + k] (Neumaier sums over GROUP_SLICE_FOR, then the tree). */
 __kernel __attribute__((reqd_work_group_size(TR_LOCAL_SIZE, 1, 1)))
 void comp_sum(__global const real *v, __global const int *start, __global real *out,
               const int slot)
@@ -213,7 +211,7 @@ void comp_sum(__global const real *v, __global const int *start, __global real *
     __local real s[TR_LOCAL_SIZE];
     int k = get_group_id(0), l = get_local_id(0);
     real sum = 0.0, c = 0.0;
-    for (int i = start[k] + l; i < start[k + 1]; i += TR_LOCAL_SIZE) {
+    GROUP_SLICE_FOR(i, start[k], start[k + 1]) {
         real v1 = v[i], t = sum + v1;
         c += fabs(sum) >= fabs(v1) ? (sum - t) + v1 : (v1 - t) + sum;
         sum = t;
