@@ -58,7 +58,7 @@ typedef struct cl_state {
     int nv, ncomp, saved;
     int *h_start, *h_ne;
     tr_curve shape; /* host copy of the topology and constraints (for upload's snap-free ebar) */
-    cl_mem start, ne, cst, gap;
+    cl_mem start, ne, cidx, cst, gap;
     cl_mem x, xs, ebar, ebar_s, debar;
     cl_mem curv; /* per component: largest turning angle and its ebar term (curv_limits) */
     cl_mem F, G, H, dx;
@@ -119,7 +119,7 @@ static void cl_destroy(void *sp)
     cl_state *s = sp;
     if (!s)
         return;
-    cl_mem *m[] = {&s->start, &s->ne,   &s->cst,  &s->gap,  &s->x,    &s->xs,   &s->ebar,
+    cl_mem *m[] = {&s->start, &s->ne,   &s->cidx, &s->cst,  &s->gap,  &s->x,    &s->xs,   &s->ebar,
                    &s->ebar_s, &s->debar, &s->F,  &s->G,    &s->H,    &s->dx,   &s->t1,
                    &s->t2,    &s->t3,   &s->sc,   &s->up,   &s->first, &s->off,
                    &s->pa,    &s->pb,   &s->part, &s->rC,   &s->rgrad,
@@ -482,7 +482,7 @@ static int apply_JT(cl_state *s, const tr_correct_params *prm, cl_mem y, tr_erro
     int nv = s->nv;
     double w = prm->ebar_weight;
     TR_TRY(run(s, K_jt_vertex, (size_t)nv, err, A(y), A(s->rgrad), A(s->cgq), A(s->ract), A(s->topo.next),
-               A(s->topo.prev), A(s->aadj), A(s->aadjn), A(s->aaoff), A(s->acoef), A(s->agrad), A(s->cst),
+               A(s->topo.prev), A(s->aadj), A(s->aadjn), A(s->aaoff), A(s->acoef), A(s->agrad), A(s->cidx), A(s->cst),
                A(nv), A(s->dx), END));
     int G = s->ebar_groups;
     TR_TRY(run_groups(s, K_jt_ebar_partial, (size_t)s->ncomp * (size_t)G, err, A(y), A(s->ract),
@@ -665,7 +665,7 @@ static int cg_iterate(cl_state *s, const tr_correct_params *prm, int *iters, tr_
                                      sizeof tol2, &tol2, 0, NULL, NULL));
     TR_TRY(run(s, K_precond_setup, (size_t)nl, err, A(s->rgrad), A(s->cgq), A(s->cdeb), A(s->ract),
                A(s->topo.next), A(s->topo.prev), A(s->topo.comp), A(s->ne), A(s->pa), A(s->pb),
-               A(s->rs), A(s->rt), A(s->cst), A(nv), A(s->act), A(nl), A(w), A(reg), A(s->pdiag),
+               A(s->rs), A(s->rt), A(s->cidx), A(s->cst), A(nv), A(s->act), A(nl), A(w), A(reg), A(s->pdiag),
                A(s->po), END));
     if (s->tri_pcr) {
         TR_TRY(tridiag_setup(s, err));
@@ -744,7 +744,7 @@ static int cl_correct(void *sp, const tr_correct_params *prm, tr_correct_stats *
         TR_TRY(run(s, K_dx_norm, (size_t)nv, err, A(s->dx), A(nv), A(s->t1), END));
         TR_TRY(tr_cl_reduce_minmax(&s->red, &s->ctx, s->t1, nv, s->sc, SC_MAXDX, err));
         TR_TRY(run_groups(s, K_step_scale, 0, err, A(s->sc), A(ms), END));
-        TR_TRY(run(s, K_apply_dx, (size_t)nv, err, A(s->x), A(s->dx), A(s->cst), A(s->sc), A(nv), END));
+        TR_TRY(run(s, K_apply_dx, (size_t)nv, err, A(s->x), A(s->dx), A(s->cidx), A(s->cst), A(s->sc), A(nv), END));
         TR_TRY(run(s, K_apply_debar, (size_t)s->ncomp, err, A(s->ebar), A(s->debar), A(s->sc),
                    A(s->ncomp), END));
         double nact;
@@ -773,7 +773,7 @@ static int project_tangent(cl_state *s, const tr_correct_params *q, cl_mem G, tr
     double reg0 = 0.0, zero = 0.0;
     int izero = 0;
     TR_TRY(eval_rows(s, q, err));
-    TR_TRY(run(s, K_project_field, (size_t)nv, err, A(G), A(s->cst), A(nv), END));
+    TR_TRY(run(s, K_project_field, (size_t)nv, err, A(G), A(s->cidx), A(s->cst), A(nv), END));
     for (int pass = 0; pass < q->max_newton; pass++) {
         TR_CL_CHECK(clEnqueueCopyBuffer(s->ctx.queue, G, s->dx, 0, 0, (size_t)n3 * sizeof(double), 0,
                                         NULL, NULL));
@@ -828,14 +828,14 @@ static int cl_tension_step(void *sp, const tr_tension_params *prm, tr_tension_st
         G = H;
         H = t;
     }
-    TR_TRY(run(s, K_tension_smooth2, (size_t)nv, err, A(G), A(s->cst), A(nv), A(s->t1), END));
+    TR_TRY(run(s, K_tension_smooth2, (size_t)nv, err, A(G), A(s->cidx), A(s->cst), A(nv), A(s->t1), END));
     TR_TRY(tr_cl_reduce_sum(&s->red, &s->ctx, s->t1, nv, s->sc, SC_SMOOTH2, err));
     if (prm->project) {
         TR_TRY(ensure_rows(s, err));
         TR_TRY(project_tangent(s, prm->project, G, err));
         TR_TRY(tr_cl_reduce_dot(&s->red, &s->ctx, G, G, 3 * nv, s->sc, SC_FREE2, err));
     }
-    TR_TRY(run(s, K_tension_move, (size_t)nv, err, A(s->x), A(s->F), A(G), A(s->cst), A(nv), A(h),
+    TR_TRY(run(s, K_tension_move, (size_t)nv, err, A(s->x), A(s->F), A(G), A(s->cidx), A(s->cst), A(nv), A(h),
                A(mm), A(s->t1), A(s->t2), A(s->t3), END));
     if (prm->project)
         TR_TRY(run(s, K_ebar_velocity, (size_t)s->ncomp, err, A(s->ebar), A(s->debar), A(h),
@@ -987,6 +987,7 @@ static int open_on(const tr_device_choice *dev, const tr_curve *c, int profiling
     int rc = TR_OK;
     cl_int e = CL_SUCCESS;
     double *x = NULL, *eb = NULL, *cst = NULL;
+    int *cidx = NULL;
     if (c->nv == 0 || c->ncomp <= 0)
         return tr_fail(err, TR_EINVAL, "empty curve");
     if (c->nv >= (size_t)1 << 28)
@@ -1021,8 +1022,11 @@ static int open_on(const tr_device_choice *dev, const tr_curve *c, int profiling
     s->h_ne = malloc(nc * sizeof(int));
     x = malloc(3 * nv * d);
     eb = malloc(nc * d);
-    cst = calloc(8 * nv, d);
-    if (!s->h_start || !s->h_ne || !x || !eb || !cst) {
+    /* one record per constraint of the curve (at least one: no empty buffers) */
+    size_t ncst = c->vcst && c->ncst > 0 ? (size_t)c->ncst : 0, nrec = ncst > 0 ? ncst : 1;
+    cst = calloc(8 * nrec, d);
+    cidx = malloc(nv * sizeof *cidx);
+    if (!s->h_start || !s->h_ne || !x || !eb || !cst || !cidx) {
         rc = tr_fail(err, TR_ENOMEM, "out of memory opening the opencl backend");
         goto cleanup;
     }
@@ -1032,24 +1036,30 @@ static int open_on(const tr_device_choice *dev, const tr_curve *c, int profiling
         s->h_ne[k] = (int)tr_comp_ne(c, (int)k);
     /* as the reference: snap constrained vertices, then ebar from the snapped positions */
     memcpy(x, c->x, 3 * nv * d);
+    for (size_t k = 0; k < ncst; k++) {
+        const tr_constraint *kc = &c->cst[k];
+        double *r = cst + 8 * k;
+        memcpy(r, kc->u, 3 * d);
+        memcpy(r + 3, kc->p, 3 * d);
+        r[6] = kc->d;
+        r[7] = kc->kind == TR_CST_PLANE ? 1 : kc->kind == TR_CST_LINE ? 2 : 3;
+    }
     for (size_t i = 0; i < nv; i++) {
-        int ci = c->vcst && c->ncst > 0 ? c->vcst[i] : -1;
-        if (ci < 0 || ci >= c->ncst)
+        int ci = ncst > 0 ? c->vcst[i] : -1;
+        if (ci < 0 || ci >= (int)ncst) {
+            cidx[i] = -1;
             continue;
-        const tr_constraint *k = &c->cst[ci];
-        tr_constraint_project(k, x + 3 * i);
-        double *r = cst + 8 * i;
-        memcpy(r, k->u, 3 * d);
-        memcpy(r + 3, k->p, 3 * d);
-        r[6] = k->d;
-        r[7] = k->kind == TR_CST_PLANE ? 1 : k->kind == TR_CST_LINE ? 2 : 3;
+        }
+        cidx[i] = ci;
+        tr_constraint_project(&c->cst[ci], x + 3 * i);
     }
     host_ebar(c, x, eb);
 
     TR_TRY(buffer(s, &s->start, (nc + 1) * sizeof(int), err));
     TR_TRY(buffer(s, &s->ne, nc * sizeof(int), err));
     TR_TRY(buffer(s, &s->gap, nc * sizeof(int), err));
-    TR_TRY(buffer(s, &s->cst, 8 * nv * d, err));
+    TR_TRY(buffer(s, &s->cidx, nv * sizeof(int), err));
+    TR_TRY(buffer(s, &s->cst, 8 * nrec * d, err));
     TR_TRY(buffer(s, &s->x, 3 * nv * d, err));
     TR_TRY(buffer(s, &s->xs, 3 * nv * d, err));
     TR_TRY(buffer(s, &s->ebar, nc * d, err));
@@ -1117,7 +1127,8 @@ static int open_on(const tr_device_choice *dev, const tr_curve *c, int profiling
     }
     double zeros = 0.0;
     TR_CL_CHECK(clEnqueueFillBuffer(q, s->po, &zeros, sizeof zeros, 0, nv * d, 0, NULL, NULL));
-    TR_CL_CHECK(clEnqueueWriteBuffer(q, s->cst, CL_TRUE, 0, 8 * nv * d, cst, 0, NULL, NULL));
+    TR_CL_CHECK(clEnqueueWriteBuffer(q, s->cidx, CL_TRUE, 0, nv * sizeof(int), cidx, 0, NULL, NULL));
+    TR_CL_CHECK(clEnqueueWriteBuffer(q, s->cst, CL_TRUE, 0, 8 * nrec * d, cst, 0, NULL, NULL));
     double zero[SC_COMP] = {0};
     TR_CL_CHECK(clEnqueueWriteBuffer(q, s->sc, CL_TRUE, 0, sizeof zero, zero, 0, NULL, NULL));
     TR_TRY(cl_upload(s, x, eb, err));
@@ -1132,6 +1143,7 @@ cleanup:
     free(x);
     free(eb);
     free(cst);
+    free(cidx);
     return rc;
 }
 

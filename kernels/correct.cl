@@ -347,7 +347,7 @@ __kernel void jt_vertex(__global const real *y, __global const real *rgrad,
                         __global const int *prev, __global const int *aadj,
                         __global const int *aadjn, __global const int *aaoff,
                         __global const real *acoef, __global const real *agrad,
-                        __global const real *cst, const int nv, __global real *dx)
+                        __global const int *cidx, __global const real *cst, const int nv, __global real *dx)
 {
     TR_ITEMS(i, nv) {
     real3 g = (real3)(0.0);
@@ -367,7 +367,7 @@ __kernel void jt_vertex(__global const real *y, __global const real *rgrad,
     for (int k = aaoff[i], end = aaoff[i] + aadjn[i]; k < end; k++) {
         g = g + (acoef[k] * y[aadj[k]]) * vload3(k, agrad);
     }
-    vstore3(tr_project_motion(cst, i, g), i, dx);
+    vstore3(tr_project_motion(cidx, cst, i, g), i, dx);
     }
 }
 
@@ -584,7 +584,7 @@ __kernel void step_scale(__global real *sc, const real max_step)
     sc[SC_SCALE] = m > max_step ? max_step / m : 1.0;
 }
 
-__kernel void apply_dx(__global real *x, __global const real *dx, __global const real *cst,
+__kernel void apply_dx(__global real *x, __global const real *dx, __global const int *cidx, __global const real *cst,
                        __global const real *sc, const int nv)
 {
     TR_ITEMS(i, nv) {
@@ -592,7 +592,7 @@ __kernel void apply_dx(__global real *x, __global const real *dx, __global const
         real3 d = vload3(i, dx);
         if (scale != 1.0)
             d = scale * d;
-        vstore3(tr_snap(cst, i, vload3(i, x) + d), i, x);
+        vstore3(tr_snap(cidx, cst, i, vload3(i, x) + d), i, x);
     }
 }
 
@@ -631,10 +631,10 @@ __kernel void release_pulling(__global int *ract, __global const real *y, const 
 }
 
 /* G_i <- P_i G_i (before the tangent projection). */
-__kernel void project_field(__global real *G, __global const real *cst, const int nv)
+__kernel void project_field(__global real *G, __global const int *cidx, __global const real *cst, const int nv)
 {
     TR_ITEMS(i, nv) {
-        vstore3(tr_project_motion(cst, i, vload3(i, G)), i, G);
+        vstore3(tr_project_motion(cidx, cst, i, vload3(i, G)), i, G);
     }
 }
 
@@ -656,9 +656,9 @@ __kernel void ebar_velocity(__global real *ebar, __global real *debar, const rea
 
 /* ---- preconditioner (backend.h correct (c)) ---- */
 
-inline real proj_norm2(__global const real *cst, int v, real3 g, real c)
+inline real proj_norm2(__global const int *cidx, __global const real *cst, int v, real3 g, real c)
 {
-    real3 t = tr_project_motion(cst, v, c * g);
+    real3 t = tr_project_motion(cidx, cst, v, c * g);
     return tr_dot3(t, t);
 }
 
@@ -670,7 +670,7 @@ __kernel void precond_setup(__global const real *rgrad, __global const real *cgq
                             __global const int *comp, __global const int *ne,
                             __global const int *pa, __global const int *pb,
                             __global const real *rs, __global const real *rt,
-                            __global const real *cst, const int nv, __global const int *act,
+                            __global const int *cidx, __global const real *cst, const int nv, __global const int *act,
                             const int nl, const real ebar_weight, const real reg,
                             __global real *pd, __global real *po)
 {
@@ -682,11 +682,11 @@ __kernel void precond_setup(__global const real *rgrad, __global const real *cgq
         if (r < nv) {
             int a = r, k = comp[a], nx = next[a];
             real3 u = vload3(a, rgrad);
-            pd[r] = proj_norm2(cst, a, u, 1.0) + proj_norm2(cst, nx, u, 1.0) +
+            pd[r] = proj_norm2(cidx, cst, a, u, 1.0) + proj_norm2(cidx, cst, nx, u, 1.0) +
                     1.0 / (ebar_weight * (real)ne[k]) + reg;
             real o = 0.0;
             if (next[nx] >= 0 && ract[nx]) {
-                real3 t = tr_project_motion(cst, nx, u);
+                real3 t = tr_project_motion(cidx, cst, nx, u);
                 o = -tr_dot3(t, vload3(nx, rgrad));
             }
             po[a] = o;
@@ -694,14 +694,14 @@ __kernel void precond_setup(__global const real *rgrad, __global const real *cgq
             int i = r - nv, k = comp[i];
             real3 ga = vload3(r, rgrad), gb = vload3(i, cgq);
             real3 gm = gb - ga;
-            pd[r] = proj_norm2(cst, prev[i], ga, 1.0) + proj_norm2(cst, i, gm, 1.0) +
-                    proj_norm2(cst, next[i], gb, 1.0) +
+            pd[r] = proj_norm2(cidx, cst, prev[i], ga, 1.0) + proj_norm2(cidx, cst, i, gm, 1.0) +
+                    proj_norm2(cidx, cst, next[i], gb, 1.0) +
                     cdeb[i] * cdeb[i] / (ebar_weight * (real)ne[k]) + reg;
         } else {
             int p = r - 2 * nv, a = pa[p], b = pb[p];
             real3 n = vload3(r, rgrad);
-            pd[r] = proj_norm2(cst, a, n, 1.0 - rs[p]) + proj_norm2(cst, next[a], n, rs[p]) +
-                    proj_norm2(cst, b, n, 1.0 - rt[p]) + proj_norm2(cst, next[b], n, rt[p]) + reg;
+            pd[r] = proj_norm2(cidx, cst, a, n, 1.0 - rs[p]) + proj_norm2(cidx, cst, next[a], n, rs[p]) +
+                    proj_norm2(cidx, cst, b, n, 1.0 - rt[p]) + proj_norm2(cidx, cst, next[b], n, rt[p]) + reg;
         }
     }
 }

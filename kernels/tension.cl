@@ -43,15 +43,15 @@ __kernel void tension_smooth(__global const real *G, __global const int *next,
 /* dx = h P G capped at max_move; x += dx; snap. Per-vertex terms of the
  * stats go to f2 (|P F|^2), pred (F . dx) and mv (|dx|) for the reductions. */
 __kernel void tension_move(__global real *x, __global const real *F, __global const real *G,
-                           __global const real *cst, const int n, const real h,
+                           __global const int *cidx, __global const real *cst, const int n, const real h,
                            const real max_move, __global real *f2, __global real *pred,
                            __global real *mv)
 {
     TR_ITEMS(i, n) {
         real3 Fi = vload3(i, F);
-        real3 f = tr_project_motion(cst, i, Fi);
+        real3 f = tr_project_motion(cidx, cst, i, Fi);
         f2[i] = tr_dot3(f, f);
-        real3 d = tr_project_motion(cst, i, h * vload3(i, G));
+        real3 d = tr_project_motion(cidx, cst, i, h * vload3(i, G));
         real m = tr_norm3(d);
         if (m > max_move) {
             d = (max_move / m) * d;
@@ -59,16 +59,16 @@ __kernel void tension_move(__global real *x, __global const real *F, __global co
         }
         mv[i] = m;
         pred[i] = tr_dot3(Fi, d);
-        vstore3(tr_snap(cst, i, vload3(i, x) + d), i, x);
+        vstore3(tr_snap(cidx, cst, i, vload3(i, x) + d), i, x);
     }
 }
 
 /* s2[i] = |P_i G_i|^2 (the smoothed force's share of the KKT residual). */
-__kernel void tension_smooth2(__global const real *G, __global const real *cst, const int n,
+__kernel void tension_smooth2(__global const real *G, __global const int *cidx, __global const real *cst, const int n,
                               __global real *s2)
 {
     TR_ITEMS(i, n) {
-        real3 g = tr_project_motion(cst, i, vload3(i, G));
+        real3 g = tr_project_motion(cidx, cst, i, vload3(i, G));
         s2[i] = tr_dot3(g, g);
     }
 }
