@@ -41,7 +41,7 @@ __kernel void curv_limits(__global const real *ebar, const int ncomp, const real
  * read back ran 13 ms a call over the 2 x 10^7 strut rows of a tight
  * trefoil at N = 10^6 on PoCL.
  * The curvature row is the turning-angle form of MinRad >= minrad:
- * C = ebar (theta_max - theta), theta = atan2(|p x q|, p.q) for the edges p,
+ * C = ebar (theta_max - theta), theta = atan2(|p x q|, p.q) (tr_turning_angle) for the edges p,
  * q at vertex i; its gradient is ga (stored with the row) on the incoming
  * edge and gb (cgq) on the outgoing one, cdeb its ebar derivative;
  * theta_max per component from curv_limits. */
@@ -73,7 +73,7 @@ __kernel void rows_chain(__global const real *x, __global const int *next,
             real3 pe = xi - vload3(pv, x), qe = vload3(nx, x) - xi;
             real3 cr = tr_cross3(pe, qe);
             real lp = tr_norm3(pe), lq = tr_norm3(qe), sn = tr_norm3(cr), cs = tr_dot3(pe, qe);
-            real theta = atan2(sn, cs);
+            real theta = tr_turning_angle(sn, cs);
             int k = comp[i];
             real eb = ebar[k], tmax = lim[2 * k];
             real C = eb * (tmax - theta);

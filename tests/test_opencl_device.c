@@ -2,6 +2,7 @@
  * build failures carrying the log, and the reduction kernels against serial
  * sums on a trefoil, a two-component link and two open ropes. Skips (77)
  * when no usable OpenCL device exists. */
+#include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -157,29 +158,39 @@ static void test_selection(int have_device)
     }
 }
 
+/* Writes common.clh and one kernel file `name` with text `src` into the
+ * build's tests directory, for tr_cl_build under TIGHTROPE_KERNEL_DIR. */
+static int write_kernel_dir(const char *name, const char *src, char *dir, size_t dirsize)
+{
+    char path[1100];
+    snprintf(dir, dirsize, "%s/tests", TR_BINARY_DIR);
+    const char *names[] = {name, "common.clh"};
+    char *text = NULL;
+    tr_error err;
+    if (tr_kernel_source_load("common.clh", &text, &err) != TR_OK)
+        return 0;
+    const char *texts[] = {src, text};
+    int ok = 1;
+    for (int k = 0; k < 2; k++) {
+        snprintf(path, sizeof path, "%s/%s", dir, names[k]);
+        FILE *f = fopen(path, "w");
+        ok = ok && f && fputs(texts[k], f) >= 0;
+        if (f)
+            ok = fclose(f) == 0 && ok;
+    }
+    free(text);
+    return ok;
+}
+
 static void test_build_failure(const tr_cl_ctx *ctx)
 {
     /* A kernel directory whose reduce.cl has a syntax error: the message names
      * the call, the error, the options and the compiler's complaint. */
-    char dir[1024], path[1100], common[1100];
-    snprintf(dir, sizeof dir, "%s/tests", TR_BINARY_DIR);
-    snprintf(path, sizeof path, "%s/broken.cl", dir);
-    FILE *f = fopen(path, "w");
-    CHECK(f != NULL);
-    if (!f)
-        return;
-    fputs("__kernel void broken(__global real *x) { x[0] = undefined_name; }\n", f);
-    fclose(f);
-    char *text = NULL;
+    char dir[1024];
     tr_error err;
-    CHECK_OK(tr_kernel_source_load("common.clh", &text, &err));
-    snprintf(common, sizeof common, "%s/common.clh", dir);
-    f = fopen(common, "w");
-    if (f && text)
-        fputs(text, f);
-    if (f)
-        fclose(f);
-    free(text);
+    CHECK(write_kernel_dir("broken.cl",
+                           "__kernel void broken(__global real *x) { x[0] = undefined_name; }\n",
+                           dir, sizeof dir));
     setenv("TIGHTROPE_KERNEL_DIR", dir, 1);
     cl_program prog = NULL;
     const char *files[] = {"broken.cl"};
@@ -192,6 +203,92 @@ static void test_build_failure(const tr_cl_ctx *ctx)
     CHECK(strchr(err.msg, '\n') == NULL);
     if (rc == TR_OK && prog)
         clReleaseProgram(prog);
+}
+
+/* The curvature rows' turning angle (common.clh tr_turning_angle, a Cephes
+ * atan of our own) against the C library's atan2, an independent
+ * implementation (glibc's is correctly rounded in nearly all cases): on
+ * angles across [0, pi] at every scale, both branches of the argument
+ * reduction and their boundaries, and the exact cases. Moshier gives 1.8e-16
+ * relative for the atan; the quotient and the reduction add a rounding or
+ * two, so 4 ulp of the angle bounds the difference. */
+static void test_turning_angle(const tr_cl_ctx *ctx)
+{
+    enum { N = 4096 };
+    static const char src[] =
+        "__kernel void angles(__global const real *s, __global const real *c,\n"
+        "                     __global real *out, const int n)\n"
+        "{ int i = get_global_id(0); if (i < n) out[i] = tr_turning_angle(s[i], c[i]); }\n";
+    char dir[1024];
+    CHECK(write_kernel_dir("angles.cl", src, dir, sizeof dir));
+    setenv("TIGHTROPE_KERNEL_DIR", dir, 1);
+    cl_program prog = NULL;
+    tr_error err;
+    const char *files[] = {"angles.cl"};
+    int rc = tr_cl_build(ctx, files, 1, "", &prog, &err);
+    unsetenv("TIGHTROPE_KERNEL_DIR");
+    CHECK_OK(rc);
+    if (rc != TR_OK)
+        return;
+    double *sv = malloc(3 * N * sizeof *sv), *cv = sv + N, *got = sv + 2 * N;
+    int n = 0;
+    static const double special[][2] = {{0, 1}, {0, -1}, {1, 0}, {0, 0}, {1e-300, 1}, {1, 1e-300}};
+    for (size_t k = 0; k < sizeof special / sizeof special[0]; k++)
+        sv[n] = special[k][0], cv[n] = special[k][1], n++;
+    unsigned long long u = 88172645463325252ull; /* xorshift: any fixed sequence */
+    while (n < N) {
+        u ^= u << 13, u ^= u >> 7, u ^= u << 17;
+        double r = (double)(u >> 11) / 9007199254740992.0;
+        double theta;
+        if (n % 4 == 0)
+            theta = TR_PI * r; /* uniform */
+        else if (n % 4 == 1)
+            theta = pow(10.0, -12.0 + 12.0 * r); /* small, as on fine curves */
+        else if (n % 4 == 2)
+            theta = atan(0.66) + 1e-6 * (r - 0.5); /* the reduction's boundary */
+        else
+            theta = TR_PI / 2 + 1e-6 * (r - 0.5); /* the s = |c| switch, 0.75 pi too below */
+        if (n % 8 == 6)
+            theta = 0.75 * TR_PI + 1e-6 * (r - 0.5);
+        double len = pow(10.0, -3.0 + 6.0 * r);
+        sv[n] = len * sin(theta), cv[n] = len * cos(theta), n++;
+    }
+    cl_int e = CL_SUCCESS;
+    cl_kernel k = clCreateKernel(prog, "angles", &e);
+    cl_mem bs = clCreateBuffer(ctx->context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
+                               N * sizeof(double), sv, &e);
+    cl_mem bc = clCreateBuffer(ctx->context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
+                               N * sizeof(double), cv, &e);
+    cl_mem bo = clCreateBuffer(ctx->context, CL_MEM_WRITE_ONLY, N * sizeof(double), NULL, &e);
+    CHECK(e == CL_SUCCESS);
+    int nn = N;
+    CHECK(clSetKernelArg(k, 0, sizeof bs, &bs) == CL_SUCCESS);
+    CHECK(clSetKernelArg(k, 1, sizeof bc, &bc) == CL_SUCCESS);
+    CHECK(clSetKernelArg(k, 2, sizeof bo, &bo) == CL_SUCCESS);
+    CHECK(clSetKernelArg(k, 3, sizeof nn, &nn) == CL_SUCCESS);
+    size_t g = N;
+    CHECK(clEnqueueNDRangeKernel(ctx->queue, k, 1, NULL, &g, NULL, 0, NULL, NULL) == CL_SUCCESS);
+    CHECK(clEnqueueReadBuffer(ctx->queue, bo, CL_TRUE, 0, N * sizeof(double), got, 0, NULL, NULL) ==
+          CL_SUCCESS);
+    double worst = 0.0;
+    int bad = 0;
+    for (int i = 0; i < N; i++) {
+        double want = atan2(sv[i], cv[i]);
+        double ulps = want == 0.0 ? (got[i] == 0.0 ? 0.0 : INFINITY)
+                                  : fabs(got[i] - want) / (DBL_EPSILON * want);
+        worst = fmax(worst, ulps);
+        if (!(ulps <= 4.0) && bad++ < 5)
+            fprintf(stderr, "turning angle (%.17g, %.17g): %.17g, atan2 %.17g\n", sv[i], cv[i],
+                    got[i], want);
+    }
+    CHECK(bad == 0);
+    printf("turning angle: worst %.2f ulp of libm atan2 over %d cases\n", worst, N);
+    clReleaseMemObject(bs);
+    clReleaseMemObject(bc);
+    clReleaseMemObject(bo);
+    clReleaseKernel(k);
+    clReleaseProgram(prog);
+    free(sv);
 }
 
 static void test_reductions(const tr_cl_ctx *ctx)
@@ -305,6 +402,7 @@ int main(void)
         return 1;
     }
     test_build_failure(&ctx);
+    test_turning_angle(&ctx);
     test_reductions(&ctx);
     tr_cl_ctx_close(&ctx);
     return tr_test_finish("test_opencl_device");
