@@ -67,13 +67,18 @@ inline real twist_middle(__global const real *po, __global const real *d, real b
 inline void twist_sweep(__global const real *po, int st, int n, int side,
                         __global const real *ip, __global const real *rhs, __global real *y)
 {
+    /* the chain's last value stays in a register: y may alias rhs (uu is
+     * swept in place), so the compiler would otherwise reload it from
+     * memory behind the store, one store-to-load latency per row */
     int m = twist_row(n);
     if (side == 0) {
-        for (int j = 0; j < m; j++)
-            y[j] = (rhs[j] - (j > 0 ? po[st + j - 1] * y[j - 1] : 0.0)) * ip[j];
+        real prev = m > 0 ? (y[0] = rhs[0] * ip[0]) : 0.0;
+        for (int j = 1; j < m; j++)
+            prev = y[j] = (rhs[j] - po[st + j - 1] * prev) * ip[j];
     } else {
-        for (int j = n - 1; j > m; j--)
-            y[j] = (rhs[j] - (j < n - 1 ? po[st + j] * y[j + 1] : 0.0)) * ip[j];
+        real prev = n - 1 > m ? (y[n - 1] = rhs[n - 1] * ip[n - 1]) : 0.0;
+        for (int j = n - 2; j > m; j--)
+            prev = y[j] = (rhs[j] - po[st + j] * prev) * ip[j];
     }
 }
 
