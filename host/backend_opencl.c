@@ -632,6 +632,8 @@ static int solve_rows(cl_state *s, tr_error *err)
         TR_TRY(buffer(s, &s->agrad, 3 * c * sizeof(double), err));
         s->aacap = c;
     }
+    /* j_rows' and cg_yr's dot product partials, one per work-item */
+    TR_TRY(partials(s, tr_cl_items_global(&s->ctx, (size_t)s->cg_nl), err));
     int izero = 0;
     TR_CL_CHECK(clEnqueueFillBuffer(s->ctx.queue, s->aadjn, &izero, sizeof izero, 0,
                                     (size_t)nv * sizeof(int), 0, NULL, NULL));
@@ -660,6 +662,9 @@ static int cg_iterate(cl_state *s, const tr_correct_params *prm, int *iters, tr_
 {
     int rc = TR_OK;
     int nv = s->nv, nl = s->cg_nl;
+    /* the dot products p . q and r . r come as partials per work-item of
+     * j_rows and cg_yr (solve_rows reserved them) */
+    int items = (int)tr_cl_items_global(&s->ctx, (size_t)nl);
     double reg = prm->reg, w = prm->ebar_weight, tol2 = prm->cg_rtol * prm->cg_rtol, it;
     TR_CL_CHECK(clEnqueueWriteBuffer(s->ctx.queue, s->sc, CL_FALSE, SC_TOL2 * sizeof(double),
                                      sizeof tol2, &tol2, 0, NULL, NULL));
@@ -695,12 +700,13 @@ static int cg_iterate(cl_state *s, const tr_correct_params *prm, int *iters, tr_
         TR_TRY(apply_JT(s, prm, s->p, err));
         TR_TRY(run(s, K_j_rows, (size_t)nl, err, A(s->dx), A(s->debar), A(s->cdeb), A(s->rgrad),
                    A(s->cgq), A(s->ract), A(s->topo.next), A(s->topo.prev), A(s->topo.comp),
-                   A(s->sab), A(s->sw), A(s->p), A(nv), A(reg), A(s->act), A(nl), A(s->q), END));
-        TR_TRY(tr_cl_reduce_dot(&s->red, &s->ctx, s->p, s->q, nl, s->sc, SC_PQ, err));
+                   A(s->sab), A(s->sw), A(s->p), A(nv), A(reg), A(s->act), A(nl), A(s->q), A(s->part),
+                   END));
+        TR_TRY(tr_cl_reduce_sum(&s->red, &s->ctx, s->part, items, s->sc, SC_PQ, err));
         TR_TRY(run_groups(s, K_cg_alpha, 0, err, A(s->sc), END));
         TR_TRY(run(s, K_cg_yr, (size_t)nl, err, A(s->y), A(s->r), A(s->p), A(s->q), A(s->sc), A(nl),
-                   END));
-        TR_TRY(tr_cl_reduce_dot(&s->red, &s->ctx, s->r, s->r, nl, s->sc, SC_RR, err));
+                   A(s->part), END));
+        TR_TRY(tr_cl_reduce_sum(&s->red, &s->ctx, s->part, items, s->sc, SC_RR, err));
         TR_TRY(precond_apply(s, s->r, err));
         TR_TRY(tr_cl_reduce_dot(&s->red, &s->ctx, s->r, s->z, nl, s->sc, SC_RR1, err));
         TR_TRY(run_groups(s, K_cg_beta, 0, err, A(s->sc), END));
@@ -786,7 +792,8 @@ static int project_tangent(cl_state *s, const tr_correct_params *q, cl_mem G, tr
         /* b = J (G, debar = 0), no regularisation term (y = 0) */
         TR_TRY(run(s, K_j_rows, (size_t)nl, err, A(s->dx), A(s->debar), A(s->cdeb), A(s->rgrad),
                    A(s->cgq), A(s->ract), A(s->topo.next), A(s->topo.prev), A(s->topo.comp),
-                   A(s->sab), A(s->sw), A(s->y), A(nv), A(reg0), A(s->act), A(nl), A(s->b), END));
+                   A(s->sab), A(s->sw), A(s->y), A(nv), A(reg0), A(s->act), A(nl), A(s->b),
+                   A(s->part), END));
         TR_TRY(run(s, K_cg_reset, (size_t)nl, err, A(s->b), A(s->y), A(s->r), A(s->p), A(nl), END));
         int iters = 0;
         TR_TRY(cg_iterate(s, q, &iters, err));

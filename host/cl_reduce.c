@@ -8,6 +8,9 @@
  * GPU's compute units busy, few enough that a CPU device is not dominated by
  * work-group scheduling. The count depends only on n, so results do too. */
 #define TR_RED_GROUPS 64
+/* Sums of at most this many values skip stage 1 (sixteen per item of
+ * sum_final's one work-group): the per-work-item partials on CPU devices. */
+#define TR_RED_DIRECT (16 * TR_CL_LOCAL)
 
 static size_t stage1_global(size_t n)
 {
@@ -77,12 +80,12 @@ static int check_size(const tr_cl_reduce *r, int n, tr_error *err)
 }
 
 /* Stage 2: sum_final folds the m partial sums into out[slot]. */
-static int sum_stage2(tr_cl_reduce *r, const tr_cl_ctx *ctx, int m, cl_mem out, int slot,
-                      tr_error *err)
+static int sum_stage2(tr_cl_reduce *r, const tr_cl_ctx *ctx, cl_mem src, int m, cl_mem out,
+                      int slot, tr_error *err)
 {
     int rc = TR_OK;
     size_t l = TR_CL_LOCAL;
-    TR_CL_ARG(r->sum_final, 0, r->pa);
+    TR_CL_ARG(r->sum_final, 0, src);
     TR_CL_ARG(r->sum_final, 1, m);
     TR_CL_ARG(r->sum_final, 2, out);
     TR_CL_ARG(r->sum_final, 3, slot);
@@ -104,7 +107,7 @@ int tr_cl_reduce_length(tr_cl_reduce *r, const tr_cl_ctx *ctx, cl_mem x, cl_mem 
     TR_CL_ARG(r->length_partial, 2, n);
     TR_CL_ARG(r->length_partial, 3, r->pa);
     TR_TRY(tr_cl_launch(ctx, r->length_partial, g, l, err));
-    rc = sum_stage2(r, ctx, m, out, slot, err);
+    rc = sum_stage2(r, ctx, r->pa, m, out, slot, err);
 cleanup:
     return rc;
 }
@@ -182,7 +185,7 @@ static int finish_sum(tr_cl_reduce *r, const tr_cl_ctx *ctx, cl_kernel k, int ar
     TR_CL_ARG(k, (cl_uint)argn, n);
     TR_CL_ARG(k, (cl_uint)argn + 1, r->pa);
     TR_TRY(tr_cl_launch(ctx, k, g, l, err));
-    rc = sum_stage2(r, ctx, m, out, slot, err);
+    rc = sum_stage2(r, ctx, r->pa, m, out, slot, err);
 cleanup:
     return rc;
 }
@@ -191,6 +194,8 @@ int tr_cl_reduce_sum(tr_cl_reduce *r, const tr_cl_ctx *ctx, cl_mem v, int n, cl_
                      tr_error *err)
 {
     int rc = TR_OK;
+    if (n <= TR_RED_DIRECT) /* one stage: a few partials per item */
+        return sum_stage2(r, ctx, v, n, out, slot, err);
     TR_CL_ARG(r->sum_partial, 0, v);
     rc = finish_sum(r, ctx, r->sum_partial, 1, n, n, out, slot, err);
 cleanup:

@@ -481,7 +481,8 @@ __kernel void act_gather(__global const int *act, __global const int *pa, __glob
 }
 
 /* out_r = dC_r/dx . dx + dC_r/debar . debar + reg y_r on active rows, else 0;
- * one item per position l of the row list (row_of), y and out by l. */
+ * one item per position l of the row list (row_of), y and out by l; the
+ * item's share of y . out to yout (TR_ITEM_PARTIAL: the CG's p . q). */
 __kernel void j_rows(__global const real *dx, __global const real *debar,
                      __global const real *cdeb, __global const real *rgrad,
                      __global const real *cgq, __global const int *ract,
@@ -489,15 +490,17 @@ __kernel void j_rows(__global const real *dx, __global const real *debar,
                      __global const int *comp, __global const int *sab,
                      __global const real *sw, __global const real *y, const int nv,
                      const real reg, __global const int *act, const int nl,
-                     __global real *out)
+                     __global real *out, __global real *yout)
 {
+    real sum = 0.0;
     TR_ITEMS(l, nl) {
         int r = row_of(l, 2 * nv, act);
+        real o = 0.0;
         if (!ract[r]) {
             out[l] = 0.0;
         } else if (r < nv) {
             real3 d = vload3(next[r], dx) - vload3(r, dx);
-            out[l] = tr_dot3(vload3(r, rgrad), d) - debar[comp[r]] + reg * y[l];
+            out[l] = o = tr_dot3(vload3(r, rgrad), d) - debar[comp[r]] + reg * y[l];
         } else if (r < 2 * nv) {
             int i = r - nv;
             real3 ga = vload3(r, rgrad), gb = vload3(i, cgq);
@@ -507,16 +510,18 @@ __kernel void j_rows(__global const real *dx, __global const real *debar,
             v += t.x;
             v += t.y;
             v += t.z;
-            out[l] = v + cdeb[i] * debar[comp[i]] + reg * y[l];
+            out[l] = o = v + cdeb[i] * debar[comp[i]] + reg * y[l];
         } else { /* an active strut row: act_gather's copy */
             int m = l - 2 * nv, a = sab[2 * m], b = sab[2 * m + 1];
             real ss = sw[5 * m], tt = sw[5 * m + 1];
             real3 n = (real3)(sw[5 * m + 2], sw[5 * m + 3], sw[5 * m + 4]);
             real3 d = (1.0 - ss) * vload3(a, dx) + ss * vload3(next[a], dx) -
                       (1.0 - tt) * vload3(b, dx) - tt * vload3(next[b], dx);
-            out[l] = tr_dot3(n, d) + reg * y[l];
+            out[l] = o = tr_dot3(n, d) + reg * y[l];
         }
+        sum += y[l] * o;
     }
+    TR_ITEM_PARTIAL(yout, sum);
 }
 
 /* CG scalar updates: one item each. `done` turns the rest into no-ops. */
@@ -538,16 +543,23 @@ __kernel void cg_alpha(__global real *sc)
     sc[SC_ALPHA] = sc[SC_DONE] != 0.0 ? 0.0 : sc[SC_RZ] / sc[SC_PQ];
 }
 
+/* y += alpha p, r -= alpha q, and the item's share of r . r (0 once done:
+ * nothing reads it then). */
 __kernel void cg_yr(__global real *y, __global real *r, __global const real *p,
-                    __global const real *q, __global const real *sc, const int nl)
+                    __global const real *q, __global const real *sc, const int nl,
+                    __global real *rr)
 {
-    if (sc[SC_DONE] != 0.0)
-        return;
-    real alpha = sc[SC_ALPHA];
-    TR_ITEMS(l, nl) {
-        y[l] += alpha * p[l];
-        r[l] -= alpha * q[l];
+    real sum = 0.0;
+    if (sc[SC_DONE] == 0.0) {
+        real alpha = sc[SC_ALPHA];
+        TR_ITEMS(l, nl) {
+            y[l] += alpha * p[l];
+            real v = r[l] - alpha * q[l];
+            r[l] = v;
+            sum += v * v;
+        }
     }
+    TR_ITEM_PARTIAL(rr, sum);
 }
 
 /* rr (slot RR) was refreshed by the reduction; RR1 holds r.z of the new z. */
