@@ -637,11 +637,13 @@ static int solve_rows(cl_state *s, tr_error *err)
     int izero = 0;
     TR_CL_CHECK(clEnqueueFillBuffer(s->ctx.queue, s->aadjn, &izero, sizeof izero, 0,
                                     (size_t)nv * sizeof(int), 0, NULL, NULL));
-    if (na > 0)
+    if (na == 0) { /* no active struts: every row of the adjacency is empty */
+        TR_CL_CHECK(clEnqueueFillBuffer(s->ctx.queue, s->aaoff, &izero, sizeof izero, 0,
+                                        (size_t)(nv + 1) * sizeof(int), 0, NULL, NULL));
+    } else {
         TR_TRY(run(s, K_adj_active_count, nact, err, A(s->act), A(s->pa), A(s->pb), A(s->topo.next),
                    A(na), A(s->aadjn), END));
-    TR_TRY(tr_cl_reduce_scan(&s->red, &s->ctx, s->aadjn, nv, s->aaoff, err));
-    if (na > 0) {
+        TR_TRY(tr_cl_reduce_scan(&s->red, &s->ctx, s->aadjn, nv, s->aaoff, err));
         TR_CL_CHECK(clEnqueueFillBuffer(s->ctx.queue, s->aadjn, &izero, sizeof izero, 0,
                                         (size_t)nv * sizeof(int), 0, NULL, NULL));
         TR_TRY(run(s, K_adj_active_write, nact, err, A(s->act), A(s->pa), A(s->pb), A(s->topo.next),
