@@ -1083,7 +1083,7 @@ static int open_on(const tr_device_choice *dev, const tr_curve *c, int profiling
     TR_TRY(buffer(s, &s->cdeb, nv * d, err));
     TR_TRY(buffer(s, &s->chg, sizeof(int), err));
     TR_TRY(buffer(s, &s->po, nv * d, err));
-    TR_TRY(buffer(s, &s->tw, 3 * nv * d, err));
+    TR_TRY(buffer(s, &s->tw, 4 * nv * d, err));
     TR_TRY(tridiag_choose(s, &dev->cl, err));
     {
         /* ~16 vertices per work-item and at most 256 groups per component;
