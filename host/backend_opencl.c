@@ -20,8 +20,8 @@
 #define KERNELS(X)                                                                             \
     X(tension_force) X(tension_smooth) X(tension_move) X(pairs_upper) X(pairs_write)           \
     X(pairs_min_dist) X(rows_chain) X(rows_strut) X(cg_init) X(jt_vertex)          \
-    X(jt_ebar_partial) X(jt_ebar) X(j_rows) X(cg_start) X(cg_top) X(cg_alpha) X(cg_yr)         \
-    X(cg_beta) X(cg_p) X(dx_norm) X(step_scale) X(apply_dx) X(apply_debar) X(measure_edges)    \
+    X(jt_ebar_partial) X(jt_ebar) X(j_rows) X(cg_start) X(cg_top) X(cg_yr)         \
+    X(cg_p) X(dx_norm) X(step_scale) X(apply_dx) X(apply_debar) X(measure_edges)    \
     X(measure_minrad) X(measure_disp) X(comp_sum) X(cg_reset) X(release_pulling)               \
     X(project_field) X(tangent_finish) X(ebar_velocity) X(tension_smooth2) X(precond_setup)    \
     X(precond_diag) X(precond_edges) X(copy_rows) X(precond_edges_factor) X(curv_limits)       \
@@ -536,8 +536,10 @@ cleanup:
     return rc;
 }
 
-/* z = M^-1 r (backend.h correct (c)). */
-static int precond_apply(cl_state *s, cl_mem r, tr_error *err)
+/* z = M^-1 r (backend.h correct (c)): the edge block by the chosen solver,
+ * and with diag the diagonal on the other rows, which inside the CG loop
+ * cg_yr has already applied. */
+static int precond_apply(cl_state *s, cl_mem r, int diag, tr_error *err)
 {
     int rc = TR_OK;
     int nv = s->nv, nl = s->cg_nl;
@@ -555,13 +557,7 @@ static int precond_apply(cl_state *s, cl_mem r, tr_error *err)
             TR_TRY(run(s, K_twist_ring_fix, (size_t)nv, err, A(s->topo.comp), A(s->ncomp), A(nv),
                        A(s->tw), A(s->tends), A(s->z), END));
         }
-        TR_TRY(run(s, K_precond_diag, (size_t)(nl - nv), err, A(r), A(s->pdiag), A(s->ract),
-                   A(nv), A(s->act), A(nl), A(s->z), END));
-        return TR_OK;
-    }
-    TR_TRY(run(s, K_precond_diag, (size_t)(nl - nv), err, A(r), A(s->pdiag), A(s->ract), A(nv),
-               A(s->act), A(nl), A(s->z), END));
-    if (s->tri_pcr) {
+    } else if (s->tri_pcr) {
         TR_CL_CHECK(clEnqueueCopyBuffer(s->ctx.queue, r, s->tset0, 0, 3 * (size_t)nv * d,
                                         (size_t)nv * d, 0, NULL, NULL));
         TR_TRY(tridiag_solve(s, 1, s->z, err));
@@ -570,6 +566,9 @@ static int precond_apply(cl_state *s, cl_mem r, tr_error *err)
                    A(s->start), A(s->ne), A(s->closed), A(s->ncomp), A(nv), A(s->tw), A(s->z),
                    END));
     }
+    if (diag)
+        TR_TRY(run(s, K_precond_diag, (size_t)(nl - nv), err, A(r), A(s->pdiag), A(s->ract), A(nv),
+                   A(s->act), A(nl), A(s->z), END));
 cleanup:
     return rc;
 }
@@ -686,13 +685,14 @@ static int cg_iterate(cl_state *s, const tr_correct_params *prm, int *iters, tr_
     } else
         TR_TRY(run(s, K_precond_edges_factor, (size_t)s->ncomp, err, A(s->pdiag), A(s->po),
                    A(s->start), A(s->ne), A(s->closed), A(s->ncomp), A(nv), A(s->tw), END));
-    TR_TRY(precond_apply(s, s->r, err));
+    TR_TRY(precond_apply(s, s->r, 1, err));
     TR_TRY(run(s, K_copy_rows, (size_t)nl, err, A(s->z), A(s->p), A(nl), END));
     TR_TRY(tr_cl_reduce_dot(&s->red, &s->ctx, s->r, s->r, nl, s->sc, SC_RR, err));
     TR_TRY(tr_cl_reduce_dot(&s->red, &s->ctx, s->r, s->z, nl, s->sc, SC_RZ, err));
     TR_TRY(run_groups(s, K_cg_start, 0, err, A(s->sc), END));
-    for (int k = 0; k < prm->max_cg; k++) {
-        TR_TRY(run_groups(s, K_cg_top, 0, err, A(s->sc), END));
+    int k;
+    for (k = 0; k < prm->max_cg; k++) {
+        TR_TRY(run_groups(s, K_cg_top, 0, err, A(s->sc), A(k), END));
         if (k > 0 && k % 4 == 0) {
             double done;
             TR_TRY(read_scalars(s, SC_DONE, 1, &done, err));
@@ -705,15 +705,16 @@ static int cg_iterate(cl_state *s, const tr_correct_params *prm, int *iters, tr_
                    A(s->sab), A(s->sw), A(s->p), A(nv), A(reg), A(s->act), A(nl), A(s->q), A(s->part),
                    END));
         TR_TRY(tr_cl_reduce_sum(&s->red, &s->ctx, s->part, items, s->sc, SC_PQ, err));
-        TR_TRY(run_groups(s, K_cg_alpha, 0, err, A(s->sc), END));
         TR_TRY(run(s, K_cg_yr, (size_t)nl, err, A(s->y), A(s->r), A(s->p), A(s->q), A(s->sc), A(nl),
-                   A(s->part), END));
+                   A(s->part), A(s->pdiag), A(s->ract), A(nv), A(s->act), A(s->z), END));
         TR_TRY(tr_cl_reduce_sum(&s->red, &s->ctx, s->part, items, s->sc, SC_RR, err));
-        TR_TRY(precond_apply(s, s->r, err));
+        TR_TRY(precond_apply(s, s->r, 0, err));
         TR_TRY(tr_cl_reduce_dot(&s->red, &s->ctx, s->r, s->z, nl, s->sc, SC_RR1, err));
-        TR_TRY(run_groups(s, K_cg_beta, 0, err, A(s->sc), END));
         TR_TRY(run(s, K_cg_p, (size_t)nl, err, A(s->p), A(s->z), A(s->sc), A(nl), END));
     }
+    /* the end of the last iteration (kernels/correct.cl cg_top; nothing
+     * after a break, which found the solve done) */
+    TR_TRY(run_groups(s, K_cg_top, 0, err, A(s->sc), A(k), END));
     TR_TRY(read_scalars(s, SC_ITERS, 1, &it, err));
     *iters = (int)it;
 cleanup:

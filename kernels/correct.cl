@@ -10,9 +10,7 @@
 #define SC_RR 0
 #define SC_RR0 1
 #define SC_PQ 2
-#define SC_ALPHA 3
 #define SC_RR1 4
-#define SC_BETA 5
 #define SC_DONE 6
 #define SC_ITERS 7
 #define SC_TOL2 8
@@ -524,7 +522,13 @@ __kernel void j_rows(__global const real *dx, __global const real *debar,
     TR_ITEM_PARTIAL(yout, sum);
 }
 
-/* CG scalar updates: one item each. `done` turns the rest into no-ops. */
+/* CG scalar updates: one item each. `done` turns the rest into no-ops.
+ * alpha and beta are not kept: cg_yr and cg_p work them out from the
+ * dot products (every item the same quotient), and the bookkeeping of an
+ * iteration waits for the next one's cg_top, so an iteration launches no
+ * kernel of its own for them (on a CPU device or a GPU at N ~ 10^3 a step is
+ * some hundreds of launches, and their cost, not the arithmetic, sets its
+ * time). */
 __kernel void cg_start(__global real *sc)
 {
     sc[SC_RR0] = sc[SC_RR];
@@ -532,52 +536,54 @@ __kernel void cg_start(__global real *sc)
     sc[SC_ITERS] = 0.0;
 }
 
-__kernel void cg_top(__global real *sc)
+/* Before iteration k (and once after the last, k = the iterations run): the
+ * end of iteration k - 1 (its r . z is the one the next beta divides by, and
+ * it is counted), then the convergence test. */
+__kernel void cg_top(__global real *sc, const int k)
 {
-    if (sc[SC_DONE] == 0.0 && sc[SC_RR] <= sc[SC_TOL2] * sc[SC_RR0])
+    if (sc[SC_DONE] != 0.0)
+        return;
+    if (k > 0) {
+        sc[SC_RZ] = sc[SC_RR1];
+        sc[SC_ITERS] += 1.0;
+    }
+    if (sc[SC_RR] <= sc[SC_TOL2] * sc[SC_RR0])
         sc[SC_DONE] = 1.0;
 }
 
-__kernel void cg_alpha(__global real *sc)
-{
-    sc[SC_ALPHA] = sc[SC_DONE] != 0.0 ? 0.0 : sc[SC_RZ] / sc[SC_PQ];
-}
-
-/* y += alpha p, r -= alpha q, and the item's share of r . r (0 once done:
- * nothing reads it then). */
+/* y += alpha p, r -= alpha q (alpha = r.z / p.q), the item's share of r . r
+ * (0 once done: nothing reads it then), and z = r / pd on the curvature and
+ * strut rows (precond_diag's part of the preconditioner, done here while r
+ * is at hand; the edge rows' z is the edge block's). */
 __kernel void cg_yr(__global real *y, __global real *r, __global const real *p,
                     __global const real *q, __global const real *sc, const int nl,
-                    __global real *rr)
+                    __global real *rr, __global const real *pd, __global const int *ract,
+                    const int nv, __global const int *act, __global real *z)
 {
     real sum = 0.0;
     if (sc[SC_DONE] == 0.0) {
-        real alpha = sc[SC_ALPHA];
+        real alpha = sc[SC_RZ] / sc[SC_PQ];
         TR_ITEMS(l, nl) {
             y[l] += alpha * p[l];
             real v = r[l] - alpha * q[l];
             r[l] = v;
             sum += v * v;
+            if (l >= nv) {
+                int k = row_of(l, 2 * nv, act);
+                z[l] = ract[k] ? v / pd[k] : 0.0;
+            }
         }
     }
     TR_ITEM_PARTIAL(rr, sum);
 }
 
-/* rr (slot RR) was refreshed by the reduction; RR1 holds r.z of the new z. */
-__kernel void cg_beta(__global real *sc)
-{
-    if (sc[SC_DONE] != 0.0)
-        return;
-    sc[SC_BETA] = sc[SC_RR1] / sc[SC_RZ];
-    sc[SC_RZ] = sc[SC_RR1];
-    sc[SC_ITERS] += 1.0;
-}
-
+/* p = z + beta p, beta = r.z (new) / r.z (old). */
 __kernel void cg_p(__global real *p, __global const real *z, __global const real *sc,
                    const int nl)
 {
     if (sc[SC_DONE] != 0.0)
         return;
-    real beta = sc[SC_BETA];
+    real beta = sc[SC_RR1] / sc[SC_RZ];
     TR_ITEMS(l, nl)
         p[l] = z[l] + beta * p[l];
 }
