@@ -1,5 +1,6 @@
 /* launch_shapes [DEVICE] [N]: wall time of the CG's axpy kernel (cg_yr,
- * kernels/correct.cl) over N entries (default 2 x 10^5, the row list of a
+ * kernels/correct.cl: y += alpha p, r -= alpha q, r . r per work-item; its
+ * diagonal preconditioner idle, every position an edge row) over N entries (default 2 x 10^5, the row list of a
  * loose N = 10^5 curve) in the two launch shapes of tr_cl_launch_items: one
  * index per work-item in groups of 64 to 4096, and a few work-items of one
  * each, every one walking a contiguous block (common.clh TR_ITEMS). 200
@@ -46,7 +47,8 @@ int main(int argc, char **argv)
     tr_cl_ctx ctx = {0};
     cl_program prog = NULL;
     cl_kernel k = NULL;
-    cl_mem v[5] = {NULL};
+    enum { NBUF = 8 };
+    cl_mem v[NBUF] = {NULL};
     cl_int e = CL_SUCCESS;
     int rc = TR_OK;
     if (n < 1)
@@ -59,14 +61,29 @@ int main(int argc, char **argv)
     TR_TRY(tr_cl_ctx_open(&ctx, &ch.cl, 0, err));
     TR_TRY(tr_cl_build_all(&ctx, &prog, err));
     TR_CL_CHECK((k = clCreateKernel(prog, "cg_yr", &e), e));
-    for (int i = 0; i < 5; i++) {
-        size_t bytes = i < 4 ? (size_t)n * sizeof(double) : 64 * sizeof(double);
-        TR_CL_CHECK((v[i] = clCreateBuffer(ctx.context, CL_MEM_READ_WRITE, bytes, NULL, &e), e));
-        double zero = 0.0;
-        TR_CL_CHECK(clEnqueueFillBuffer(ctx.queue, v[i], &zero, sizeof zero, 0, bytes, 0, NULL, NULL));
-        TR_CL_ARG(k, (cl_uint)i, v[i]);
+    /* cg_yr(y, r, p, q, sc, nl, rr, pd, ract, nv, act, z) with nv = n: every
+     * position is an edge row, so pd, ract, act and z are never touched; rr
+     * takes a partial per work-item, up to the largest global size below */
+    size_t nd = (size_t)n * sizeof(double);
+    const size_t bytes[NBUF] = {nd, nd, nd, nd, 64 * sizeof(double),
+                                ((size_t)n + 4096) * sizeof(double), sizeof(double), sizeof(int)};
+    for (int i = 0; i < NBUF; i++) {
+        TR_CL_CHECK((v[i] = clCreateBuffer(ctx.context, CL_MEM_READ_WRITE, bytes[i], NULL, &e), e));
+        char zero = 0;
+        TR_CL_CHECK(clEnqueueFillBuffer(ctx.queue, v[i], &zero, 1, 0, bytes[i], 0, NULL, NULL));
     }
+    double one = 1.0; /* sc[SC_PQ] (slot 2): alpha = r.z / p.q = 0 / 1 */
+    TR_CL_CHECK(clEnqueueWriteBuffer(ctx.queue, v[4], CL_TRUE, 2 * sizeof(double), sizeof one, &one, 0,
+                                     NULL, NULL));
+    for (int i = 0; i < 5; i++)
+        TR_CL_ARG(k, (cl_uint)i, v[i]);
     TR_CL_ARG(k, 5, n);
+    TR_CL_ARG(k, 6, v[5]);
+    TR_CL_ARG(k, 7, v[6]);
+    TR_CL_ARG(k, 8, v[7]);
+    TR_CL_ARG(k, 9, n);
+    TR_CL_ARG(k, 10, v[7]);
+    TR_CL_ARG(k, 11, v[6]);
     printf("%s, cg_yr over %d entries, ms per launch (200 launches)\n", ch.cl.name, n);
     const size_t locals[] = {64, 256, 1024, 4096};
     for (size_t i = 0; i < sizeof locals / sizeof locals[0]; i++) {
@@ -84,7 +101,7 @@ int main(int argc, char **argv)
         printf("  blocks: %2zu work-items of one:    %.4f\n", items[i], ms);
     }
 cleanup:
-    for (int i = 0; i < 5; i++)
+    for (int i = 0; i < NBUF; i++)
         if (v[i])
             clReleaseMemObject(v[i]);
     if (k)

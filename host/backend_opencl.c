@@ -69,7 +69,8 @@ typedef struct cl_state {
     cl_mem up, first, off, pa, pb;
     cl_mem dist, nbr; /* each pair's distance (rows_strut); its neighbours in the list (pairs_neighbours) */
     /* one partial result per work-item of a folding kernel (rows_chain and
-     * rows_strut: largest violations; pairs_min_dist: closest pairs) */
+     * rows_strut: largest violations; pairs_min_dist: closest pairs; j_rows
+     * and cg_yr: the CG's p . q and r . r) */
     cl_mem part;
     size_t partcap;
     /* each vertex's active strut entries, per CG solve, compact (CSR by

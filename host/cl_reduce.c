@@ -6,7 +6,9 @@
 
 /* Stage-1 work-groups at most (see kernels/reduce.cl): enough to keep a
  * GPU's compute units busy, few enough that a CPU device is not dominated by
- * work-group scheduling. The count depends only on n, so results do too. */
+ * work-group scheduling. The count depends only on n and the device's launch
+ * shape (stage1_global), so results do too: the same bits for the same input
+ * on the same device. */
 #define TR_RED_GROUPS 64
 /* Sums of at most this many values skip stage 1 (sixteen per item of
  * sum_final's one work-group): the per-work-item partials on CPU devices. */

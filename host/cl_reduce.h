@@ -30,7 +30,9 @@ int tr_cl_reduce_minmax(tr_cl_reduce *r, const tr_cl_ctx *ctx, cl_mem v, int n, 
 /* Grows the partial buffers for reductions over up to n items. */
 int tr_cl_reduce_reserve(tr_cl_reduce *r, const tr_cl_ctx *ctx, size_t n, tr_error *err);
 
-/* Queues out[slot] = sum of v[0..n) (pairwise within work-groups, then compensated). */
+/* Queues out[slot] = sum of v[0..n) (compensated per item, then pairwise
+ * within work-groups; n <= 1024, e.g. one partial per work-item, goes
+ * straight to the one work-group of stage 2). */
 int tr_cl_reduce_sum(tr_cl_reduce *r, const tr_cl_ctx *ctx, cl_mem v, int n, cl_mem out, int slot,
                      tr_error *err);
 /* Queues out[slot] = a . b over n entries. */

@@ -4,9 +4,10 @@
  * curvature rows, [2 nv, 2 nv + np) strut rows. J^T y is a per-vertex gather
  * (chain neighbours, then the vertex's contact adjacency in list order);
  * J dx is per row. The CG scalars live in a small device array `sc` so the
- * host reads nothing inside the CG loop. */
+ * host reads nothing inside the CG loop but the `done` flag, every fourth
+ * iteration. */
 
-/* sc[] slots */
+/* sc[] slots (3 and 5, once alpha and beta, are free) */
 #define SC_RR 0
 #define SC_RR0 1
 #define SC_PQ 2
@@ -373,7 +374,7 @@ __kernel void jt_vertex(__global const real *y, __global const real *rgrad,
  * in two stages so that a long component is summed by many work-groups (one
  * work-group per component took 14 ms per call at N = 10^6 on an H100, a
  * tenth of the step): work-group k G + g sums slice g of component k's rows
- * (strided partial sums, then a tree) into part[k G + g] ... */
+ * (partial sums over GROUP_SLICE_FOR, then a tree) into part[k G + g] ... */
 __kernel __attribute__((reqd_work_group_size(TR_LOCAL_SIZE, 1, 1)))
 void jt_ebar_partial(__global const real *y, __global const int *ract,
                      __global const int *start, __global const real *cdeb, const int nv,
@@ -536,7 +537,7 @@ __kernel void cg_start(__global real *sc)
     sc[SC_ITERS] = 0.0;
 }
 
-/* Before iteration k (and once after the last, k = the iterations run): the
+/* Before iteration k (and once after the loop, with the loop's last k): the
  * end of iteration k - 1 (its r . z is the one the next beta divides by, and
  * it is counted), then the convergence test. */
 __kernel void cg_top(__global real *sc, const int k)
@@ -761,7 +762,7 @@ inline void thomas_subst(__global const real *po, int st, int n, __global const 
 }
 
 /* Factors the edge block of component k once per solve (one item per
- * component; the reference's precond_factor). tw holds 3 nv reals:
+ * component; the reference's precond_factor). It uses 3 nv of tw's reals:
  * multipliers, reciprocal pivots, and for closed components the
  * Sherman-Morrison vector uu (Numerical Recipes 2.7, gamma = -D_first). */
 __kernel void precond_edges_factor(__global const real *pd, __global const real *po,

@@ -1,8 +1,9 @@
 /* Reductions the driver reads back each step: polygon length, sums and dot
  * products, largest and smallest values. Two stages, both deterministic for
- * a given N: in stage 1 each work-group takes a contiguous slice of the
- * input, each of its items folds every TR_LOCAL_SIZE-th entry of that slice
- * (compensated, Neumaier) and the work-group of TR_LOCAL_SIZE items folds
+ * a given N on a given device (the split into work-groups and items follows
+ * the launch shape): in stage 1 each work-group takes a contiguous slice of
+ * the input, each of its items folds its share of that slice (GROUP_SLICE_FOR;
+ * compensated, Neumaier) and the work-group of TR_LOCAL_SIZE items folds
  * those by a fixed tree in local memory; stage 2 (one work-group) folds the
  * partials the same way. The host launches at most TR_RED_GROUPS groups for
  * stage 1: few groups with long slices, because on a CPU device every

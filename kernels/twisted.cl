@@ -23,13 +23,14 @@
  *
  * The sweep and the back substitution are each one dependent chain per
  * half, so their speed is the chain's latency per row. Written as
- * y_j = fma(-c_j, y_{j-1}, rhs_j ip_j) and x_j = fma(-g_j, x_{j+1}, y_j)
- * the chain is one fused multiply-add (4 cycles on the CPUs here) instead of
- * a multiply, a subtraction and a multiply: on the loose torus at
+ * y_j = fma(-c_j, y_{j-1}, rhs_j ip_j) and x_j = fma(-g_j, x_{j+1}, y_j),
+ * the chain is one fused multiply-add (4 cycles on the CPUs here) instead
+ * of a multiply, a subtraction and a multiply: on the loose torus at
  * N = 10^5 (PoCL) twist_sweep_rows fell from 7.0 to 3.8-4.4 ms per step and
- * twist_back_rows from 5.2 to 3.2-4.1. This is a
- * preconditioner: its rounding only steers the CG, whose result the tests
- * hold to the reference within PCR's tolerance. */
+ * twist_back_rows from 5.2 to 3.2-4.1. Every GPU with FP64 and every x86
+ * CPU since 2013 has FMA units; elsewhere fma() is emulated, slow but
+ * right. This is a preconditioner: its rounding only steers the CG, whose
+ * result the tests hold to the reference within PCR's tolerance. */
 
 /* The middle row: n / 2 when both halves have rows, else the last row
  * (short blocks are plain Thomas in the upper half). */
@@ -77,8 +78,8 @@ inline real twist_middle(__global const real *po, __global const real *d, real b
 
 /* Elimination sweep of rhs into y (upper half: y_j = (rhs_j - o_{j-1}
  * y_{j-1}) ip_j; lower half: y_j = (rhs_j - o_j y_{j+1}) ip_j, as
- * rhs_j ip_j - c_j y_{j-+1}), then the middle row's solution once both are
- * known (twist_solve_mid). */
+ * rhs_j ip_j - c_j y_{j-1} and rhs_j ip_j - c_j y_{j+1}), then the middle
+ * row's solution once both are known (twist_solve_mid). */
 inline void twist_sweep(int n, int side, __global const real *ip, __global const real *c,
                         __global const real *rhs, __global real *y)
 {
@@ -290,7 +291,7 @@ __kernel void twist_ring_fact(__global const real *pd, __global const real *po,
 
 /* Apply, step 4 (one item per edge row, only when some block is closed):
  * z -= fact uu, exact no-op on rows whose uu is zero. The curvature and
- * strut rows are precond_diag's. */
+ * strut rows are precond_diag's (cg_yr's inside the CG loop). */
 __kernel void twist_ring_fix(__global const int *comp, const int ncomp, const int nv,
                              __global const real *tw, __global const real *ends,
                              __global real *z)

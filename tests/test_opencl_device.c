@@ -2,7 +2,6 @@
  * build failures carrying the log, and the reduction kernels against serial
  * sums on a trefoil, a two-component link and two open ropes. Skips (77)
  * when no usable OpenCL device exists. */
-#include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -230,9 +229,18 @@ static void test_turning_angle(const tr_cl_ctx *ctx)
     CHECK_OK(rc);
     if (rc != TR_OK)
         return;
-    double *sv = malloc(3 * N * sizeof *sv), *cv = sv + N, *got = sv + 2 * N;
+    double *sv = malloc(3 * N * sizeof *sv);
+    CHECK(sv != NULL);
+    if (!sv) {
+        clReleaseProgram(prog);
+        return;
+    }
+    double *cv = sv + N, *got = sv + 2 * N;
     int n = 0;
-    static const double special[][2] = {{0, 1}, {0, -1}, {1, 0}, {0, 0}, {1e-300, 1}, {1, 1e-300}};
+    /* the exact cases, tiny angles, and subnormal ratios and operands */
+    static const double special[][2] = {{0, 1},      {0, -1},      {1, 0},        {0, 0},
+                                        {1e-300, 1}, {1, 1e-300},  {1e-310, 1},   {1e-300, 1e10},
+                                        {1e-310, -1}, {5e-324, 1e-320}, {1, -1e-310}};
     for (size_t k = 0; k < sizeof special / sizeof special[0]; k++)
         sv[n] = special[k][0], cv[n] = special[k][1], n++;
     unsigned long long u = 88172645463325252ull; /* xorshift: any fixed sequence */
@@ -255,10 +263,13 @@ static void test_turning_angle(const tr_cl_ctx *ctx)
     }
     cl_int e = CL_SUCCESS;
     cl_kernel k = clCreateKernel(prog, "angles", &e);
+    CHECK(e == CL_SUCCESS);
     cl_mem bs = clCreateBuffer(ctx->context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
                                N * sizeof(double), sv, &e);
+    CHECK(e == CL_SUCCESS);
     cl_mem bc = clCreateBuffer(ctx->context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
                                N * sizeof(double), cv, &e);
+    CHECK(e == CL_SUCCESS);
     cl_mem bo = clCreateBuffer(ctx->context, CL_MEM_WRITE_ONLY, N * sizeof(double), NULL, &e);
     CHECK(e == CL_SUCCESS);
     int nn = N;
@@ -274,8 +285,8 @@ static void test_turning_angle(const tr_cl_ctx *ctx)
     int bad = 0;
     for (int i = 0; i < N; i++) {
         double want = atan2(sv[i], cv[i]);
-        double ulps = want == 0.0 ? (got[i] == 0.0 ? 0.0 : INFINITY)
-                                  : fabs(got[i] - want) / (DBL_EPSILON * want);
+        /* in units of want's last place (subnormals: the smallest step) */
+        double ulps = got[i] == want ? 0.0 : fabs(got[i] - want) / (nextafter(want, INFINITY) - want);
         worst = fmax(worst, ulps);
         if (!(ulps <= 4.0) && bad++ < 5)
             fprintf(stderr, "turning angle (%.17g, %.17g): %.17g, atan2 %.17g\n", sv[i], cv[i],
@@ -324,8 +335,20 @@ static void test_reductions(const tr_cl_ctx *ctx)
             double got[4] = {0, 0, 0, 0};
             CHECK_OK(tr_cl_reduce_length(&red, ctx, bx, bn, (int)c.nv, out, 0, &err));
             CHECK_OK(tr_cl_reduce_minmax(&red, ctx, bv, (int)c.nv, out, 1, &err));
-            CHECK(clEnqueueReadBuffer(ctx->queue, out, CL_TRUE, 0, 3 * sizeof(double), got, 0, NULL,
+            CHECK_OK(tr_cl_reduce_sum(&red, ctx, bv, (int)c.nv, out, 3, &err));
+            CHECK(clEnqueueReadBuffer(ctx->queue, out, CL_TRUE, 0, 4 * sizeof(double), got, 0, NULL,
                                       NULL) == CL_SUCCESS);
+            /* the sum, one stage up to 1024 entries and two above: against
+             * the host's Neumaier sum; either errs by at most ~log2(N) eps of
+             * the sum of magnitudes, so 1e-14 of that bounds the difference */
+            double hs = 0.0, hc = 0.0, mag = 0.0;
+            for (size_t i = 0; i < c.nv; i++) {
+                double t = hs + coord[i];
+                hc += fabs(hs) >= fabs(coord[i]) ? (hs - t) + coord[i] : (coord[i] - t) + hs;
+                hs = t;
+                mag += fabs(coord[i]);
+            }
+            CHECK_NEAR(got[3], hs + hc, 1e-14 * mag);
             /* Pairwise (device) and Neumaier (host) sums of N positive edge
              * lengths both err by at most ~log2(N) eps L < 13 * 1.1e-16 L, so
              * 1e-14 relative bounds the difference with margin; each edge
