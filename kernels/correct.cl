@@ -552,6 +552,16 @@ __kernel void cg_top(__global real *sc, const int k)
         sc[SC_DONE] = 1.0;
 }
 
+/* The preconditioner's diagonal part at row-list position l >= nv (a
+ * curvature or strut row) with residual rl: rl / pd, 0 when the row is
+ * inactive (precond_diag, and cg_yr inside the CG loop). */
+inline real precond_diag_at(real rl, int l, int nv, __global const int *act,
+                            __global const int *ract, __global const real *pd)
+{
+    int q = row_of(l, 2 * nv, act);
+    return ract[q] ? rl / pd[q] : 0.0;
+}
+
 /* y += alpha p, r -= alpha q (alpha = r.z / p.q), the item's share of r . r
  * (0 once done: nothing reads it then), and z = r / pd on the curvature and
  * strut rows (precond_diag's part of the preconditioner, done here while r
@@ -569,10 +579,8 @@ __kernel void cg_yr(__global real *y, __global real *r, __global const real *p,
             real v = r[l] - alpha * q[l];
             r[l] = v;
             sum += v * v;
-            if (l >= nv) {
-                int k = row_of(l, 2 * nv, act);
-                z[l] = ract[k] ? v / pd[k] : 0.0;
-            }
+            if (l >= nv)
+                z[l] = precond_diag_at(v, l, nv, act, ract, pd);
         }
     }
     TR_ITEM_PARTIAL(rr, sum);
@@ -731,8 +739,8 @@ __kernel void precond_diag(__global const real *r, __global const real *pd,
                            const int nl, __global real *z)
 {
     TR_ITEMS(m, nl - nv) {
-        int l = m + nv, q = row_of(l, 2 * nv, act);
-        z[l] = ract[q] ? r[l] / pd[q] : 0.0;
+        int l = m + nv;
+        z[l] = precond_diag_at(r[l], l, nv, act, ract, pd);
     }
 }
 
