@@ -75,15 +75,8 @@ int main(int argc, char **argv)
     double one = 1.0; /* sc[SC_PQ] (slot 2): alpha = r.z / p.q = 0 / 1 */
     TR_CL_CHECK(clEnqueueWriteBuffer(ctx.queue, v[4], CL_TRUE, 2 * sizeof(double), sizeof one, &one, 0,
                                      NULL, NULL));
-    for (int i = 0; i < 5; i++)
-        TR_CL_ARG(k, (cl_uint)i, v[i]);
-    TR_CL_ARG(k, 5, n);
-    TR_CL_ARG(k, 6, v[5]);
-    TR_CL_ARG(k, 7, v[6]);
-    TR_CL_ARG(k, 8, v[7]);
-    TR_CL_ARG(k, 9, n);
-    TR_CL_ARG(k, 10, v[7]);
-    TR_CL_ARG(k, 11, v[6]);
+    TR_CL_ARGS(k, 0, TR_CL_A(v[0]), TR_CL_A(v[1]), TR_CL_A(v[2]), TR_CL_A(v[3]), TR_CL_A(v[4]), TR_CL_A(n),
+               TR_CL_A(v[5]), TR_CL_A(v[6]), TR_CL_A(v[7]), TR_CL_A(n), TR_CL_A(v[7]), TR_CL_A(v[6]));
     printf("%s, cg_yr over %d entries, ms per launch (200 launches)\n", ch.cl.name, n);
     const size_t locals[] = {64, 256, 1024, 4096};
     for (size_t i = 0; i < sizeof locals / sizeof locals[0]; i++) {

@@ -158,23 +158,10 @@ cleanup:
     return rc;
 }
 
-/* Sets kernel id's arguments from ap (pairs of size, pointer, terminated by 0). */
+/* Sets kernel id's arguments 0, 1, ... from ap (TR_CL_A pairs up to TR_CL_END). */
 static int set_args(cl_state *s, int id, va_list ap, tr_error *err)
 {
-    cl_kernel k = s->k[id];
-    cl_uint i = 0;
-    for (;;) {
-        size_t sz = va_arg(ap, size_t);
-        if (!sz)
-            break;
-        const void *v = va_arg(ap, const void *);
-        cl_int e = clSetKernelArg(k, i++, sz, v);
-        if (e != CL_SUCCESS) {
-            tr_cl_fail(err, e, "clSetKernelArg", __FILE__, __LINE__);
-            return tr_fail_wrap(err, TR_EOPENCL, "%s argument %u", kernel_names[id], i - 1);
-        }
-    }
-    return TR_OK;
+    return tr_cl_vargs(err, __FILE__, __LINE__, s->k[id], 0, ap);
 }
 
 /* Launches kernel id over global items in groups of local. With profiling
@@ -235,8 +222,9 @@ static int run_one_group(cl_state *s, int id, size_t local, tr_error *err, ...)
 /* Strut rows per item when the CG's row list is built (act_count, act_write). */
 #define TR_ACT_BLOCK 1024
 
-#define A(v) sizeof(v), (const void *)&(v)
-#define END (size_t)0
+/* Short spellings for the many argument lists below. */
+#define A TR_CL_A
+#define END TR_CL_END
 
 static int read_scalars(cl_state *s, int first, int count, double *out, tr_error *err)
 {

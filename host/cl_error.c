@@ -1,6 +1,7 @@
 #include "cl_error.h"
 
 #include <ctype.h>
+#include <stdarg.h>
 #include <string.h>
 
 const char *tr_cl_strerror(cl_int code)
@@ -131,4 +132,31 @@ int tr_cl_fail(tr_error *err, cl_int code, const char *call_text, const char *fi
     const char *base = strrchr(file, '/');
     return tr_fail(err, TR_EOPENCL, "%s: %s (%d) [%s:%d]", name[0] ? name : "opencl call",
                    tr_cl_strerror(code), (int)code, base ? base + 1 : file, line);
+}
+
+int tr_cl_vargs(tr_error *err, const char *file, int line, cl_kernel k, cl_uint first, va_list ap)
+{
+    for (cl_uint i = first;; i++) {
+        size_t size = va_arg(ap, size_t);
+        if (size == TR_CL_END)
+            return TR_OK;
+        const void *value = va_arg(ap, const void *);
+        cl_int code = clSetKernelArg(k, i, size, value);
+        if (code != CL_SUCCESS) {
+            char name[64] = "?";
+            if (clGetKernelInfo(k, CL_KERNEL_FUNCTION_NAME, sizeof name, name, NULL) != CL_SUCCESS)
+                strcpy(name, "?");
+            tr_cl_fail(err, code, "clSetKernelArg", file, line);
+            return tr_fail_wrap(err, TR_EOPENCL, "kernel %s, argument %u", name, (unsigned)i);
+        }
+    }
+}
+
+int tr_cl_args_at(tr_error *err, const char *file, int line, cl_kernel k, cl_uint first, ...)
+{
+    va_list ap;
+    va_start(ap, first);
+    int rc = tr_cl_vargs(err, file, line, k, first, ap);
+    va_end(ap);
+    return rc;
 }

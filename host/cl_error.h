@@ -7,6 +7,7 @@
 #define TR_CL_ERROR_H
 
 #include <CL/cl.h>
+#include <stdarg.h>
 
 #include "error.h"
 
@@ -30,8 +31,20 @@ int tr_cl_fail(tr_error *err, cl_int code, const char *call_text, const char *fi
         }                                                                             \
     } while (0)
 
-/* Sets argument i of kernel k to the variable v (a cl_mem, int or double). */
-#define TR_CL_ARG(k, i, v) TR_CL_CHECK(clSetKernelArg((k), (i), sizeof(v), &(v)))
+/* Kernel arguments, one way everywhere: arguments first, first + 1, ... of
+ * kernel k from TR_CL_A(v) pairs (v a cl_mem, int or double variable),
+ *   TR_CL_ARGS(k, 0, TR_CL_A(x), TR_CL_A(n), TR_CL_A(out));
+ * A failure reads "kernel j_rows, argument 3: clSetKernelArg:
+ * CL_INVALID_ARG_SIZE (-51) [file:line]" (the name asked of the kernel).
+ * TR_CL_ARGS needs what TR_CL_CHECK needs; the functions return a tr status
+ * for callers with their own argument lists (the va_list form, terminated
+ * by TR_CL_END). */
+#define TR_CL_A(v) sizeof(v), (const void *)&(v)
+#define TR_CL_END ((size_t)0)
+#define TR_CL_ARGS(k, first, ...)                                                     \
+    TR_TRY(tr_cl_args_at(err, __FILE__, __LINE__, (k), (first), __VA_ARGS__, TR_CL_END))
+int tr_cl_args_at(tr_error *err, const char *file, int line, cl_kernel k, cl_uint first, ...);
+int tr_cl_vargs(tr_error *err, const char *file, int line, cl_kernel k, cl_uint first, va_list ap);
 
 /* Same for library calls returning a tr status: keep their message. */
 #define TR_TRY(expr)                                                                  \

@@ -94,10 +94,7 @@ static int sum_stage2(tr_cl_reduce *r, const tr_cl_ctx *ctx, cl_mem src, int m, 
 {
     int rc = TR_OK;
     size_t l = TR_CL_LOCAL;
-    TR_CL_ARG(r->sum_final, 0, src);
-    TR_CL_ARG(r->sum_final, 1, m);
-    TR_CL_ARG(r->sum_final, 2, out);
-    TR_CL_ARG(r->sum_final, 3, slot);
+    TR_CL_ARGS(r->sum_final, 0, TR_CL_A(src), TR_CL_A(m), TR_CL_A(out), TR_CL_A(slot));
     TR_TRY(tr_cl_launch(ctx, r->sum_final, l, l, err));
 cleanup:
     return rc;
@@ -111,10 +108,7 @@ int tr_cl_reduce_length(tr_cl_reduce *r, const tr_cl_ctx *ctx, cl_mem x, cl_mem 
         return rc;
     size_t g = stage1_global(ctx, (size_t)n), l = TR_CL_LOCAL;
     int m = (int)(g / l);
-    TR_CL_ARG(r->length_partial, 0, x);
-    TR_CL_ARG(r->length_partial, 1, next);
-    TR_CL_ARG(r->length_partial, 2, n);
-    TR_CL_ARG(r->length_partial, 3, r->pa);
+    TR_CL_ARGS(r->length_partial, 0, TR_CL_A(x), TR_CL_A(next), TR_CL_A(n), TR_CL_A(r->pa));
     TR_TRY(tr_cl_launch(ctx, r->length_partial, g, l, err));
     rc = sum_stage2(r, ctx, r->pa, m, out, slot, err);
 cleanup:
@@ -129,16 +123,9 @@ int tr_cl_reduce_minmax(tr_cl_reduce *r, const tr_cl_ctx *ctx, cl_mem v, int n, 
         return rc;
     size_t g = stage1_global(ctx, (size_t)n), l = TR_CL_LOCAL;
     int m = (int)(g / l);
-    TR_CL_ARG(r->minmax_partial, 0, v);
-    TR_CL_ARG(r->minmax_partial, 1, n);
-    TR_CL_ARG(r->minmax_partial, 2, r->pa);
-    TR_CL_ARG(r->minmax_partial, 3, r->pb);
+    TR_CL_ARGS(r->minmax_partial, 0, TR_CL_A(v), TR_CL_A(n), TR_CL_A(r->pa), TR_CL_A(r->pb));
     TR_TRY(tr_cl_launch(ctx, r->minmax_partial, g, l, err));
-    TR_CL_ARG(r->minmax_final, 0, r->pa);
-    TR_CL_ARG(r->minmax_final, 1, r->pb);
-    TR_CL_ARG(r->minmax_final, 2, m);
-    TR_CL_ARG(r->minmax_final, 3, out);
-    TR_CL_ARG(r->minmax_final, 4, slot);
+    TR_CL_ARGS(r->minmax_final, 0, TR_CL_A(r->pa), TR_CL_A(r->pb), TR_CL_A(m), TR_CL_A(out), TR_CL_A(slot));
     TR_TRY(tr_cl_launch(ctx, r->minmax_final, l, l, err));
 cleanup:
     return rc;
@@ -148,10 +135,7 @@ int tr_cl_edge_lengths(tr_cl_reduce *r, const tr_cl_ctx *ctx, cl_mem x, cl_mem n
                        cl_mem len, tr_error *err)
 {
     int rc = TR_OK;
-    TR_CL_ARG(r->edge_lengths, 0, x);
-    TR_CL_ARG(r->edge_lengths, 1, next);
-    TR_CL_ARG(r->edge_lengths, 2, n);
-    TR_CL_ARG(r->edge_lengths, 3, len);
+    TR_CL_ARGS(r->edge_lengths, 0, TR_CL_A(x), TR_CL_A(next), TR_CL_A(n), TR_CL_A(len));
     TR_TRY(tr_cl_launch_items(ctx, r->edge_lengths, (size_t)n, err));
 cleanup:
     return rc;
@@ -191,8 +175,7 @@ static int finish_sum(tr_cl_reduce *r, const tr_cl_ctx *ctx, cl_kernel k, int ar
         return rc;
     size_t g = stage1_global(ctx, (size_t)items), l = TR_CL_LOCAL;
     int m = (int)(g / l);
-    TR_CL_ARG(k, (cl_uint)argn, n);
-    TR_CL_ARG(k, (cl_uint)argn + 1, r->pa);
+    TR_CL_ARGS(k, (cl_uint)argn, TR_CL_A(n), TR_CL_A(r->pa));
     TR_TRY(tr_cl_launch(ctx, k, g, l, err));
     rc = sum_stage2(r, ctx, r->pa, m, out, slot, err);
 cleanup:
@@ -205,7 +188,7 @@ int tr_cl_reduce_sum(tr_cl_reduce *r, const tr_cl_ctx *ctx, cl_mem v, int n, cl_
     int rc = TR_OK;
     if (n <= TR_RED_DIRECT) /* one stage: a few partials per item */
         return sum_stage2(r, ctx, v, n, out, slot, err);
-    TR_CL_ARG(r->sum_partial, 0, v);
+    TR_CL_ARGS(r->sum_partial, 0, TR_CL_A(v));
     rc = finish_sum(r, ctx, r->sum_partial, 1, n, n, out, slot, err);
 cleanup:
     return rc;
@@ -215,8 +198,7 @@ int tr_cl_reduce_dot(tr_cl_reduce *r, const tr_cl_ctx *ctx, cl_mem a, cl_mem b, 
                      int slot, tr_error *err)
 {
     int rc = TR_OK;
-    TR_CL_ARG(r->dot_partial, 0, a);
-    TR_CL_ARG(r->dot_partial, 1, b);
+    TR_CL_ARGS(r->dot_partial, 0, TR_CL_A(a), TR_CL_A(b));
     rc = finish_sum(r, ctx, r->dot_partial, 2, n, n, out, slot, err);
 cleanup:
     return rc;
@@ -226,7 +208,7 @@ int tr_cl_reduce_count(tr_cl_reduce *r, const tr_cl_ctx *ctx, cl_mem v, int n, c
                        int slot, tr_error *err)
 {
     int rc = TR_OK;
-    TR_CL_ARG(r->isum_partial, 0, v);
+    TR_CL_ARGS(r->isum_partial, 0, TR_CL_A(v));
     rc = finish_sum(r, ctx, r->isum_partial, 1, n, n, out, slot, err);
 cleanup:
     return rc;
@@ -243,19 +225,11 @@ int tr_cl_reduce_scan(tr_cl_reduce *r, const tr_cl_ctx *ctx, cl_mem in, int n, c
         return rc;
     size_t g = tr_cl_global((size_t)n), l = TR_CL_LOCAL;
     int groups = (int)(g / l);
-    TR_CL_ARG(r->scan_local, 0, in);
-    TR_CL_ARG(r->scan_local, 1, n);
-    TR_CL_ARG(r->scan_local, 2, out);
-    TR_CL_ARG(r->scan_local, 3, r->pb);
+    TR_CL_ARGS(r->scan_local, 0, TR_CL_A(in), TR_CL_A(n), TR_CL_A(out), TR_CL_A(r->pb));
     TR_TRY(tr_cl_launch(ctx, r->scan_local, g, l, err));
-    TR_CL_ARG(r->scan_sums, 0, r->pb);
-    TR_CL_ARG(r->scan_sums, 1, groups);
-    TR_CL_ARG(r->scan_sums, 2, out);
-    TR_CL_ARG(r->scan_sums, 3, n);
+    TR_CL_ARGS(r->scan_sums, 0, TR_CL_A(r->pb), TR_CL_A(groups), TR_CL_A(out), TR_CL_A(n));
     TR_TRY(tr_cl_launch(ctx, r->scan_sums, l, l, err));
-    TR_CL_ARG(r->scan_add, 0, out);
-    TR_CL_ARG(r->scan_add, 1, n);
-    TR_CL_ARG(r->scan_add, 2, r->pb);
+    TR_CL_ARGS(r->scan_add, 0, TR_CL_A(out), TR_CL_A(n), TR_CL_A(r->pb));
     TR_TRY(tr_cl_launch_items(ctx, r->scan_add, (size_t)n, err));
 cleanup:
     return rc;

@@ -193,13 +193,8 @@ cleanup:
 static int leaf_args(const tr_cl_tree *t, cl_kernel k, const tr_cl_topology *topo, cl_mem x,
                      tr_error *err) {
     int rc = TR_OK;
-    TR_CL_ARG(k, 0, x);
-    TR_CL_ARG(k, 1, topo->next);
-    TR_CL_ARG(k, 2, t->tedge);
-    TR_CL_ARG(k, 3, t->leaf_id);
-    TR_CL_ARG(k, 4, t->nleaf);
-    TR_CL_ARG(k, 5, t->node_a);
-    TR_CL_ARG(k, 6, t->node_b);
+    TR_CL_ARGS(k, 0, TR_CL_A(x), TR_CL_A(topo->next), TR_CL_A(t->tedge), TR_CL_A(t->leaf_id),
+               TR_CL_A(t->nleaf), TR_CL_A(t->node_a), TR_CL_A(t->node_b));
 cleanup:
     return rc;
 }
@@ -208,18 +203,15 @@ cleanup:
 static int refit(tr_cl_tree *t, const tr_cl_ctx *ctx, const tr_cl_topology *topo, cl_mem x, tr_error *err) {
     int rc = TR_OK;
     TR_TRY(leaf_args(t, t->leaf_box, topo, x, err));
-    TR_CL_ARG(t->leaf_box, 7, t->box);
+    TR_CL_ARGS(t->leaf_box, 7, TR_CL_A(t->box));
     TR_TRY(tr_cl_launch_items(ctx, t->leaf_box, (size_t)t->nleaf, err));
-    TR_CL_ARG(t->inner_box, 0, t->level_id);
-    TR_CL_ARG(t->inner_box, 3, t->left);
-    TR_CL_ARG(t->inner_box, 4, t->right);
-    TR_CL_ARG(t->inner_box, 5, t->box);
+    TR_CL_ARGS(t->inner_box, 0, TR_CL_A(t->level_id));
+    TR_CL_ARGS(t->inner_box, 3, TR_CL_A(t->left), TR_CL_A(t->right), TR_CL_A(t->box));
     for (int L = 0; L < t->nlevels; L++) {
         int off = t->level_off[L], n = t->level_off[L + 1] - off;
         if (n == 0)
             continue;
-        TR_CL_ARG(t->inner_box, 1, off);
-        TR_CL_ARG(t->inner_box, 2, n);
+        TR_CL_ARGS(t->inner_box, 1, TR_CL_A(off), TR_CL_A(n));
         TR_TRY(tr_cl_launch_items(ctx, t->inner_box, (size_t)n, err));
     }
 cleanup:
@@ -243,10 +235,7 @@ static int size_rows(tr_cl_tree *t, const tr_cl_ctx *ctx, tr_cl_reduce *red, con
         rc = tr_fail(err, TR_EGEOMETRY, "%.0f contact candidates: the curve is far too dense", counted);
         goto cleanup;
     }
-    TR_CL_ARG(t->list_room, 0, t->count);
-    TR_CL_ARG(t->list_room, 1, topo->next);
-    TR_CL_ARG(t->list_room, 2, t->nv);
-    TR_CL_ARG(t->list_room, 3, t->room);
+    TR_CL_ARGS(t->list_room, 0, TR_CL_A(t->count), TR_CL_A(topo->next), TR_CL_A(t->nv), TR_CL_A(t->room));
     TR_TRY(tr_cl_launch_items(ctx, t->list_room, (size_t)t->nv, err));
     TR_TRY(tr_cl_reduce_scan(red, ctx, t->room, t->nv, t->loff, err));
     /* the rooms' total is at most the bound above, so the list is sized from
@@ -277,9 +266,7 @@ int tr_cl_tree_search(tr_cl_tree *t, const tr_cl_ctx *ctx, tr_cl_reduce *red,
     if (use_slab) {
         double pad = tilt * cutoff;
         TR_TRY(leaf_args(t, t->leaf_slab, topo, x, err));
-        TR_CL_ARG(t->leaf_slab, 7, cutoff);
-        TR_CL_ARG(t->leaf_slab, 8, pad);
-        TR_CL_ARG(t->leaf_slab, 9, t->slab);
+        TR_CL_ARGS(t->leaf_slab, 7, TR_CL_A(cutoff), TR_CL_A(pad), TR_CL_A(t->slab));
         TR_TRY(tr_cl_launch_items(ctx, t->leaf_slab, (size_t)t->nleaf, err));
     }
     if (t->counted)
@@ -290,31 +277,12 @@ int tr_cl_tree_search(tr_cl_tree *t, const tr_cl_ctx *ctx, tr_cl_reduce *red,
         int zero = 0;
         TR_CL_CHECK(
             clEnqueueWriteBuffer(ctx->queue, t->overflow, CL_FALSE, 0, sizeof zero, &zero, 0, NULL, NULL));
-        TR_CL_ARG(t->pairs, 0, x);
-        TR_CL_ARG(t->pairs, 1, topo->next);
-        TR_CL_ARG(t->pairs, 2, t->nv);
-        TR_CL_ARG(t->pairs, 3, topo->comp);
-        TR_CL_ARG(t->pairs, 4, topo->pos);
-        TR_CL_ARG(t->pairs, 5, topo->comp_n);
-        TR_CL_ARG(t->pairs, 6, topo->comp_closed);
-        TR_CL_ARG(t->pairs, 7, gap);
-        TR_CL_ARG(t->pairs, 8, min_gap);
-        TR_CL_ARG(t->pairs, 9, t->vedge);
-        TR_CL_ARG(t->pairs, 10, t->tedge);
-        TR_CL_ARG(t->pairs, 11, t->comp_estart);
-        TR_CL_ARG(t->pairs, 12, t->node_a);
-        TR_CL_ARG(t->pairs, 13, t->node_b);
-        TR_CL_ARG(t->pairs, 14, t->node_comp);
-        TR_CL_ARG(t->pairs, 15, t->left);
-        TR_CL_ARG(t->pairs, 16, t->right);
-        TR_CL_ARG(t->pairs, 17, t->box);
-        TR_CL_ARG(t->pairs, 18, t->slab);
-        TR_CL_ARG(t->pairs, 19, cutoff);
-        TR_CL_ARG(t->pairs, 20, tilt);
-        TR_CL_ARG(t->pairs, 21, t->loff);
-        TR_CL_ARG(t->pairs, 22, t->count);
-        TR_CL_ARG(t->pairs, 23, t->list);
-        TR_CL_ARG(t->pairs, 24, t->overflow);
+        TR_CL_ARGS(t->pairs, 0, TR_CL_A(x), TR_CL_A(topo->next), TR_CL_A(t->nv), TR_CL_A(topo->comp),
+                   TR_CL_A(topo->pos), TR_CL_A(topo->comp_n), TR_CL_A(topo->comp_closed), TR_CL_A(gap),
+                   TR_CL_A(min_gap), TR_CL_A(t->vedge), TR_CL_A(t->tedge), TR_CL_A(t->comp_estart),
+                   TR_CL_A(t->node_a), TR_CL_A(t->node_b), TR_CL_A(t->node_comp), TR_CL_A(t->left),
+                   TR_CL_A(t->right), TR_CL_A(t->box), TR_CL_A(t->slab), TR_CL_A(cutoff), TR_CL_A(tilt),
+                   TR_CL_A(t->loff), TR_CL_A(t->count), TR_CL_A(t->list), TR_CL_A(t->overflow));
         TR_TRY(tr_cl_launch_items(ctx, t->pairs, (size_t)t->nv, err));
         TR_CL_CHECK(
             clEnqueueReadBuffer(ctx->queue, t->overflow, CL_TRUE, 0, sizeof flag, &flag, 0, NULL, NULL));

@@ -273,10 +273,15 @@ static void test_turning_angle(const tr_cl_ctx *ctx)
     cl_mem bo = clCreateBuffer(ctx->context, CL_MEM_WRITE_ONLY, N * sizeof(double), NULL, &e);
     CHECK(e == CL_SUCCESS);
     int nn = N;
-    CHECK(clSetKernelArg(k, 0, sizeof bs, &bs) == CL_SUCCESS);
-    CHECK(clSetKernelArg(k, 1, sizeof bc, &bc) == CL_SUCCESS);
-    CHECK(clSetKernelArg(k, 2, sizeof bo, &bo) == CL_SUCCESS);
-    CHECK(clSetKernelArg(k, 3, sizeof nn, &nn) == CL_SUCCESS);
+    CHECK(tr_cl_args_at(&err, __FILE__, __LINE__, k, 0, TR_CL_A(bs), TR_CL_A(bc), TR_CL_A(bo),
+                        TR_CL_A(nn), TR_CL_END) == TR_OK);
+    /* an argument past the last (angles has four) is named by kernel and index */
+    CHECK(tr_cl_args_at(&err, "here.c", 7, k, 3, TR_CL_A(nn), TR_CL_A(nn), TR_CL_END) == TR_EOPENCL);
+    int named = strcmp(err.msg, "kernel angles, argument 4: clSetKernelArg: "
+                                "CL_INVALID_ARG_INDEX (-49) [here.c:7]") == 0;
+    if (!named)
+        fprintf(stderr, "argument error: %s\n", err.msg);
+    CHECK(named);
     size_t g = N;
     CHECK(clEnqueueNDRangeKernel(ctx->queue, k, 1, NULL, &g, NULL, 0, NULL, NULL) == CL_SUCCESS);
     CHECK(clEnqueueReadBuffer(ctx->queue, bo, CL_TRUE, 0, N * sizeof(double), got, 0, NULL, NULL) ==
