@@ -339,8 +339,56 @@ __kernel void adj_active_sort(__global const int *aaoff, const int nv, __global 
     }
 }
 
+#ifdef TR_BLOCK_ITEMS
+/* Four consecutive rows a .. a + 3 of an n x 3 array as x, y and z lanes. */
+typedef struct {
+    real4 x, y, z;
+} rows4;
+
+inline rows4 load_rows4(__global const real *p, int a)
+{
+    __global const real *q = p + 3 * (long)a;
+    real4 u = vload4(0, q), v = vload4(1, q), w = vload4(2, q);
+    rows4 r;
+    r.x = (real4)(u.s0, u.s3, v.s2, w.s1);
+    r.y = (real4)(u.s1, v.s0, v.s3, w.s2);
+    r.z = (real4)(u.s2, v.s1, w.s0, w.s3);
+    return r;
+}
+
+/* Vertices i .. i + 3 lie inside one run of the chain (each one's next is
+ * the one after it; with prev, also each one's prev the one before). */
+inline bool chain_run4(int i, __global const int *next, __global const int *prev)
+{
+    int4 ids = (int4)(i, i + 1, i + 2, i + 3);
+    int4 ok = vload4(0, next + i) == ids + 1;
+    if (prev) {
+        if (i == 0) /* an open chain's first vertex has prev -1 = i - 1 */
+            return false;
+        ok &= vload4(0, prev + i) == ids - 1;
+    }
+    return all(ok);
+}
+
+inline void store_rows4(rows4 r, __global real *p, int a)
+{
+    __global real *q = p + 3 * (long)a;
+    vstore4((real4)(r.x.s0, r.y.s0, r.z.s0, r.x.s1), 0, q);
+    vstore4((real4)(r.y.s1, r.z.s1, r.x.s2, r.y.s2), 1, q);
+    vstore4((real4)(r.z.s2, r.x.s3, r.y.s3, r.z.s3), 2, q);
+}
+
+inline bool active4(__global const int *ract, int r)
+{
+    return all(vload4(0, ract + r) != 0);
+}
+#endif
+
 /* dx_i = P_i (sum over rows y_r dC_r/dx_i), in the order backend.h fixes;
- * y by row list position (the chain rows' positions are their rows). */
+ * y by row list position (the chain rows' positions are their rows). On CPU
+ * devices four consecutive vertices inside a run of the chain, with all
+ * their curvature rows active and no struts, go at once in double4 lanes
+ * (the same terms in the same order: the same bits), as in j_rows. */
 __kernel void jt_vertex(__global const real *y, __global const real *rgrad,
                         __global const real *cgq, __global const int *ract, __global const int *next,
                         __global const int *prev, __global const int *aadj,
@@ -348,25 +396,60 @@ __kernel void jt_vertex(__global const real *y, __global const real *rgrad,
                         __global const real *acoef, __global const real *agrad,
                         __global const int *cidx, __global const real *cst, const int nv, __global real *dx)
 {
-    TR_ITEMS(i, nv) {
-    real3 g = (real3)(0.0);
-    int pv = prev[i], nx = next[i];
-    if (pv >= 0)
-        g = g + y[pv] * vload3(pv, rgrad);
-    if (nx >= 0)
-        g = g + (-y[i]) * vload3(i, rgrad);
-    if (pv >= 0 && ract[nv + pv])
-        g = g + (-y[nv + pv]) * vload3(pv, cgq);
-    if (ract[nv + i]) {
-        g = g + y[nv + i] * vload3(i, cgq);
-        g = g + (-y[nv + i]) * vload3(nv + i, rgrad);
-    }
-    if (nx >= 0 && ract[nv + nx])
-        g = g + y[nv + nx] * vload3(nv + nx, rgrad);
-    for (int k = aaoff[i], end = aaoff[i] + aadjn[i]; k < end; k++) {
-        g = g + (acoef[k] * y[aadj[k]]) * vload3(k, agrad);
-    }
-    vstore3(tr_project_motion(cidx, cst, i, g), i, dx);
+    int per = (nv + (int)get_global_size(0) - 1) / (int)get_global_size(0);
+    int i = (int)get_global_id(0) * per, end = min(nv, i + per);
+    while (i < end) {
+#ifdef TR_BLOCK_ITEMS
+        if (i + 4 <= end && chain_run4(i, next, prev) && active4(ract, nv + i - 1) &&
+            ract[nv + i + 3] && ract[nv + i + 4] && all(vload4(0, aadjn + i) == 0)) {
+            real4 yp = vload4(0, y + i - 1), yi = vload4(0, y + i);
+            real4 cp = vload4(0, y + nv + i - 1), ci = vload4(0, y + nv + i),
+                  cn = vload4(0, y + nv + i + 1);
+            rows4 rp = load_rows4(rgrad, i - 1), ri = load_rows4(rgrad, i);
+            rows4 qp = load_rows4(cgq, i - 1), qi = load_rows4(cgq, i);
+            rows4 ki = load_rows4(rgrad, nv + i), kn = load_rows4(rgrad, nv + i + 1);
+            rows4 g;
+#define JT_LANES(c)                                                                        \
+    g.c = (real4)(0.0) + yp * rp.c;                                                       \
+    g.c = g.c + (-yi) * ri.c;                                                             \
+    g.c = g.c + (-cp) * qp.c;                                                             \
+    g.c = g.c + ci * qi.c;                                                                \
+    g.c = g.c + (-ci) * ki.c;                                                             \
+    g.c = g.c + cn * kn.c;
+            JT_LANES(x)
+            JT_LANES(y)
+            JT_LANES(z)
+#undef JT_LANES
+            if (all(vload4(0, cidx + i) < 0)) {
+                store_rows4(g, dx, i);
+            } else {
+                vstore3(tr_project_motion(cidx, cst, i, (real3)(g.x.s0, g.y.s0, g.z.s0)), i, dx);
+                vstore3(tr_project_motion(cidx, cst, i + 1, (real3)(g.x.s1, g.y.s1, g.z.s1)), i + 1, dx);
+                vstore3(tr_project_motion(cidx, cst, i + 2, (real3)(g.x.s2, g.y.s2, g.z.s2)), i + 2, dx);
+                vstore3(tr_project_motion(cidx, cst, i + 3, (real3)(g.x.s3, g.y.s3, g.z.s3)), i + 3, dx);
+            }
+            i += 4;
+            continue;
+        }
+#endif
+        real3 g = (real3)(0.0);
+        int pv = prev[i], nx = next[i];
+        if (pv >= 0)
+            g = g + y[pv] * vload3(pv, rgrad);
+        if (nx >= 0)
+            g = g + (-y[i]) * vload3(i, rgrad);
+        if (pv >= 0 && ract[nv + pv])
+            g = g + (-y[nv + pv]) * vload3(pv, cgq);
+        if (ract[nv + i]) {
+            g = g + y[nv + i] * vload3(i, cgq);
+            g = g + (-y[nv + i]) * vload3(nv + i, rgrad);
+        }
+        if (nx >= 0 && ract[nv + nx])
+            g = g + y[nv + nx] * vload3(nv + nx, rgrad);
+        for (int k = aaoff[i], e = aaoff[i] + aadjn[i]; k < e; k++)
+            g = g + (acoef[k] * y[aadj[k]]) * vload3(k, agrad);
+        vstore3(tr_project_motion(cidx, cst, i, g), i, dx);
+        i++;
     }
 }
 
@@ -390,7 +473,23 @@ void jt_ebar_partial(__global const real *y, __global const int *ract,
     int st = start[k], len = start[k + 1] - st;
     int lo = st + (int)((long)len * g / G), hi = st + (int)((long)len * (g + 1) / G);
     real sum = 0.0;
+#ifdef TR_BLOCK_ITEMS
+    /* the item's sixty-fourth four rows at a time, summed in four lanes (as
+     * dot_slice4: one running sum made the loop wait on the adder); an
+     * inactive row adds 0 */
+    int a = tr_slice_start(lo, hi, l), e = tr_slice_start(lo, hi, l + 1);
+    real4 sum4 = (real4)(0.0);
+    for (; a + 4 <= e; a += 4) {
+        long4 edge_on = convert_long4(vload4(0, ract + a) != 0);
+        long4 curv_on = convert_long4(vload4(0, ract + nv + a) != 0);
+        sum4 += select((real4)(0.0), -vload4(0, y + a), edge_on);
+        sum4 += select((real4)(0.0), vload4(0, cdeb + a) * vload4(0, y + nv + a), curv_on);
+    }
+    sum = (sum4.s0 + sum4.s1) + (sum4.s2 + sum4.s3);
+    for (; a < e; a++) {
+#else
     GROUP_SLICE_FOR(a, lo, hi) {
+#endif
         if (ract[a])
             sum += -y[a];
         if (ract[nv + a])
@@ -479,9 +578,15 @@ __kernel void act_gather(__global const int *act, __global const int *pa, __glob
     }
 }
 
+
 /* out_r = dC_r/dx . dx + dC_r/debar . debar + reg y_r on active rows, else 0;
  * one item per position l of the row list (row_of), y and out by l; the
- * item's share of y . out to yout (TR_ITEM_PARTIAL: the CG's p . q). */
+ * item's share of y . out to yout (TR_ITEM_PARTIAL: the CG's p . q).
+ * On CPU devices (TR_BLOCK_ITEMS) an item takes four consecutive edge or
+ * curvature rows at once where they are all active and inside one run of
+ * the chain: the same arithmetic in the lanes of double4s (so the same bits
+ * and the same order of the p . q sum), which PoCL's scalar code ran at
+ * the reference's speed per core. */
 __kernel void j_rows(__global const real *dx, __global const real *debar,
                      __global const real *cdeb, __global const real *rgrad,
                      __global const real *cgq, __global const int *ract,
@@ -492,7 +597,40 @@ __kernel void j_rows(__global const real *dx, __global const real *debar,
                      __global real *out, __global real *yout)
 {
     real sum = 0.0;
-    TR_ITEMS(l, nl) {
+    int per = (nl + (int)get_global_size(0) - 1) / (int)get_global_size(0);
+    int l = (int)get_global_id(0) * per, end = min(nl, l + per);
+#ifdef TR_BLOCK_ITEMS
+    real4 sum4 = (real4)(0.0);
+#endif
+    while (l < end) {
+#ifdef TR_BLOCK_ITEMS
+        if (l + 4 <= min(end, nv) && active4(ract, l) && chain_run4(l, next, NULL)) {
+            rows4 g = load_rows4(rgrad, l), a = load_rows4(dx, l), b = load_rows4(dx, l + 1);
+            real4 dot = g.x * (b.x - a.x) + g.y * (b.y - a.y) + g.z * (b.z - a.z);
+            real4 yl = vload4(0, y + l);
+            real4 o = dot - debar[comp[l]] + reg * yl;
+            vstore4(o, 0, out + l);
+            sum4 += yl * o;
+            l += 4;
+            continue;
+        }
+        if (l >= nv && l + 4 <= min(end, 2 * nv) && active4(ract, l) &&
+            chain_run4(l - nv, next, prev)) {
+            int i = l - nv;
+            rows4 ga = load_rows4(rgrad, l), gb = load_rows4(cgq, i);
+            rows4 dp = load_rows4(dx, i - 1), di = load_rows4(dx, i), dn = load_rows4(dx, i + 1);
+            real4 v = (real4)(0.0);
+            v += ga.x * dp.x + (gb.x - ga.x) * di.x - gb.x * dn.x;
+            v += ga.y * dp.y + (gb.y - ga.y) * di.y - gb.y * dn.y;
+            v += ga.z * dp.z + (gb.z - ga.z) * di.z - gb.z * dn.z;
+            real4 yl = vload4(0, y + l);
+            real4 o = v + vload4(0, cdeb + i) * debar[comp[i]] + reg * yl;
+            vstore4(o, 0, out + l);
+            sum4 += yl * o;
+            l += 4;
+            continue;
+        }
+#endif
         int r = row_of(l, 2 * nv, act);
         real o = 0.0;
         if (!ract[r]) {
@@ -519,7 +657,11 @@ __kernel void j_rows(__global const real *dx, __global const real *debar,
             out[l] = o = tr_dot3(n, d) + reg * y[l];
         }
         sum += y[l] * o;
+        l++;
     }
+#ifdef TR_BLOCK_ITEMS
+    sum += (sum4.s0 + sum4.s1) + (sum4.s2 + sum4.s3);
+#endif
     TR_ITEM_PARTIAL(yout, sum);
 }
 
@@ -565,7 +707,9 @@ inline real precond_diag_at(real rl, int l, int nv, __global const int *act,
 /* y += alpha p, r -= alpha q (alpha = r.z / p.q), the item's share of r . r
  * (0 once done: nothing reads it then), and z = r / pd on the curvature and
  * strut rows (precond_diag's part of the preconditioner, done here while r
- * is at hand; the edge rows' z is the edge block's). */
+ * is at hand; the edge rows' z is the edge block's). On CPU devices four
+ * entries at a time, r . r in four lanes: with one running sum the loop
+ * waited on the adder (as dot_slice4). */
 __kernel void cg_yr(__global real *y, __global real *r, __global const real *p,
                     __global const real *q, __global const real *sc, const int nl,
                     __global real *rr, __global const real *pd, __global const int *ract,
@@ -574,7 +718,26 @@ __kernel void cg_yr(__global real *y, __global real *r, __global const real *p,
     real sum = 0.0;
     if (sc[SC_DONE] == 0.0) {
         real alpha = sc[SC_RZ] / sc[SC_PQ];
-        TR_ITEMS(l, nl) {
+        int per = (nl + (int)get_global_size(0) - 1) / (int)get_global_size(0);
+        int l = (int)get_global_id(0) * per, end = min(nl, l + per);
+#ifdef TR_BLOCK_ITEMS
+        real4 sum4 = (real4)(0.0);
+        for (; l + 4 <= end; l += 4) {
+            vstore4(vload4(0, y + l) + alpha * vload4(0, p + l), 0, y + l);
+            real4 v = vload4(0, r + l) - alpha * vload4(0, q + l);
+            vstore4(v, 0, r + l);
+            sum4 += v * v;
+            if (l >= nv && l + 4 <= 2 * nv) { /* chain rows: row_of(l) = l */
+                long4 on = convert_long4(vload4(0, ract + l) != 0);
+                vstore4(select((real4)(0.0), v / vload4(0, pd + l), on), 0, z + l);
+            } else if (l + 4 > nv) {
+                for (int k = max(l, nv); k < l + 4; k++)
+                    z[k] = precond_diag_at(r[k], k, nv, act, ract, pd);
+            }
+        }
+        sum = (sum4.s0 + sum4.s1) + (sum4.s2 + sum4.s3);
+#endif
+        for (; l < end; l++) {
             y[l] += alpha * p[l];
             real v = r[l] - alpha * q[l];
             r[l] = v;
