@@ -355,10 +355,8 @@ void tr_cl_ctx_close(tr_cl_ctx *ctx)
 /* The profile entry of kernel k, added on first sight (NULL when full). */
 static int prof_slot(tr_cl_prof *p, cl_kernel k)
 {
-    char name[48] = "";
-    if (clGetKernelInfo(k, CL_KERNEL_FUNCTION_NAME, sizeof name, name, NULL) != CL_SUCCESS)
-        snprintf(name, sizeof name, "?");
-    name[sizeof name - 1] = 0;
+    char name[sizeof p->name[0]];
+    tr_cl_kernel_name(k, name, sizeof name);
     for (int i = 0; i < p->count; i++)
         if (!strcmp(p->name[i], name))
             return i;

@@ -2,6 +2,7 @@
 
 #include <ctype.h>
 #include <stdarg.h>
+#include <stdio.h>
 #include <string.h>
 
 const char *tr_cl_strerror(cl_int code)
@@ -134,6 +135,15 @@ int tr_cl_fail(tr_error *err, cl_int code, const char *call_text, const char *fi
                    tr_cl_strerror(code), (int)code, base ? base + 1 : file, line);
 }
 
+void tr_cl_kernel_name(cl_kernel k, char *name, size_t n)
+{
+    if (n == 0)
+        return;
+    if (clGetKernelInfo(k, CL_KERNEL_FUNCTION_NAME, n, name, NULL) != CL_SUCCESS)
+        snprintf(name, n, "?");
+    name[n - 1] = '\0';
+}
+
 int tr_cl_vargs(tr_error *err, const char *file, int line, cl_kernel k, cl_uint first, va_list ap)
 {
     for (cl_uint i = first;; i++) {
@@ -143,9 +153,8 @@ int tr_cl_vargs(tr_error *err, const char *file, int line, cl_kernel k, cl_uint 
         const void *value = va_arg(ap, const void *);
         cl_int code = clSetKernelArg(k, i, size, value);
         if (code != CL_SUCCESS) {
-            char name[64] = "?";
-            if (clGetKernelInfo(k, CL_KERNEL_FUNCTION_NAME, sizeof name, name, NULL) != CL_SUCCESS)
-                strcpy(name, "?");
+            char name[64];
+            tr_cl_kernel_name(k, name, sizeof name);
             tr_cl_fail(err, code, "clSetKernelArg", file, line);
             return tr_fail_wrap(err, TR_EOPENCL, "kernel %s, argument %u", name, (unsigned)i);
         }

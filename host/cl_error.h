@@ -31,6 +31,10 @@ int tr_cl_fail(tr_error *err, cl_int code, const char *call_text, const char *fi
         }                                                                             \
     } while (0)
 
+/* k's function name into name (n bytes), "?" when OpenCL cannot say or the
+ * name does not fit: for messages and the kernel profile. */
+void tr_cl_kernel_name(cl_kernel k, char *name, size_t n);
+
 /* Kernel arguments, one way everywhere: arguments first, first + 1, ... of
  * kernel k from TR_CL_A(v) pairs (v a cl_mem, int or double variable),
  *   TR_CL_ARGS(k, 0, TR_CL_A(x), TR_CL_A(n), TR_CL_A(out));
