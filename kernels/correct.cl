@@ -396,8 +396,7 @@ __kernel void jt_vertex(__global const real *y, __global const real *rgrad,
                         __global const real *acoef, __global const real *agrad,
                         __global const int *cidx, __global const real *cst, const int nv, __global real *dx)
 {
-    int per = (nv + (int)get_global_size(0) - 1) / (int)get_global_size(0);
-    int i = (int)get_global_id(0) * per, end = min(nv, i + per);
+    int i = tr_items_first(nv), end = tr_items_end(nv);
     while (i < end) {
 #ifdef TR_BLOCK_ITEMS
         if (i + 4 <= end && chain_run4(i, next, prev) && active4(ract, nv + i - 1) &&
@@ -578,15 +577,15 @@ __kernel void act_gather(__global const int *act, __global const int *pa, __glob
     }
 }
 
-
 /* out_r = dC_r/dx . dx + dC_r/debar . debar + reg y_r on active rows, else 0;
  * one item per position l of the row list (row_of), y and out by l; the
  * item's share of y . out to yout (TR_ITEM_PARTIAL: the CG's p . q).
  * On CPU devices (TR_BLOCK_ITEMS) an item takes four consecutive edge or
  * curvature rows at once where they are all active and inside one run of
- * the chain: the same arithmetic in the lanes of double4s (so the same bits
- * and the same order of the p . q sum), which PoCL's scalar code ran at
- * the reference's speed per core. */
+ * the chain: the same arithmetic in the lanes of double4s, so the same
+ * out, which PoCL's scalar code ran at the reference's speed per core; those
+ * rows' share of p . q is summed in four lanes, whose order differs from the
+ * scalar sum's in the last bits. */
 __kernel void j_rows(__global const real *dx, __global const real *debar,
                      __global const real *cdeb, __global const real *rgrad,
                      __global const real *cgq, __global const int *ract,
@@ -597,8 +596,7 @@ __kernel void j_rows(__global const real *dx, __global const real *debar,
                      __global real *out, __global real *yout)
 {
     real sum = 0.0;
-    int per = (nl + (int)get_global_size(0) - 1) / (int)get_global_size(0);
-    int l = (int)get_global_id(0) * per, end = min(nl, l + per);
+    int l = tr_items_first(nl), end = tr_items_end(nl);
 #ifdef TR_BLOCK_ITEMS
     real4 sum4 = (real4)(0.0);
 #endif
@@ -718,8 +716,7 @@ __kernel void cg_yr(__global real *y, __global real *r, __global const real *p,
     real sum = 0.0;
     if (sc[SC_DONE] == 0.0) {
         real alpha = sc[SC_RZ] / sc[SC_PQ];
-        int per = (nl + (int)get_global_size(0) - 1) / (int)get_global_size(0);
-        int l = (int)get_global_id(0) * per, end = min(nl, l + per);
+        int l = tr_items_first(nl), end = tr_items_end(nl);
 #ifdef TR_BLOCK_ITEMS
         real4 sum4 = (real4)(0.0);
         for (; l + 4 <= end; l += 4) {
