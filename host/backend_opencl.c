@@ -644,6 +644,14 @@ cleanup:
     return rc;
 }
 
+/* j_rows' global size: one item per row list position on a GPU; on a CPU
+ * device one unit per vertex (its edge and curvature rows) and per strut
+ * row (kernels/correct.cl j_rows). */
+static size_t jrows_units(const cl_state *s, int nl)
+{
+    return s->ctx.block_items ? (size_t)(nl - s->nv) : (size_t)nl;
+}
+
 /* Preconditioned CG on A y = b from y = 0, r = b (already in place, by row
  * list position; solve_rows has run), as
  * backend.h (c): the device keeps the scalars and turns iterations after
@@ -655,6 +663,7 @@ static int cg_iterate(cl_state *s, const tr_correct_params *prm, int *iters, tr_
     /* the dot products p . q and r . r come as partials per work-item of
      * j_rows and cg_yr (solve_rows reserved them) */
     int items = (int)tr_cl_items_global(&s->ctx, (size_t)nl);
+    int jitems = (int)tr_cl_items_global(&s->ctx, jrows_units(s, nl));
     double reg = prm->reg, w = prm->ebar_weight, tol2 = prm->cg_rtol * prm->cg_rtol, it;
     TR_CL_CHECK(clEnqueueWriteBuffer(s->ctx.queue, s->sc, CL_FALSE, SC_TOL2 * sizeof(double),
                                      sizeof tol2, &tol2, 0, NULL, NULL));
@@ -689,11 +698,11 @@ static int cg_iterate(cl_state *s, const tr_correct_params *prm, int *iters, tr_
                 break;
         }
         TR_TRY(apply_JT(s, prm, s->p, err));
-        TR_TRY(run(s, K_j_rows, (size_t)nl, err, A(s->dx), A(s->debar), A(s->cdeb), A(s->rgrad),
+        TR_TRY(run(s, K_j_rows, jrows_units(s, nl), err, A(s->dx), A(s->debar), A(s->cdeb), A(s->rgrad),
                    A(s->cgq), A(s->ract), A(s->topo.next), A(s->topo.prev), A(s->topo.comp),
                    A(s->sab), A(s->sw), A(s->p), A(nv), A(reg), A(s->act), A(nl), A(s->q), A(s->part),
                    END));
-        TR_TRY(tr_cl_reduce_sum(&s->red, &s->ctx, s->part, items, s->sc, SC_PQ, err));
+        TR_TRY(tr_cl_reduce_sum(&s->red, &s->ctx, s->part, jitems, s->sc, SC_PQ, err));
         TR_TRY(run(s, K_cg_yr, (size_t)nl, err, A(s->y), A(s->r), A(s->p), A(s->q), A(s->sc), A(nl),
                    A(s->part), A(s->pdiag), A(s->ract), A(nv), A(s->act), A(s->z), END));
         TR_TRY(tr_cl_reduce_sum(&s->red, &s->ctx, s->part, items, s->sc, SC_RR, err));
@@ -782,7 +791,7 @@ static int project_tangent(cl_state *s, const tr_correct_params *q, cl_mem G, tr
         TR_CL_CHECK(clEnqueueFillBuffer(s->ctx.queue, s->y, &zero, sizeof zero, 0,
                                         (size_t)nl * sizeof(double), 0, NULL, NULL));
         /* b = J (G, debar = 0), no regularisation term (y = 0) */
-        TR_TRY(run(s, K_j_rows, (size_t)nl, err, A(s->dx), A(s->debar), A(s->cdeb), A(s->rgrad),
+        TR_TRY(run(s, K_j_rows, jrows_units(s, nl), err, A(s->dx), A(s->debar), A(s->cdeb), A(s->rgrad),
                    A(s->cgq), A(s->ract), A(s->topo.next), A(s->topo.prev), A(s->topo.comp),
                    A(s->sab), A(s->sw), A(s->y), A(nv), A(reg0), A(s->act), A(nl), A(s->b),
                    A(s->part), END));

@@ -34,6 +34,100 @@ __kernel void curv_limits(__global const real *ebar, const int ncomp, const real
     }
 }
 
+#ifdef TR_BLOCK_ITEMS
+/* Four consecutive rows a .. a + 3 of an n x 3 array as x, y and z lanes. */
+typedef struct {
+    real4 x, y, z;
+} rows4;
+
+inline rows4 load_rows4(__global const real *p, int a)
+{
+    __global const real *q = p + 3 * (long)a;
+    real4 u = vload4(0, q), v = vload4(1, q), w = vload4(2, q);
+    rows4 r;
+    r.x = (real4)(u.s0, u.s3, v.s2, w.s1);
+    r.y = (real4)(u.s1, v.s0, v.s3, w.s2);
+    r.z = (real4)(u.s2, v.s1, w.s0, w.s3);
+    return r;
+}
+
+/* Vertices i .. i + 3 lie inside one run of the chain (each one's next is
+ * the one after it; with prev, also each one's prev the one before). */
+inline bool chain_run4(int i, __global const int *next, __global const int *prev)
+{
+    int4 ids = (int4)(i, i + 1, i + 2, i + 3);
+    int4 ok = vload4(0, next + i) == ids + 1;
+    if (prev) {
+        if (i == 0) /* an open chain's first vertex has prev -1 = i - 1 */
+            return false;
+        ok &= vload4(0, prev + i) == ids - 1;
+    }
+    return all(ok);
+}
+
+inline void store_rows4(rows4 r, __global real *p, int a)
+{
+    __global real *q = p + 3 * (long)a;
+    vstore4((real4)(r.x.s0, r.y.s0, r.z.s0, r.x.s1), 0, q);
+    vstore4((real4)(r.y.s1, r.z.s1, r.x.s2, r.y.s2), 1, q);
+    vstore4((real4)(r.z.s2, r.x.s3, r.y.s3, r.z.s3), 2, q);
+}
+
+inline bool active4(__global const int *ract, int r)
+{
+    return all(vload4(0, ract + r) != 0);
+}
+#endif
+
+/* rows_chain's two rows at vertex i, one at a time; returns their largest
+ * violation. */
+inline real chain_rows_at(int i, __global const real *x, __global const int *next,
+                          __global const int *prev, __global const int *comp,
+                          __global const real *ebar, __global const real *lim, const int nv,
+                          const real active_curv, __global real *rC, __global real *rgrad,
+                          __global int *ract, __global real *cgq, __global real *cdeb)
+{
+    real vm = 0.0;
+    int nx = next[i], pv = prev[i];
+    ract[i] = 0;
+    if (nx >= 0) {
+        real3 u = vload3(nx, x) - vload3(i, x);
+        real l = tr_norm3(u);
+        u = u * (1.0 / l);
+        vstore3(u, i, rgrad);
+        real C = l - ebar[comp[i]];
+        rC[i] = C;
+        ract[i] = 1;
+        vm = fabs(C);
+    }
+    int r = nv + i;
+    ract[r] = 0;
+    if (pv >= 0 && nx >= 0) {
+        real3 xi = vload3(i, x);
+        real3 pe = xi - vload3(pv, x), qe = vload3(nx, x) - xi;
+        real3 cr = tr_cross3(pe, qe);
+        real lp = tr_norm3(pe), lq = tr_norm3(qe), sn = tr_norm3(cr), cs = tr_dot3(pe, qe);
+        real theta = tr_turning_angle(sn, cs);
+        int k = comp[i];
+        real eb = ebar[k], tmax = lim[2 * k];
+        real C = eb * (tmax - theta);
+        rC[r] = C;
+        cdeb[i] = (tmax - theta) + lim[2 * k + 1];
+        real3 ga = (real3)(0.0), gb = (real3)(0.0);
+        if (!(sn < 1e-12 * lp * lq)) {
+            real c = cs / (lp * lq), sinv = lp * lq / sn;
+            real3 ph = pe / lp, qh = qe / lq;
+            ga = eb * (c * ph - qh) / lp * sinv;
+            gb = eb * (c * qh - ph) / lq * sinv;
+            ract[r] = C < active_curv;
+        }
+        vstore3(ga, r, rgrad);
+        vstore3(gb, i, cgq);
+        vm = fmax(vm, -C > 0.0 ? -C : 0.0);
+    }
+    return vm;
+}
+
 /* Edge row i and curvature row nv + i; vmax[item] is the largest violation
  * (>= 0) of the work-item's rows (rows_strut: vmax[voff + item]), which the
  * host folds into the largest of all: each row's violation written out and
@@ -52,45 +146,62 @@ __kernel void rows_chain(__global const real *x, __global const int *next,
                          __global real *cdeb)
 {
     real vm = 0.0;
-    TR_ITEMS(i, nv) {
-        int nx = next[i], pv = prev[i];
-        ract[i] = 0;
-        if (nx >= 0) {
-            real3 u = vload3(nx, x) - vload3(i, x);
-            real l = tr_norm3(u);
-            u = u * (1.0 / l);
-            vstore3(u, i, rgrad);
-            real C = l - ebar[comp[i]];
-            rC[i] = C;
-            ract[i] = 1;
-            vm = fmax(vm, fabs(C));
+    int i = tr_items_first(nv), end = tr_items_end(nv);
+#ifdef TR_BLOCK_ITEMS
+    /* four vertices inside one run of the chain at once, the scalar path's
+     * operations per lane (the same bits); the divisions and square roots
+     * that set its pace go four to an instruction */
+    real4 vm4 = (real4)(0.0);
+    while (i < end) {
+        if (!(i + 4 <= end && chain_run4(i, next, prev))) {
+            vm = fmax(vm, chain_rows_at(i, x, next, prev, comp, ebar, lim, nv, active_curv, rC, rgrad,
+                                        ract, cgq, cdeb));
+            i++;
+            continue;
         }
-        int r = nv + i;
-        ract[r] = 0;
-        if (pv >= 0 && nx >= 0) {
-            real3 xi = vload3(i, x);
-            real3 pe = xi - vload3(pv, x), qe = vload3(nx, x) - xi;
-            real3 cr = tr_cross3(pe, qe);
-            real lp = tr_norm3(pe), lq = tr_norm3(qe), sn = tr_norm3(cr), cs = tr_dot3(pe, qe);
-            real theta = tr_turning_angle(sn, cs);
-            int k = comp[i];
-            real eb = ebar[k], tmax = lim[2 * k];
-            real C = eb * (tmax - theta);
-            rC[r] = C;
-            cdeb[i] = (tmax - theta) + lim[2 * k + 1];
-            real3 ga = (real3)(0.0), gb = (real3)(0.0);
-            if (!(sn < 1e-12 * lp * lq)) {
-                real c = cs / (lp * lq), sinv = lp * lq / sn;
-                real3 ph = pe / lp, qh = qe / lq;
-                ga = eb * (c * ph - qh) / lp * sinv;
-                gb = eb * (c * qh - ph) / lq * sinv;
-                ract[r] = C < active_curv;
-            }
-            vstore3(ga, r, rgrad);
-            vstore3(gb, i, cgq);
-            vm = fmax(vm, -C > 0.0 ? -C : 0.0);
-        }
+        int k = comp[i];
+        real eb = ebar[k], tmax = lim[2 * k];
+        rows4 xp = load_rows4(x, i - 1), xi = load_rows4(x, i), xn = load_rows4(x, i + 1);
+        rows4 qe = {xn.x - xi.x, xn.y - xi.y, xn.z - xi.z}, pe = {xi.x - xp.x, xi.y - xp.y, xi.z - xp.z};
+        real4 lq = sqrt(qe.x * qe.x + qe.y * qe.y + qe.z * qe.z);
+        real4 il = 1.0 / lq;
+        rows4 u = {qe.x * il, qe.y * il, qe.z * il};
+        store_rows4(u, rgrad, i);
+        real4 C = lq - eb;
+        vstore4(C, 0, rC + i);
+        vstore4((int4)(1), 0, ract + i);
+        vm4 = fmax(vm4, fabs(C));
+        rows4 cr = {pe.y * qe.z - pe.z * qe.y, pe.z * qe.x - pe.x * qe.z, pe.x * qe.y - pe.y * qe.x};
+        real4 lp = sqrt(pe.x * pe.x + pe.y * pe.y + pe.z * pe.z);
+        real4 sn = sqrt(cr.x * cr.x + cr.y * cr.y + cr.z * cr.z);
+        real4 cs = pe.x * qe.x + pe.y * qe.y + pe.z * qe.z;
+        real4 theta = tr_turning_angle4(sn, cs);
+        real4 Cc = eb * (tmax - theta);
+        vstore4(Cc, 0, rC + nv + i);
+        vstore4((tmax - theta) + lim[2 * k + 1], 0, cdeb + i);
+        long4 ok = !(sn < 1e-12 * lp * lq);
+        real4 c = cs / (lp * lq), sinv = lp * lq / sn;
+        rows4 ph = {pe.x / lp, pe.y / lp, pe.z / lp}, qh = {qe.x / lq, qe.y / lq, qe.z / lq};
+        rows4 ga, gb;
+#define CURV_GRAD(a)                                                                              \
+    ga.a = select((real4)(0.0), eb * (c * ph.a - qh.a) / lp * sinv, ok);                          \
+    gb.a = select((real4)(0.0), eb * (c * qh.a - ph.a) / lq * sinv, ok);
+        CURV_GRAD(x)
+        CURV_GRAD(y)
+        CURV_GRAD(z)
+#undef CURV_GRAD
+        vstore4(convert_int4(ok & (Cc < active_curv)) & (int4)(1), 0, ract + nv + i);
+        store_rows4(ga, rgrad, nv + i);
+        store_rows4(gb, cgq, i);
+        vm4 = fmax(vm4, select((real4)(0.0), -Cc, -Cc > 0.0));
+        i += 4;
     }
+    vm = fmax(vm, fmax(fmax(vm4.s0, vm4.s1), fmax(vm4.s2, vm4.s3)));
+#else
+    for (; i < end; i++)
+        vm = fmax(vm, chain_rows_at(i, x, next, prev, comp, ebar, lim, nv, active_curv, rC, rgrad, ract,
+                                    cgq, cdeb));
+#endif
     vmax[get_global_id(0)] = vm;
 }
 
@@ -339,50 +450,6 @@ __kernel void adj_active_sort(__global const int *aaoff, const int nv, __global 
     }
 }
 
-#ifdef TR_BLOCK_ITEMS
-/* Four consecutive rows a .. a + 3 of an n x 3 array as x, y and z lanes. */
-typedef struct {
-    real4 x, y, z;
-} rows4;
-
-inline rows4 load_rows4(__global const real *p, int a)
-{
-    __global const real *q = p + 3 * (long)a;
-    real4 u = vload4(0, q), v = vload4(1, q), w = vload4(2, q);
-    rows4 r;
-    r.x = (real4)(u.s0, u.s3, v.s2, w.s1);
-    r.y = (real4)(u.s1, v.s0, v.s3, w.s2);
-    r.z = (real4)(u.s2, v.s1, w.s0, w.s3);
-    return r;
-}
-
-/* Vertices i .. i + 3 lie inside one run of the chain (each one's next is
- * the one after it; with prev, also each one's prev the one before). */
-inline bool chain_run4(int i, __global const int *next, __global const int *prev)
-{
-    int4 ids = (int4)(i, i + 1, i + 2, i + 3);
-    int4 ok = vload4(0, next + i) == ids + 1;
-    if (prev) {
-        if (i == 0) /* an open chain's first vertex has prev -1 = i - 1 */
-            return false;
-        ok &= vload4(0, prev + i) == ids - 1;
-    }
-    return all(ok);
-}
-
-inline void store_rows4(rows4 r, __global real *p, int a)
-{
-    __global real *q = p + 3 * (long)a;
-    vstore4((real4)(r.x.s0, r.y.s0, r.z.s0, r.x.s1), 0, q);
-    vstore4((real4)(r.y.s1, r.z.s1, r.x.s2, r.y.s2), 1, q);
-    vstore4((real4)(r.z.s2, r.x.s3, r.y.s3, r.z.s3), 2, q);
-}
-
-inline bool active4(__global const int *ract, int r)
-{
-    return all(vload4(0, ract + r) != 0);
-}
-#endif
 
 /* dx_i = P_i (sum over rows y_r dC_r/dx_i), in the order backend.h fixes;
  * y by row list position (the chain rows' positions are their rows). On CPU
@@ -577,15 +644,57 @@ __kernel void act_gather(__global const int *act, __global const int *pa, __glob
     }
 }
 
-/* out_r = dC_r/dx . dx + dC_r/debar . debar + reg y_r on active rows, else 0;
- * one item per position l of the row list (row_of), y and out by l; the
- * item's share of y . out to yout (TR_ITEM_PARTIAL: the CG's p . q).
- * On CPU devices (TR_BLOCK_ITEMS) an item takes four consecutive edge or
- * curvature rows at once where they are all active and inside one run of
- * the chain: the same arithmetic in the lanes of double4s, so the same
- * out, which PoCL's scalar code ran at the reference's speed per core; those
- * rows' share of p . q is summed in four lanes, whose order differs from the
- * scalar sum's in the last bits. */
+/* Row-list position l of J (dx, debar) + reg y (j_rows): out[l], and
+ * y_l out_l for the p . q sum. */
+inline real j_row(int l, __global const real *dx, __global const real *debar,
+                  __global const real *cdeb, __global const real *rgrad,
+                  __global const real *cgq, __global const int *ract,
+                  __global const int *next, __global const int *prev,
+                  __global const int *comp, __global const int *sab,
+                  __global const real *sw, __global const real *y, const int nv,
+                  const real reg, __global const int *act, __global real *out)
+{
+    int r = row_of(l, 2 * nv, act);
+    real o = 0.0;
+    if (!ract[r]) {
+        out[l] = 0.0;
+    } else if (r < nv) {
+        real3 d = vload3(next[r], dx) - vload3(r, dx);
+        out[l] = o = tr_dot3(vload3(r, rgrad), d) - debar[comp[r]] + reg * y[l];
+    } else if (r < 2 * nv) {
+        int i = r - nv;
+        real3 ga = vload3(r, rgrad), gb = vload3(i, cgq);
+        real3 dp = vload3(prev[i], dx), di = vload3(i, dx), dn = vload3(next[i], dx);
+        real3 t = ga * dp + (gb - ga) * di - gb * dn;
+        real v = 0.0;
+        v += t.x;
+        v += t.y;
+        v += t.z;
+        out[l] = o = v + cdeb[i] * debar[comp[i]] + reg * y[l];
+    } else { /* an active strut row: act_gather's copy */
+        int m = l - 2 * nv, a = sab[2 * m], b = sab[2 * m + 1];
+        real ss = sw[5 * m], tt = sw[5 * m + 1];
+        real3 n = (real3)(sw[5 * m + 2], sw[5 * m + 3], sw[5 * m + 4]);
+        real3 d = (1.0 - ss) * vload3(a, dx) + ss * vload3(next[a], dx) -
+                  (1.0 - tt) * vload3(b, dx) - tt * vload3(next[b], dx);
+        out[l] = o = tr_dot3(n, d) + reg * y[l];
+    }
+    return y[l] * o;
+}
+
+/* out_r = dC_r/dx . dx + dC_r/debar . debar + reg y_r on active rows, else 0,
+ * y and out by row list position l (row_of); the item's share of y . out to
+ * yout (TR_ITEM_PARTIAL: the CG's p . q).
+ * On a GPU one item per position l. On CPU devices (TR_BLOCK_ITEMS) the
+ * items walk units instead: unit i < nv is vertex i's edge row and
+ * curvature row, both of which read dx at i and its neighbours, so that
+ * dx is read once (taking the edge rows, then the curvature rows, read it
+ * twice, and at N = 10^6, where it is not in the cache, from memory both
+ * times); unit nv + m is strut row 2 nv + m. Four consecutive vertices
+ * inside one run of the chain with all eight rows active go at once in
+ * double4 lanes: the same arithmetic per lane as j_row, so the same out;
+ * p . q is summed in four lanes, whose order differs from the scalar sum's
+ * in the last bits. jrows_units (host) is the unit count. */
 __kernel void j_rows(__global const real *dx, __global const real *debar,
                      __global const real *cdeb, __global const real *rgrad,
                      __global const real *cgq, __global const int *ract,
@@ -596,70 +705,47 @@ __kernel void j_rows(__global const real *dx, __global const real *debar,
                      __global real *out, __global real *yout)
 {
     real sum = 0.0;
-    int l = tr_items_first(nl), end = tr_items_end(nl);
+#define J_ROW(l) j_row(l, dx, debar, cdeb, rgrad, cgq, ract, next, prev, comp, sab, sw, y, nv, reg, act, out)
 #ifdef TR_BLOCK_ITEMS
+    int nu = nl - nv, u = tr_items_first(nu), end = tr_items_end(nu);
     real4 sum4 = (real4)(0.0);
-#endif
-    while (l < end) {
-#ifdef TR_BLOCK_ITEMS
-        if (l + 4 <= min(end, nv) && active4(ract, l) && chain_run4(l, next, NULL)) {
-            rows4 g = load_rows4(rgrad, l), a = load_rows4(dx, l), b = load_rows4(dx, l + 1);
-            real4 dot = g.x * (b.x - a.x) + g.y * (b.y - a.y) + g.z * (b.z - a.z);
-            real4 yl = vload4(0, y + l);
-            real4 o = dot - debar[comp[l]] + reg * yl;
-            vstore4(o, 0, out + l);
-            sum4 += yl * o;
-            l += 4;
-            continue;
-        }
-        if (l >= nv && l + 4 <= min(end, 2 * nv) && active4(ract, l) &&
-            chain_run4(l - nv, next, prev)) {
-            int i = l - nv;
-            rows4 ga = load_rows4(rgrad, l), gb = load_rows4(cgq, i);
+    while (u < end) {
+        if (u + 4 <= min(end, nv) && active4(ract, u) && active4(ract, nv + u) &&
+            chain_run4(u, next, prev)) {
+            int i = u;
             rows4 dp = load_rows4(dx, i - 1), di = load_rows4(dx, i), dn = load_rows4(dx, i + 1);
+            rows4 g = load_rows4(rgrad, i);
+            real4 dot = g.x * (dn.x - di.x) + g.y * (dn.y - di.y) + g.z * (dn.z - di.z);
+            real4 ye = vload4(0, y + i);
+            real4 oe = dot - debar[comp[i]] + reg * ye;
+            vstore4(oe, 0, out + i);
+            rows4 ga = load_rows4(rgrad, nv + i), gb = load_rows4(cgq, i);
             real4 v = (real4)(0.0);
             v += ga.x * dp.x + (gb.x - ga.x) * di.x - gb.x * dn.x;
             v += ga.y * dp.y + (gb.y - ga.y) * di.y - gb.y * dn.y;
             v += ga.z * dp.z + (gb.z - ga.z) * di.z - gb.z * dn.z;
-            real4 yl = vload4(0, y + l);
-            real4 o = v + vload4(0, cdeb + i) * debar[comp[i]] + reg * yl;
-            vstore4(o, 0, out + l);
-            sum4 += yl * o;
-            l += 4;
+            real4 yc = vload4(0, y + nv + i);
+            real4 oc = v + vload4(0, cdeb + i) * debar[comp[i]] + reg * yc;
+            vstore4(oc, 0, out + nv + i);
+            sum4 += ye * oe;
+            sum4 += yc * oc;
+            u += 4;
             continue;
         }
-#endif
-        int r = row_of(l, 2 * nv, act);
-        real o = 0.0;
-        if (!ract[r]) {
-            out[l] = 0.0;
-        } else if (r < nv) {
-            real3 d = vload3(next[r], dx) - vload3(r, dx);
-            out[l] = o = tr_dot3(vload3(r, rgrad), d) - debar[comp[r]] + reg * y[l];
-        } else if (r < 2 * nv) {
-            int i = r - nv;
-            real3 ga = vload3(r, rgrad), gb = vload3(i, cgq);
-            real3 dp = vload3(prev[i], dx), di = vload3(i, dx), dn = vload3(next[i], dx);
-            real3 t = ga * dp + (gb - ga) * di - gb * dn;
-            real v = 0.0;
-            v += t.x;
-            v += t.y;
-            v += t.z;
-            out[l] = o = v + cdeb[i] * debar[comp[i]] + reg * y[l];
-        } else { /* an active strut row: act_gather's copy */
-            int m = l - 2 * nv, a = sab[2 * m], b = sab[2 * m + 1];
-            real ss = sw[5 * m], tt = sw[5 * m + 1];
-            real3 n = (real3)(sw[5 * m + 2], sw[5 * m + 3], sw[5 * m + 4]);
-            real3 d = (1.0 - ss) * vload3(a, dx) + ss * vload3(next[a], dx) -
-                      (1.0 - tt) * vload3(b, dx) - tt * vload3(next[b], dx);
-            out[l] = o = tr_dot3(n, d) + reg * y[l];
+        if (u < nv) {
+            sum += J_ROW(u);
+            sum += J_ROW(nv + u);
+        } else {
+            sum += J_ROW(nv + u);
         }
-        sum += y[l] * o;
-        l++;
+        u++;
     }
-#ifdef TR_BLOCK_ITEMS
     sum += (sum4.s0 + sum4.s1) + (sum4.s2 + sum4.s3);
+#else
+    TR_ITEMS(l, nl)
+        sum += J_ROW(l);
 #endif
+#undef J_ROW
     TR_ITEM_PARTIAL(yout, sum);
 }
 
