@@ -28,7 +28,8 @@
     X(tridiag_matrix) X(tridiag_level) X(tridiag_finish) X(tridiag_group) X(twist_factor)      \
     X(twist_factor_mid) X(twist_sweep_rows) X(twist_back_rows) X(twist_ring_fact)              \
     X(twist_ring_fix) X(adj_active_count) X(adj_active_write) X(act_count) X(act_scan)         \
-    X(act_write) X(act_gather) X(adj_active_sort) X(pairs_neighbours) X(rows_strut_min)
+    X(act_write) X(act_gather) X(adj_active_sort) X(pairs_neighbours) X(rows_strut_min)     \
+    X(cg_p_ring)
 #define ENUM(k) K_##k,
 #define NAME(k) #k,
 enum { KERNELS(ENUM) K_COUNT };
@@ -70,8 +71,10 @@ typedef struct cl_state {
     cl_mem dist, nbr; /* each pair's distance (rows_strut); its neighbours in the list (pairs_neighbours) */
     /* one partial result per work-item of a folding kernel (rows_chain and
      * rows_strut: largest violations; pairs_min_dist: closest pairs; j_rows
-     * and cg_yr: the CG's p . q and r . r) */
-    cl_mem part;
+     * and cg_yr: the CG's p . q and r . r); with the twisted edge block
+     * also rzp, the CG's r . z: cg_yr's items' shares, then each
+     * component's edge rows' (twist_ring_fact) */
+    cl_mem part, rzp;
     size_t partcap;
     /* each vertex's active strut entries, per CG solve, compact (CSR by
      * aaoff, aadjn long) with each entry's weight and strut direction
@@ -97,8 +100,9 @@ typedef struct cl_state {
     int tri_pcr, tri_levels, any_closed;
     /* Or (CPU devices) the twisted factorisation of kernels/twisted.cl: two
      * work-groups per component; scratch of 2 ncomp reals for the rows
-     * beside the middle row, and 3 ncomp for the blocks' first and last
-     * rows and Sherman-Morrison factors. */
+     * beside the middle row, and 7 ncomp for the blocks' first and last
+     * rows and Sherman-Morrison factors (3 ncomp) and the halves' shares of
+     * r . z and r . uu (twist_back_rows, twist_sweep_rows). */
     int tri_twist;
     cl_mem tmid, tends;
     /* work-groups per component of the ebar sums (jt_ebar_partial), and their partial sums */
@@ -123,7 +127,7 @@ static void cl_destroy(void *sp)
     cl_mem *m[] = {&s->start, &s->ne,   &s->cidx, &s->cst,  &s->gap,  &s->x,    &s->xs,   &s->ebar,
                    &s->ebar_s, &s->debar, &s->F,  &s->G,    &s->H,    &s->dx,   &s->t1,
                    &s->t2,    &s->t3,   &s->sc,   &s->up,   &s->first, &s->off,
-                   &s->pa,    &s->pb,   &s->part, &s->rC,   &s->rgrad,
+                   &s->pa,    &s->pb,   &s->part, &s->rzp, &s->rC,   &s->rgrad,
                    &s->ract,  &s->rs,   &s->rt,   &s->y,    &s->r,    &s->p,
                    &s->q,     &s->b,    &s->cgq,  &s->cdeb, &s->chg,
                    &s->pdiag, &s->z,    &s->po,   &s->tw,   &s->closed, &s->tset0,
@@ -347,10 +351,13 @@ cleanup:
 static int partials(cl_state *s, size_t n, tr_error *err)
 {
     int rc = tr_cl_reduce_reserve(&s->red, &s->ctx, n, err);
-    if (rc != TR_OK || (n <= s->partcap && s->part))
+    if (rc != TR_OK || (n <= s->partcap && s->part && (s->rzp || !s->tri_twist)))
         return rc;
     size_t c = n + n / 2 + 64;
+    s->partcap = 0;
     rc = buffer(s, &s->part, c * sizeof(double), err);
+    if (rc == TR_OK && s->tri_twist)
+        rc = buffer(s, &s->rzp, (c + (size_t)s->ncomp) * sizeof(double), err);
     s->partcap = rc == TR_OK ? c : 0;
     return rc;
 }
@@ -527,8 +534,12 @@ cleanup:
 
 /* z = M^-1 r (backend.h correct (c)): the edge block by the chosen solver,
  * and with diag the diagonal on the other rows, which inside the CG loop
- * cg_yr has already applied. */
-static int precond_apply(cl_state *s, cl_mem r, int diag, tr_error *err)
+ * cg_yr has already applied. in_loop (twisted edge block only): inside the
+ * CG loop, where the closed blocks' Sherman-Morrison fix is left to
+ * cg_p_ring and the edge rows' r . z goes to rzp after cg_yr's rz_items
+ * shares (cg_iterate). */
+static int precond_apply(cl_state *s, cl_mem r, int diag, int in_loop, int rz_items,
+                         tr_error *err)
 {
     int rc = TR_OK;
     int nv = s->nv, nl = s->cg_nl;
@@ -536,16 +547,16 @@ static int precond_apply(cl_state *s, cl_mem r, int diag, tr_error *err)
     if (s->tri_twist) {
         size_t items = 2 * (size_t)s->ncomp;
         TR_TRY(run_items(s, K_twist_sweep_rows, items, err, A(r), A(s->po), A(s->start), A(s->ne),
-                         A(s->ncomp), A(nv), A(s->tw), A(s->tmid), A(s->z), END));
+                         A(s->ncomp), A(nv), A(s->tw), A(s->tmid), A(s->tends), A(s->z), END));
         TR_TRY(run_items(s, K_twist_back_rows, items, err, A(r), A(s->po), A(s->start), A(s->ne),
                          A(s->ncomp), A(nv), A(s->tw), A(s->tmid), A(s->tends), A(s->z), END));
-        if (s->any_closed) {
+        if (s->any_closed || in_loop)
             TR_TRY(run_items(s, K_twist_ring_fact, (size_t)s->ncomp, err, A(s->pdiag), A(s->po),
                              A(s->start), A(s->ne), A(s->closed), A(s->ncomp), A(nv), A(s->tw),
-                             A(s->tends), END));
+                             A(s->tends), A(s->rzp), A(rz_items), END));
+        if (s->any_closed && !in_loop)
             TR_TRY(run(s, K_twist_ring_fix, (size_t)nv, err, A(s->topo.comp), A(s->ncomp), A(nv),
                        A(s->tw), A(s->tends), A(s->z), END));
-        }
     } else if (s->tri_pcr) {
         TR_CL_CHECK(clEnqueueCopyBuffer(s->ctx.queue, r, s->tset0, 0, 3 * (size_t)nv * d,
                                         (size_t)nv * d, 0, NULL, NULL));
@@ -664,6 +675,7 @@ static int cg_iterate(cl_state *s, const tr_correct_params *prm, int *iters, tr_
      * j_rows and cg_yr (solve_rows reserved them) */
     int items = (int)tr_cl_items_global(&s->ctx, (size_t)nl);
     int jitems = (int)tr_cl_items_global(&s->ctx, jrows_units(s, nl));
+    cl_mem rzp = s->tri_twist ? s->rzp : NULL; /* cg_yr's r . z shares: the twisted path's */
     double reg = prm->reg, w = prm->ebar_weight, tol2 = prm->cg_rtol * prm->cg_rtol, it;
     TR_CL_CHECK(clEnqueueWriteBuffer(s->ctx.queue, s->sc, CL_FALSE, SC_TOL2 * sizeof(double),
                                      sizeof tol2, &tol2, 0, NULL, NULL));
@@ -683,7 +695,7 @@ static int cg_iterate(cl_state *s, const tr_correct_params *prm, int *iters, tr_
     } else
         TR_TRY(run(s, K_precond_edges_factor, (size_t)s->ncomp, err, A(s->pdiag), A(s->po),
                    A(s->start), A(s->ne), A(s->closed), A(s->ncomp), A(nv), A(s->tw), END));
-    TR_TRY(precond_apply(s, s->r, 1, err));
+    TR_TRY(precond_apply(s, s->r, 1, 0, 0, err));
     TR_TRY(run(s, K_copy_rows, (size_t)nl, err, A(s->z), A(s->p), A(nl), END));
     TR_TRY(tr_cl_reduce_dot(&s->red, &s->ctx, s->r, s->r, nl, s->sc, SC_RR, err));
     TR_TRY(tr_cl_reduce_dot(&s->red, &s->ctx, s->r, s->z, nl, s->sc, SC_RZ, err));
@@ -704,11 +716,20 @@ static int cg_iterate(cl_state *s, const tr_correct_params *prm, int *iters, tr_
                    END));
         TR_TRY(tr_cl_reduce_sum(&s->red, &s->ctx, s->part, jitems, s->sc, SC_PQ, err));
         TR_TRY(run(s, K_cg_yr, (size_t)nl, err, A(s->y), A(s->r), A(s->p), A(s->q), A(s->sc), A(nl),
-                   A(s->part), A(s->pdiag), A(s->ract), A(nv), A(s->act), A(s->z), END));
+                   A(s->part), A(s->pdiag), A(s->ract), A(nv), A(s->act), A(s->z), A(rzp), END));
         TR_TRY(tr_cl_reduce_sum(&s->red, &s->ctx, s->part, items, s->sc, SC_RR, err));
-        TR_TRY(precond_apply(s, s->r, 0, err));
-        TR_TRY(tr_cl_reduce_dot(&s->red, &s->ctx, s->r, s->z, nl, s->sc, SC_RR1, err));
-        TR_TRY(run(s, K_cg_p, (size_t)nl, err, A(s->p), A(s->z), A(s->sc), A(nl), END));
+        TR_TRY(precond_apply(s, s->r, 0, 1, items, err));
+        if (s->tri_twist) {
+            /* r . z from cg_yr's and the edge block's shares, and the ring
+             * fix applied where cg_p_ring reads z: two passes over the rows
+             * fewer than reduce_dot, twist_ring_fix and cg_p */
+            TR_TRY(tr_cl_reduce_sum(&s->red, &s->ctx, s->rzp, items + s->ncomp, s->sc, SC_RR1, err));
+            TR_TRY(run(s, K_cg_p_ring, (size_t)nl, err, A(s->p), A(s->z), A(s->sc), A(nl),
+                       A(s->topo.comp), A(s->ncomp), A(nv), A(s->tw), A(s->tends), END));
+        } else {
+            TR_TRY(tr_cl_reduce_dot(&s->red, &s->ctx, s->r, s->z, nl, s->sc, SC_RR1, err));
+            TR_TRY(run(s, K_cg_p, (size_t)nl, err, A(s->p), A(s->z), A(s->sc), A(nl), END));
+        }
     }
     /* the end of the last iteration (kernels/correct.cl cg_top; nothing
      * after a break, which found the solve done) */
@@ -964,7 +985,7 @@ static int tridiag_choose(cl_state *s, const tr_cl_device_info *dev, tr_error *e
         s->any_closed |= s->shape.closed[k] && s->h_ne[k] >= 3;
     if (s->tri_twist) {
         TR_TRY(buffer(s, &s->tmid, 2 * (size_t)s->ncomp * d, err));
-        TR_TRY(buffer(s, &s->tends, 3 * (size_t)s->ncomp * d, err));
+        TR_TRY(buffer(s, &s->tends, 7 * (size_t)s->ncomp * d, err));
     }
     if (!s->tri_pcr)
         return TR_OK;

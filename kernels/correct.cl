@@ -791,20 +791,22 @@ inline real precond_diag_at(real rl, int l, int nv, __global const int *act,
 /* y += alpha p, r -= alpha q (alpha = r.z / p.q), the item's share of r . r
  * (0 once done: nothing reads it then), and z = r / pd on the curvature and
  * strut rows (precond_diag's part of the preconditioner, done here while r
- * is at hand; the edge rows' z is the edge block's). On CPU devices four
- * entries at a time, r . r in four lanes: with one running sum the loop
- * waited on the adder (as dot_slice4). */
+ * is at hand; the edge rows' z is the edge block's), with those rows' share
+ * of r . z in rz[item] (with the twisted edge block, whose kernels sum the
+ * edge rows' share; rz is NULL otherwise). On CPU devices four entries at a time, the sums in
+ * four lanes: with one running sum the loop waited on the adder (as
+ * dot_slice4). */
 __kernel void cg_yr(__global real *y, __global real *r, __global const real *p,
                     __global const real *q, __global const real *sc, const int nl,
                     __global real *rr, __global const real *pd, __global const int *ract,
-                    const int nv, __global const int *act, __global real *z)
+                    const int nv, __global const int *act, __global real *z, __global real *rz)
 {
-    real sum = 0.0;
+    real sum = 0.0, sumz = 0.0;
     if (sc[SC_DONE] == 0.0) {
         real alpha = sc[SC_RZ] / sc[SC_PQ];
         int l = tr_items_first(nl), end = tr_items_end(nl);
 #ifdef TR_BLOCK_ITEMS
-        real4 sum4 = (real4)(0.0);
+        real4 sum4 = (real4)(0.0), sumz4 = (real4)(0.0);
         for (; l + 4 <= end; l += 4) {
             vstore4(vload4(0, y + l) + alpha * vload4(0, p + l), 0, y + l);
             real4 v = vload4(0, r + l) - alpha * vload4(0, q + l);
@@ -812,24 +814,35 @@ __kernel void cg_yr(__global real *y, __global real *r, __global const real *p,
             sum4 += v * v;
             if (l >= nv && l + 4 <= 2 * nv) { /* chain rows: row_of(l) = l */
                 long4 on = convert_long4(vload4(0, ract + l) != 0);
-                vstore4(select((real4)(0.0), v / vload4(0, pd + l), on), 0, z + l);
+                real4 zl = select((real4)(0.0), v / vload4(0, pd + l), on);
+                vstore4(zl, 0, z + l);
+                sumz4 += v * zl;
             } else if (l + 4 > nv) {
-                for (int k = max(l, nv); k < l + 4; k++)
-                    z[k] = precond_diag_at(r[k], k, nv, act, ract, pd);
+                for (int k = max(l, nv); k < l + 4; k++) {
+                    real zk = precond_diag_at(r[k], k, nv, act, ract, pd);
+                    z[k] = zk;
+                    sumz += r[k] * zk;
+                }
             }
         }
         sum = (sum4.s0 + sum4.s1) + (sum4.s2 + sum4.s3);
+        sumz += (sumz4.s0 + sumz4.s1) + (sumz4.s2 + sumz4.s3);
 #endif
         for (; l < end; l++) {
             y[l] += alpha * p[l];
             real v = r[l] - alpha * q[l];
             r[l] = v;
             sum += v * v;
-            if (l >= nv)
-                z[l] = precond_diag_at(v, l, nv, act, ract, pd);
+            if (l >= nv) {
+                real zl = precond_diag_at(v, l, nv, act, ract, pd);
+                z[l] = zl;
+                sumz += v * zl;
+            }
         }
     }
     TR_ITEM_PARTIAL(rr, sum);
+    if (rz) /* NULL where the edge block is not twisted */
+        TR_ITEM_PARTIAL(rz, sumz);
 }
 
 /* p = z + beta p, beta = r.z (new) / r.z (old). */
@@ -841,6 +854,42 @@ __kernel void cg_p(__global real *p, __global const real *z, __global const real
     real beta = sc[SC_RR1] / sc[SC_RZ];
     TR_ITEMS(l, nl)
         p[l] = z[l] + beta * p[l];
+}
+
+/* cg_p with twisted.cl's step 4 (twist_ring_fix) applied to the edge
+ * rows' z as it is read (z itself keeps the unfixed values; nothing else
+ * reads it before the next sweep overwrites it): one pass over the rows
+ * instead of two. */
+__kernel void cg_p_ring(__global real *p, __global const real *z, __global const real *sc,
+                        const int nl, __global const int *comp, const int ncomp, const int nv,
+                        __global const real *tw, __global const real *ends)
+{
+    if (sc[SC_DONE] != 0.0)
+        return;
+    real beta = sc[SC_RR1] / sc[SC_RZ];
+    __global const real *fact = ends + 2 * ncomp, *uu = tw + 2 * nv;
+    int l = tr_items_first(nl), end = tr_items_end(nl);
+#ifdef TR_BLOCK_ITEMS
+    /* four rows at a time where they are of one component (or not edge
+     * rows): a gather and a branch per row kept PoCL's loop scalar, at
+     * twice cg_p's time */
+    for (; l + 4 <= end; l += 4) {
+        real4 zl = vload4(0, z + l);
+        if (l + 4 <= nv && comp[l] == comp[l + 3])
+            zl = zl - fact[comp[l]] * vload4(0, uu + l);
+        else if (l < nv)
+            for (int k = 0; k < 4; k++)
+                if (l + k < nv)
+                    ((real *)&zl)[k] -= fact[comp[l + k]] * uu[l + k];
+        vstore4(zl + beta * vload4(0, p + l), 0, p + l);
+    }
+#endif
+    for (; l < end; l++) {
+        real zl = z[l];
+        if (l < nv)
+            zl -= fact[comp[l]] * uu[l];
+        p[l] = zl + beta * p[l];
+    }
 }
 
 /* |dx_i| for the damping cap. */

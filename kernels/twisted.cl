@@ -234,46 +234,99 @@ __kernel void twist_factor_mid(__global const real *pd, __global const real *po,
 
 /* Apply, step 1 (items 2k + side): sweep r into z; each half leaves its
  * neighbour of row m in mid (the other side may already be overwriting z
- * in step 2). */
+ * in step 2), and its share of r . uu (side 0 with row m) in
+ * ends[5 ncomp + 2k + side] for twist_ring_fact's r . z (the sweep is one
+ * dependent chain: the sum's loads and adds fit in its latency). */
 __kernel void twist_sweep_rows(__global const real *r, __global const real *po,
                                __global const int *start, __global const int *ne,
                                const int ncomp, const int nv, __global const real *tw,
-                               __global real *mid, __global real *z)
+                               __global real *mid, __global real *ends, __global real *z)
 {
     int k, side, st, n;
-    if (!twist_item(ncomp, start, ne, &k, &side, &st, &n))
+    if (!twist_item(ncomp, start, ne, &k, &side, &st, &n)) {
+        if (k < ncomp)
+            ends[5 * ncomp + 2 * k + side] = 0.0;
         return;
-    twist_sweep(n, side, tw + nv + st, tw + 3 * nv + st, r + st, z + st);
-    mid[2 * k + side] = twist_beside(n, side, z + st);
+    }
+    __global const real *ip = tw + nv + st, *c = tw + 3 * nv + st, *rhs = r + st,
+                        *uu = tw + 2 * nv + st;
+    __global real *y = z + st;
+    int m = twist_row(n);
+    real ru = 0.0;
+    if (side == 0) {
+        ru = rhs[m] * uu[m];
+        real prev = 0.0;
+        if (m > 0) {
+            prev = y[0] = rhs[0] * ip[0];
+            ru += rhs[0] * uu[0];
+        }
+        for (int j = 1; j < m; j++) {
+            prev = y[j] = fma(-c[j], prev, rhs[j] * ip[j]);
+            ru += rhs[j] * uu[j];
+        }
+    } else {
+        real prev = 0.0;
+        if (n - 1 > m) {
+            prev = y[n - 1] = rhs[n - 1] * ip[n - 1];
+            ru += rhs[n - 1] * uu[n - 1];
+        }
+        for (int j = n - 2; j > m; j--) {
+            prev = y[j] = fma(-c[j], prev, rhs[j] * ip[j]);
+            ru += rhs[j] * uu[j];
+        }
+    }
+    mid[2 * k + side] = twist_beside(n, side, y);
+    ends[5 * ncomp + 2 * k + side] = ru;
 }
 
 /* Apply, step 2 (items 2k + side): x_m (each half computes it), then the
  * side's back substitution; the half that holds row 0 or row n-1 leaves it
- * in ends for step 3's Sherman-Morrison factor. */
+ * in ends for step 3's Sherman-Morrison factor, and its share of r . z
+ * (side 0 with row m) in ends[3 ncomp + 2k + side]. */
 __kernel void twist_back_rows(__global const real *r, __global const real *po,
                               __global const int *start, __global const int *ne,
                               const int ncomp, const int nv, __global const real *tw,
                               __global const real *mid, __global real *ends, __global real *z)
 {
     int k, side, st, n;
-    if (!twist_item(ncomp, start, ne, &k, &side, &st, &n))
+    if (!twist_item(ncomp, start, ne, &k, &side, &st, &n)) {
+        if (k < ncomp)
+            ends[3 * ncomp + 2 * k + side] = 0.0;
         return;
+    }
     int m = twist_row(n);
     __global real *x = z + st;
+    __global const real *g = tw + st, *rr = r + st;
     real xm = twist_solve_mid(po, st, n, tw + nv + st, r[st + m], mid[2 * k], mid[2 * k + 1]);
-    if (side == 0)
+    real prev = xm, rz = 0.0;
+    if (side == 0) {
         x[m] = xm;
-    twist_back(n, side, tw + st, xm, x);
+        rz = rr[m] * xm;
+        for (int j = m - 1; j >= 0; j--) {
+            prev = x[j] = fma(-g[j], prev, x[j]);
+            rz += rr[j] * prev;
+        }
+    } else {
+        for (int j = m + 1; j < n; j++) {
+            prev = x[j] = fma(-g[j], prev, x[j]);
+            rz += rr[j] * prev;
+        }
+    }
     /* the sweep of a half without rows leaves x_m as its end */
     ends[2 * k + side] = side == 0 ? (m > 0 ? x[0] : xm) : (m + 1 < n ? x[n - 1] : xm);
+    ends[3 * ncomp + 2 * k + side] = rz;
 }
 
 /* Apply, step 3 (one item per component): Sherman-Morrison's factor of
- * closed blocks from their first and last rows, 0 for the others. */
+ * closed blocks from their first and last rows, 0 for the others; and the
+ * block's share of r . z as it is once step 4 has run, r . z - fact r . uu
+ * from steps 1 and 2's sums, into rz[rz_off + k] (the CG loop skips step 4:
+ * correct.cl cg_p_ring applies it where it reads z). */
 __kernel void twist_ring_fact(__global const real *pd, __global const real *po,
                               __global const int *start, __global const int *ne,
                               __global const int *closed, const int ncomp, const int nv,
-                              __global const real *tw, __global real *ends)
+                              __global const real *tw, __global real *ends, __global real *rz,
+                              const int rz_off)
 {
     int k = get_global_id(0);
     if (k >= ncomp)
@@ -287,6 +340,8 @@ __kernel void twist_ring_fact(__global const real *pd, __global const real *po,
                (1.0 + uu[0] + beta * uu[n - 1] / gamma);
     }
     ends[2 * ncomp + k] = fact;
+    rz[rz_off + k] = (ends[3 * ncomp + 2 * k] + ends[3 * ncomp + 2 * k + 1]) -
+                     fact * (ends[5 * ncomp + 2 * k] + ends[5 * ncomp + 2 * k + 1]);
 }
 
 /* Apply, step 4 (one item per edge row, only when some block is closed):
@@ -299,3 +354,4 @@ __kernel void twist_ring_fix(__global const int *comp, const int ncomp, const in
     TR_ITEMS(q, nv)
         z[q] -= ends[2 * ncomp + comp[q]] * tw[2 * nv + q];
 }
+
