@@ -105,7 +105,8 @@ typedef struct cl_state {
      * r . z and r . uu (twist_back_rows, twist_sweep_rows). */
     int tri_twist;
     cl_mem tmid, tends;
-    /* work-groups per component of the ebar sums (jt_ebar_partial), and their partial sums */
+    /* work-groups per component of the ebar sums (jt_ebar_partial; on CPU
+     * devices jt_vertex's items), and their partial sums */
     int ebar_groups;
     cl_mem ebar_part;
     size_t tri_group;
@@ -479,10 +480,11 @@ static int apply_JT(cl_state *s, const tr_correct_params *prm, cl_mem y, tr_erro
     double w = prm->ebar_weight;
     TR_TRY(run(s, K_jt_vertex, (size_t)nv, err, A(y), A(s->rgrad), A(s->cgq), A(s->ract), A(s->topo.next),
                A(s->topo.prev), A(s->aadj), A(s->aadjn), A(s->aaoff), A(s->acoef), A(s->agrad), A(s->cidx), A(s->cst),
-               A(nv), A(s->dx), END));
+               A(nv), A(s->dx), A(s->cdeb), A(s->topo.comp), A(s->ncomp), A(s->ebar_part), END));
     int G = s->ebar_groups;
-    TR_TRY(run_groups(s, K_jt_ebar_partial, (size_t)s->ncomp * (size_t)G, err, A(y), A(s->ract),
-                      A(s->start), A(s->cdeb), A(nv), A(G), A(s->ebar_part), END));
+    if (!s->ctx.block_items) /* on CPU devices jt_vertex's items sum them */
+        TR_TRY(run_groups(s, K_jt_ebar_partial, (size_t)s->ncomp * (size_t)G, err, A(y), A(s->ract),
+                          A(s->start), A(s->cdeb), A(nv), A(G), A(s->ebar_part), END));
     TR_TRY(run_groups(s, K_jt_ebar, (size_t)s->ncomp, err, A(s->ebar_part), A(s->ne), A(G), A(w),
                       A(s->debar), END));
 cleanup:
@@ -1113,6 +1115,8 @@ static int open_on(const tr_device_choice *dev, const tr_curve *c, int profiling
             maxnv = c->start[k + 1] - c->start[k] > maxnv ? c->start[k + 1] - c->start[k] : maxnv;
         size_t g = (maxnv + 16 * TR_CL_LOCAL - 1) / (16 * TR_CL_LOCAL);
         s->ebar_groups = (int)(g < 256 ? g : 256);
+        if (s->ctx.block_items) /* one partial per component and jt_vertex item */
+            s->ebar_groups = (int)tr_cl_items_global(&s->ctx, nv);
         TR_TRY(buffer(s, &s->ebar_part, nc * (size_t)s->ebar_groups * d, err));
     }
     TR_TRY(buffer(s, &s->closed, nc * sizeof(int), err));

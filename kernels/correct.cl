@@ -455,17 +455,38 @@ __kernel void adj_active_sort(__global const int *aaoff, const int nv, __global 
  * y by row list position (the chain rows' positions are their rows). On CPU
  * devices four consecutive vertices inside a run of the chain, with all
  * their curvature rows active and no struts, go at once in double4 lanes
- * (the same terms in the same order: the same bits), as in j_rows. */
+ * (the same terms in the same order: the same bits), as in j_rows; and the
+ * items also sum jt_ebar_partial's terms of their vertices' edge and
+ * curvature rows, which they read anyway, into ebar_part[k G + g] for
+ * component k and item g of G (0 for components the item has no vertex
+ * of), so that the ebar sums cost no pass of their own. */
 __kernel void jt_vertex(__global const real *y, __global const real *rgrad,
                         __global const real *cgq, __global const int *ract, __global const int *next,
                         __global const int *prev, __global const int *aadj,
                         __global const int *aadjn, __global const int *aaoff,
                         __global const real *acoef, __global const real *agrad,
-                        __global const int *cidx, __global const real *cst, const int nv, __global real *dx)
+                        __global const int *cidx, __global const real *cst, const int nv, __global real *dx,
+                        __global const real *cdeb, __global const int *comp, const int ncomp,
+                        __global real *ebar_part)
 {
     int i = tr_items_first(nv), end = tr_items_end(nv);
+#ifdef TR_BLOCK_ITEMS
+    int G = get_global_size(0), item = get_global_id(0);
+    int kc = i < end ? comp[i] : ncomp, klast = i < end ? comp[end - 1] : -1;
+    for (int k = 0; k < ncomp; k++)
+        if (k < kc || k > klast)
+            ebar_part[k * G + item] = 0.0;
+    real esum = 0.0;
+    real4 esum4 = (real4)(0.0);
+#endif
     while (i < end) {
 #ifdef TR_BLOCK_ITEMS
+        if (comp[i] != kc) { /* the item's share of component kc is complete */
+            ebar_part[kc * G + item] = esum + ((esum4.s0 + esum4.s1) + (esum4.s2 + esum4.s3));
+            esum = 0.0;
+            esum4 = (real4)(0.0);
+            kc = comp[i];
+        }
         if (i + 4 <= end && chain_run4(i, next, prev) && active4(ract, nv + i - 1) &&
             ract[nv + i + 3] && ract[nv + i + 4] && all(vload4(0, aadjn + i) == 0)) {
             real4 yp = vload4(0, y + i - 1), yi = vload4(0, y + i);
@@ -486,6 +507,10 @@ __kernel void jt_vertex(__global const real *y, __global const real *rgrad,
             JT_LANES(y)
             JT_LANES(z)
 #undef JT_LANES
+            /* jt_ebar_partial's terms (its curvature rows are active) */
+            long4 edge_on = convert_long4(vload4(0, ract + i) != 0);
+            esum4 += select((real4)(0.0), -yi, edge_on);
+            esum4 += vload4(0, cdeb + i) * ci;
             if (all(vload4(0, cidx + i) < 0)) {
                 store_rows4(g, dx, i);
             } else {
@@ -515,8 +540,18 @@ __kernel void jt_vertex(__global const real *y, __global const real *rgrad,
         for (int k = aaoff[i], e = aaoff[i] + aadjn[i]; k < e; k++)
             g = g + (acoef[k] * y[aadj[k]]) * vload3(k, agrad);
         vstore3(tr_project_motion(cidx, cst, i, g), i, dx);
+#ifdef TR_BLOCK_ITEMS
+        if (ract[i])
+            esum += -y[i];
+        if (ract[nv + i])
+            esum += cdeb[i] * y[nv + i];
+#endif
         i++;
     }
+#ifdef TR_BLOCK_ITEMS
+    if (kc < ncomp)
+        ebar_part[kc * G + item] = esum + ((esum4.s0 + esum4.s1) + (esum4.s2 + esum4.s3));
+#endif
 }
 
 /* debar_k = (sum over rows of component k of y_r dC_r/debar_k) / (w ne_k),
