@@ -1,7 +1,7 @@
-/* launch_shapes [DEVICE] [N]: wall time of the CG's axpy kernel (cg_yr,
- * kernels/correct.cl: y += alpha p, r -= alpha q, r . r per work-item; its
- * diagonal preconditioner idle, every position an edge row) over N entries (default 2 x 10^5, the row list of a
- * loose N = 10^5 curve) in the two launch shapes of tr_cl_launch_items: one
+/* launch_shapes [DEVICE] [N]: wall time of the CG's axpy kernel (cg_p,
+ * kernels/correct.cl: y += alpha p, p = z + beta p) over N entries
+ * (default 2 x 10^5, the row list of a loose N = 10^5 curve) in the two
+ * launch shapes of tr_cl_launch_items: one
  * index per work-item in groups of 64 to 4096, and a few work-items of one
  * each, every one walking a contiguous block (common.clh TR_ITEMS). 200
  * launches back to back after one untimed launch per shape; prints ms per
@@ -47,7 +47,7 @@ int main(int argc, char **argv)
     tr_cl_ctx ctx = {0};
     cl_program prog = NULL;
     cl_kernel k = NULL;
-    enum { NBUF = 8 };
+    enum { NBUF = 4 };
     cl_mem v[NBUF] = {NULL};
     cl_int e = CL_SUCCESS;
     int rc = TR_OK;
@@ -60,24 +60,23 @@ int main(int argc, char **argv)
     }
     TR_TRY(tr_cl_ctx_open(&ctx, &ch.cl, 0, err));
     TR_TRY(tr_cl_build_all(&ctx, &prog, err));
-    TR_CL_CHECK((k = clCreateKernel(prog, "cg_yr", &e), e));
-    /* cg_yr(y, r, p, q, sc, nl, rr, pd, ract, nv, act, z) with nv = n: every
-     * position is an edge row, so pd, ract, act and z are never touched; rr
-     * takes a partial per work-item, up to the largest global size below */
+    TR_CL_CHECK((k = clCreateKernel(prog, "cg_p", &e), e));
+    /* cg_p(y, p, z, sc, nl) */
     size_t nd = (size_t)n * sizeof(double);
-    const size_t bytes[NBUF] = {nd, nd, nd, nd, 64 * sizeof(double),
-                                ((size_t)n + 4096) * sizeof(double), sizeof(double), sizeof(int)};
+    const size_t bytes[NBUF] = {nd, nd, nd, 64 * sizeof(double)};
     for (int i = 0; i < NBUF; i++) {
         TR_CL_CHECK((v[i] = clCreateBuffer(ctx.context, CL_MEM_READ_WRITE, bytes[i], NULL, &e), e));
         char zero = 0;
         TR_CL_CHECK(clEnqueueFillBuffer(ctx.queue, v[i], &zero, 1, 0, bytes[i], 0, NULL, NULL));
     }
-    double one = 1.0; /* sc[SC_PQ] (slot 2): alpha = r.z / p.q = 0 / 1 */
-    TR_CL_CHECK(clEnqueueWriteBuffer(ctx.queue, v[4], CL_TRUE, 2 * sizeof(double), sizeof one, &one, 0,
+    /* sc[SC_PQ] (slot 2) and sc[SC_RZ] (slot 15) 1: alpha = 0 / 1, beta = 0 / 1 */
+    double one = 1.0;
+    TR_CL_CHECK(clEnqueueWriteBuffer(ctx.queue, v[3], CL_TRUE, 2 * sizeof(double), sizeof one, &one, 0,
                                      NULL, NULL));
-    TR_CL_ARGS(k, 0, TR_CL_A(v[0]), TR_CL_A(v[1]), TR_CL_A(v[2]), TR_CL_A(v[3]), TR_CL_A(v[4]), TR_CL_A(n),
-               TR_CL_A(v[5]), TR_CL_A(v[6]), TR_CL_A(v[7]), TR_CL_A(n), TR_CL_A(v[7]), TR_CL_A(v[6]));
-    printf("%s, cg_yr over %d entries, ms per launch (200 launches)\n", ch.cl.name, n);
+    TR_CL_CHECK(clEnqueueWriteBuffer(ctx.queue, v[3], CL_TRUE, 15 * sizeof(double), sizeof one, &one, 0,
+                                     NULL, NULL));
+    TR_CL_ARGS(k, 0, TR_CL_A(v[0]), TR_CL_A(v[1]), TR_CL_A(v[2]), TR_CL_A(v[3]), TR_CL_A(n));
+    printf("%s, cg_p over %d entries, ms per launch (200 launches)\n", ch.cl.name, n);
     const size_t locals[] = {64, 256, 1024, 4096};
     for (size_t i = 0; i < sizeof locals / sizeof locals[0]; i++) {
         if (locals[i] > ch.cl.max_work_group)

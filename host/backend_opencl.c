@@ -20,7 +20,7 @@
 #define KERNELS(X)                                                                             \
     X(tension_force) X(tension_smooth) X(tension_move) X(pairs_upper) X(pairs_write)           \
     X(pairs_min_dist) X(rows_chain) X(rows_strut) X(cg_init) X(jt_vertex)          \
-    X(jt_ebar_partial) X(jt_ebar) X(j_rows) X(cg_start) X(cg_top) X(cg_yr)         \
+    X(jt_ebar_partial) X(jt_ebar) X(j_rows) X(cg_start) X(cg_top) X(cg_r)         \
     X(cg_p) X(dx_norm) X(step_scale) X(apply_dx) X(apply_debar) X(measure_edges)    \
     X(measure_minrad) X(measure_disp) X(comp_sum) X(cg_reset) X(release_pulling)               \
     X(project_field) X(tangent_finish) X(ebar_velocity) X(tension_smooth2) X(precond_setup)    \
@@ -71,8 +71,8 @@ typedef struct cl_state {
     cl_mem dist, nbr; /* each pair's distance (rows_strut); its neighbours in the list (pairs_neighbours) */
     /* one partial result per work-item of a folding kernel (rows_chain and
      * rows_strut: largest violations; pairs_min_dist: closest pairs; j_rows
-     * and cg_yr: the CG's p . q and r . r); with the twisted edge block
-     * also rzp, the CG's r . z: cg_yr's items' shares, then each
+     * and cg_r: the CG's p . q and r . r); with the twisted edge block
+     * also rzp, the CG's r . z: cg_r's items' shares, then each
      * component's edge rows' (twist_ring_fact) */
     cl_mem part, rzp;
     size_t partcap;
@@ -536,9 +536,9 @@ cleanup:
 
 /* z = M^-1 r (backend.h correct (c)): the edge block by the chosen solver,
  * and with diag the diagonal on the other rows, which inside the CG loop
- * cg_yr has already applied. in_loop (twisted edge block only): inside the
+ * cg_r has already applied. in_loop (twisted edge block only): inside the
  * CG loop, where the closed blocks' Sherman-Morrison fix is left to
- * cg_p_ring and the edge rows' r . z goes to rzp after cg_yr's rz_items
+ * cg_p_ring and the edge rows' r . z goes to rzp after cg_r's rz_items
  * shares (cg_iterate). */
 static int precond_apply(cl_state *s, cl_mem r, int diag, int in_loop, int rz_items,
                          tr_error *err)
@@ -633,7 +633,7 @@ static int solve_rows(cl_state *s, tr_error *err)
         TR_TRY(buffer(s, &s->agrad, 3 * c * sizeof(double), err));
         s->aacap = c;
     }
-    /* j_rows' and cg_yr's dot product partials, one per work-item */
+    /* j_rows' and cg_r's dot product partials, one per work-item */
     TR_TRY(partials(s, tr_cl_items_global(&s->ctx, (size_t)s->cg_nl), err));
     int izero = 0;
     TR_CL_CHECK(clEnqueueFillBuffer(s->ctx.queue, s->aadjn, &izero, sizeof izero, 0,
@@ -674,10 +674,10 @@ static int cg_iterate(cl_state *s, const tr_correct_params *prm, int *iters, tr_
     int rc = TR_OK;
     int nv = s->nv, nl = s->cg_nl;
     /* the dot products p . q and r . r come as partials per work-item of
-     * j_rows and cg_yr (solve_rows reserved them) */
+     * j_rows and cg_r (solve_rows reserved them) */
     int items = (int)tr_cl_items_global(&s->ctx, (size_t)nl);
     int jitems = (int)tr_cl_items_global(&s->ctx, jrows_units(s, nl));
-    cl_mem rzp = s->tri_twist ? s->rzp : NULL; /* cg_yr's r . z shares: the twisted path's */
+    cl_mem rzp = s->tri_twist ? s->rzp : NULL; /* cg_r's r . z shares: the twisted path's */
     double reg = prm->reg, w = prm->ebar_weight, tol2 = prm->cg_rtol * prm->cg_rtol, it;
     TR_CL_CHECK(clEnqueueWriteBuffer(s->ctx.queue, s->sc, CL_FALSE, SC_TOL2 * sizeof(double),
                                      sizeof tol2, &tol2, 0, NULL, NULL));
@@ -717,20 +717,20 @@ static int cg_iterate(cl_state *s, const tr_correct_params *prm, int *iters, tr_
                    A(s->sab), A(s->sw), A(s->p), A(nv), A(reg), A(s->act), A(nl), A(s->q), A(s->part),
                    END));
         TR_TRY(tr_cl_reduce_sum(&s->red, &s->ctx, s->part, jitems, s->sc, SC_PQ, err));
-        TR_TRY(run(s, K_cg_yr, (size_t)nl, err, A(s->y), A(s->r), A(s->p), A(s->q), A(s->sc), A(nl),
+        TR_TRY(run(s, K_cg_r, (size_t)nl, err, A(s->r), A(s->q), A(s->sc), A(nl),
                    A(s->part), A(s->pdiag), A(s->ract), A(nv), A(s->act), A(s->z), A(rzp), END));
         TR_TRY(tr_cl_reduce_sum(&s->red, &s->ctx, s->part, items, s->sc, SC_RR, err));
         TR_TRY(precond_apply(s, s->r, 0, 1, items, err));
         if (s->tri_twist) {
-            /* r . z from cg_yr's and the edge block's shares, and the ring
+            /* r . z from cg_r's and the edge block's shares, and the ring
              * fix applied where cg_p_ring reads z: two passes over the rows
              * fewer than reduce_dot, twist_ring_fix and cg_p */
             TR_TRY(tr_cl_reduce_sum(&s->red, &s->ctx, s->rzp, items + s->ncomp, s->sc, SC_RR1, err));
-            TR_TRY(run(s, K_cg_p_ring, (size_t)nl, err, A(s->p), A(s->z), A(s->sc), A(nl),
+            TR_TRY(run(s, K_cg_p_ring, (size_t)nl, err, A(s->y), A(s->p), A(s->z), A(s->sc), A(nl),
                        A(s->topo.comp), A(s->ncomp), A(nv), A(s->tw), A(s->tends), END));
         } else {
             TR_TRY(tr_cl_reduce_dot(&s->red, &s->ctx, s->r, s->z, nl, s->sc, SC_RR1, err));
-            TR_TRY(run(s, K_cg_p, (size_t)nl, err, A(s->p), A(s->z), A(s->sc), A(nl), END));
+            TR_TRY(run(s, K_cg_p, (size_t)nl, err, A(s->y), A(s->p), A(s->z), A(s->sc), A(nl), END));
         }
     }
     /* the end of the last iteration (kernels/correct.cl cg_top; nothing

@@ -785,7 +785,7 @@ __kernel void j_rows(__global const real *dx, __global const real *debar,
 }
 
 /* CG scalar updates: one item each. `done` turns the rest into no-ops.
- * alpha and beta are not kept: cg_yr and cg_p work them out from the
+ * alpha and beta are not kept: cg_r and cg_p work them out from the
  * dot products (every item the same quotient), and the bookkeeping of an
  * iteration waits for the next one's cg_top, so an iteration launches no
  * kernel of its own for them (on a CPU device or a GPU at N ~ 10^3 a step is
@@ -815,7 +815,7 @@ __kernel void cg_top(__global real *sc, const int k)
 
 /* The preconditioner's diagonal part at row-list position l >= nv (a
  * curvature or strut row) with residual rl: rl / pd, 0 when the row is
- * inactive (precond_diag, and cg_yr inside the CG loop). */
+ * inactive (precond_diag, and cg_r inside the CG loop). */
 inline real precond_diag_at(real rl, int l, int nv, __global const int *act,
                             __global const int *ract, __global const real *pd)
 {
@@ -823,7 +823,8 @@ inline real precond_diag_at(real rl, int l, int nv, __global const int *act,
     return ract[q] ? rl / pd[q] : 0.0;
 }
 
-/* y += alpha p, r -= alpha q (alpha = r.z / p.q), the item's share of r . r
+/* r -= alpha q (alpha = r.z / p.q; y's alpha p is cg_p's, which reads p
+ * anyway), the item's share of r . r
  * (0 once done: nothing reads it then), and z = r / pd on the curvature and
  * strut rows (precond_diag's part of the preconditioner, done here while r
  * is at hand; the edge rows' z is the edge block's), with those rows' share
@@ -831,8 +832,7 @@ inline real precond_diag_at(real rl, int l, int nv, __global const int *act,
  * edge rows' share; rz is NULL otherwise). On CPU devices four entries at a time, the sums in
  * four lanes: with one running sum the loop waited on the adder (as
  * dot_slice4). */
-__kernel void cg_yr(__global real *y, __global real *r, __global const real *p,
-                    __global const real *q, __global const real *sc, const int nl,
+__kernel void cg_r(__global real *r, __global const real *q, __global const real *sc, const int nl,
                     __global real *rr, __global const real *pd, __global const int *ract,
                     const int nv, __global const int *act, __global real *z, __global real *rz)
 {
@@ -843,7 +843,6 @@ __kernel void cg_yr(__global real *y, __global real *r, __global const real *p,
 #ifdef TR_BLOCK_ITEMS
         real4 sum4 = (real4)(0.0), sumz4 = (real4)(0.0);
         for (; l + 4 <= end; l += 4) {
-            vstore4(vload4(0, y + l) + alpha * vload4(0, p + l), 0, y + l);
             real4 v = vload4(0, r + l) - alpha * vload4(0, q + l);
             vstore4(v, 0, r + l);
             sum4 += v * v;
@@ -864,7 +863,6 @@ __kernel void cg_yr(__global real *y, __global real *r, __global const real *p,
         sumz += (sumz4.s0 + sumz4.s1) + (sumz4.s2 + sumz4.s3);
 #endif
         for (; l < end; l++) {
-            y[l] += alpha * p[l];
             real v = r[l] - alpha * q[l];
             r[l] = v;
             sum += v * v;
@@ -880,28 +878,33 @@ __kernel void cg_yr(__global real *y, __global real *r, __global const real *p,
         TR_ITEM_PARTIAL(rz, sumz);
 }
 
-/* p = z + beta p, beta = r.z (new) / r.z (old). */
-__kernel void cg_p(__global real *p, __global const real *z, __global const real *sc,
-                   const int nl)
+/* y += alpha p (alpha = r.z (old) / p.q, as cg_r's), then p = z + beta p,
+ * beta = r.z (new) / r.z (old). */
+__kernel void cg_p(__global real *y, __global real *p, __global const real *z,
+                   __global const real *sc, const int nl)
 {
     if (sc[SC_DONE] != 0.0)
         return;
-    real beta = sc[SC_RR1] / sc[SC_RZ];
-    TR_ITEMS(l, nl)
-        p[l] = z[l] + beta * p[l];
+    real alpha = sc[SC_RZ] / sc[SC_PQ], beta = sc[SC_RR1] / sc[SC_RZ];
+    TR_ITEMS(l, nl) {
+        real pl = p[l];
+        y[l] += alpha * pl;
+        p[l] = z[l] + beta * pl;
+    }
 }
 
 /* cg_p with twisted.cl's step 4 (twist_ring_fix) applied to the edge
  * rows' z as it is read (z itself keeps the unfixed values; nothing else
  * reads it before the next sweep overwrites it): one pass over the rows
  * instead of two. */
-__kernel void cg_p_ring(__global real *p, __global const real *z, __global const real *sc,
-                        const int nl, __global const int *comp, const int ncomp, const int nv,
-                        __global const real *tw, __global const real *ends)
+__kernel void cg_p_ring(__global real *y, __global real *p, __global const real *z,
+                        __global const real *sc, const int nl, __global const int *comp,
+                        const int ncomp, const int nv, __global const real *tw,
+                        __global const real *ends)
 {
     if (sc[SC_DONE] != 0.0)
         return;
-    real beta = sc[SC_RR1] / sc[SC_RZ];
+    real alpha = sc[SC_RZ] / sc[SC_PQ], beta = sc[SC_RR1] / sc[SC_RZ];
     __global const real *fact = ends + 2 * ncomp, *uu = tw + 2 * nv;
     int l = tr_items_first(nl), end = tr_items_end(nl);
 #ifdef TR_BLOCK_ITEMS
@@ -916,14 +919,18 @@ __kernel void cg_p_ring(__global real *p, __global const real *z, __global const
             for (int k = 0; k < 4; k++)
                 if (l + k < nv)
                     ((real *)&zl)[k] -= fact[comp[l + k]] * uu[l + k];
-        vstore4(zl + beta * vload4(0, p + l), 0, p + l);
+        real4 pl = vload4(0, p + l);
+        vstore4(vload4(0, y + l) + alpha * pl, 0, y + l);
+        vstore4(zl + beta * pl, 0, p + l);
     }
 #endif
     for (; l < end; l++) {
         real zl = z[l];
         if (l < nv)
             zl -= fact[comp[l]] * uu[l];
-        p[l] = zl + beta * p[l];
+        real pl = p[l];
+        y[l] += alpha * pl;
+        p[l] = zl + beta * pl;
     }
 }
 

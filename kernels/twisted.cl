@@ -346,7 +346,7 @@ __kernel void twist_ring_fact(__global const real *pd, __global const real *po,
 
 /* Apply, step 4 (one item per edge row, only when some block is closed):
  * z -= fact uu, exact no-op on rows whose uu is zero. The curvature and
- * strut rows are precond_diag's (cg_yr's inside the CG loop). */
+ * strut rows are precond_diag's (cg_r's inside the CG loop). */
 __kernel void twist_ring_fix(__global const int *comp, const int ncomp, const int nv,
                              __global const real *tw, __global const real *ends,
                              __global real *z)
