@@ -29,7 +29,7 @@
     X(twist_factor_mid) X(twist_sweep_rows) X(twist_back_rows) X(twist_ring_fact)              \
     X(twist_ring_fix) X(adj_active_count) X(adj_active_write) X(act_count) X(act_scan)         \
     X(act_write) X(act_gather) X(adj_active_sort) X(pairs_neighbours) X(rows_strut_min)     \
-    X(cg_p_ring)
+    X(cg_p_ring) X(block_flags)
 #define ENUM(k) K_##k,
 #define NAME(k) #k,
 enum { KERNELS(ENUM) K_COUNT };
@@ -85,6 +85,7 @@ typedef struct cl_state {
      * active strut rows in list order (pcap), block counts for building it. */
     cl_mem act, actc;
     cl_mem sab, sw; /* act_gather: the active struts' vertices, s, t and direction */
+    cl_mem blkf;    /* CPU devices: block_flags' byte per four vertices, per solve */
     size_t scap;    /* active struts sab and sw hold */
     int cg_nl; /* rows in the list: 2 nv + active struts */
     int vcap;  /* entries of the CG's vectors y, r, p, q, b, z (by list position) */
@@ -134,7 +135,7 @@ static void cl_destroy(void *sp)
                    &s->pdiag, &s->z,    &s->po,   &s->tw,   &s->closed, &s->tset0,
                    &s->tp,    &s->tq,   &s->tuu,  &s->ebar_part, &s->curv, &s->tmid,
                    &s->tends, &s->aadj, &s->aadjn, &s->act, &s->actc,
-                   &s->aaoff, &s->acoef, &s->agrad, &s->sab, &s->sw, &s->dist, &s->nbr};
+                   &s->aaoff, &s->acoef, &s->agrad, &s->sab, &s->sw, &s->dist, &s->nbr, &s->blkf};
     for (size_t i = 0; i < sizeof m / sizeof m[0]; i++)
         release(m[i]);
     for (int i = 0; i < K_COUNT; i++)
@@ -480,7 +481,8 @@ static int apply_JT(cl_state *s, const tr_correct_params *prm, cl_mem y, tr_erro
     double w = prm->ebar_weight;
     TR_TRY(run(s, K_jt_vertex, (size_t)nv, err, A(y), A(s->rgrad), A(s->cgq), A(s->ract), A(s->topo.next),
                A(s->topo.prev), A(s->aadj), A(s->aadjn), A(s->aaoff), A(s->acoef), A(s->agrad), A(s->cidx), A(s->cst),
-               A(nv), A(s->dx), A(s->cdeb), A(s->topo.comp), A(s->ncomp), A(s->ebar_part), END));
+               A(nv), A(s->dx), A(s->cdeb), A(s->topo.comp), A(s->ncomp), A(s->ebar_part), A(s->blkf),
+               END));
     int G = s->ebar_groups;
     if (!s->ctx.block_items) /* on CPU devices jt_vertex's items sum them */
         TR_TRY(run_groups(s, K_jt_ebar_partial, (size_t)s->ncomp * (size_t)G, err, A(y), A(s->ract),
@@ -653,6 +655,9 @@ static int solve_rows(cl_state *s, tr_error *err)
         TR_TRY(run(s, K_adj_active_sort, (size_t)nv, err, A(s->aaoff), A(nv), A(s->aadj), A(s->acoef),
                    A(s->agrad), END));
     }
+    if (s->ctx.block_items && nv >= 4)
+        TR_TRY(run(s, K_block_flags, (size_t)(nv / 4), err, A(s->ract), A(s->topo.next),
+                   A(s->topo.prev), A(s->aadjn), A(s->cidx), A(nv), A(s->blkf), END));
 cleanup:
     return rc;
 }
@@ -715,7 +720,7 @@ static int cg_iterate(cl_state *s, const tr_correct_params *prm, int *iters, tr_
         TR_TRY(run(s, K_j_rows, jrows_units(s, nl), err, A(s->dx), A(s->debar), A(s->cdeb), A(s->rgrad),
                    A(s->cgq), A(s->ract), A(s->topo.next), A(s->topo.prev), A(s->topo.comp),
                    A(s->sab), A(s->sw), A(s->p), A(nv), A(reg), A(s->act), A(nl), A(s->q), A(s->part),
-                   END));
+                   A(s->blkf), END));
         TR_TRY(tr_cl_reduce_sum(&s->red, &s->ctx, s->part, jitems, s->sc, SC_PQ, err));
         TR_TRY(run(s, K_cg_r, (size_t)nl, err, A(s->r), A(s->q), A(s->sc), A(nl),
                    A(s->part), A(s->pdiag), A(s->ract), A(nv), A(s->act), A(s->z), A(rzp), END));
@@ -817,7 +822,7 @@ static int project_tangent(cl_state *s, const tr_correct_params *q, cl_mem G, tr
         TR_TRY(run(s, K_j_rows, jrows_units(s, nl), err, A(s->dx), A(s->debar), A(s->cdeb), A(s->rgrad),
                    A(s->cgq), A(s->ract), A(s->topo.next), A(s->topo.prev), A(s->topo.comp),
                    A(s->sab), A(s->sw), A(s->y), A(nv), A(reg0), A(s->act), A(nl), A(s->b),
-                   A(s->part), END));
+                   A(s->part), A(s->blkf), END));
         TR_TRY(run(s, K_cg_reset, (size_t)nl, err, A(s->b), A(s->y), A(s->r), A(s->p), A(nl), END));
         int iters = 0;
         TR_TRY(cg_iterate(s, q, &iters, err));
@@ -1103,6 +1108,7 @@ static int open_on(const tr_device_choice *dev, const tr_curve *c, int profiling
     TR_TRY(buffer(s, &s->dx, 3 * nv * d, err));
     TR_TRY(buffer(s, &s->cgq, 3 * nv * d, err));
     TR_TRY(buffer(s, &s->cdeb, nv * d, err));
+    TR_TRY(buffer(s, &s->blkf, nv / 4 + 1, err));
     TR_TRY(buffer(s, &s->chg, sizeof(int), err));
     TR_TRY(buffer(s, &s->po, nv * d, err));
     TR_TRY(buffer(s, &s->tw, 4 * nv * d, err));

@@ -451,6 +451,39 @@ __kernel void adj_active_sort(__global const int *aaoff, const int nv, __global 
 }
 
 
+/* What the four-at-a-time paths of jt_vertex and j_rows need of vertices
+ * 4b .. 4b + 3, fixed for a solve (the active set and the contact
+ * adjacency are): JT_RUN, they lie inside one run of the chain (chain_run4
+ * with prev) with their edge rows and the curvature rows of 4b - 1 .. 4b + 4
+ * active and no active struts; JT_FREE, none is constrained (cidx < 0);
+ * JR_RUN, inside one run with their own edge and curvature rows active.
+ * One byte per block read instead of five ints per vertex in every CG
+ * iteration. Run once per solve (solve_rows), on CPU devices only. */
+#define JT_RUN 1
+#define JT_FREE 2
+#define JR_RUN 4
+__kernel void block_flags(__global const int *ract, __global const int *next,
+                          __global const int *prev, __global const int *aadjn,
+                          __global const int *cidx, const int nv, __global uchar *flags)
+{
+    TR_ITEMS(b, nv / 4) {
+        int i = 4 * b;
+        uchar f = 0;
+        if (i > 0 && all(vload4(0, next + i) == (int4)(i + 1, i + 2, i + 3, i + 4)) &&
+            all(vload4(0, prev + i) == (int4)(i - 1, i, i + 1, i + 2))) {
+            bool edges = all(vload4(0, ract + i) != 0), curv = all(vload4(0, ract + nv + i) != 0);
+            if (edges && curv && ract[nv + i - 1] && ract[nv + i + 4] &&
+                all(vload4(0, aadjn + i) == 0))
+                f |= JT_RUN;
+            if (edges && curv)
+                f |= JR_RUN;
+        }
+        if (all(vload4(0, cidx + i) < 0))
+            f |= JT_FREE;
+        flags[b] = f;
+    }
+}
+
 /* dx_i = P_i (sum over rows y_r dC_r/dx_i), in the order backend.h fixes;
  * y by row list position (the chain rows' positions are their rows). On CPU
  * devices four consecutive vertices inside a run of the chain, with all
@@ -467,10 +500,10 @@ __kernel void jt_vertex(__global const real *y, __global const real *rgrad,
                         __global const real *acoef, __global const real *agrad,
                         __global const int *cidx, __global const real *cst, const int nv, __global real *dx,
                         __global const real *cdeb, __global const int *comp, const int ncomp,
-                        __global real *ebar_part)
+                        __global real *ebar_part, __global const uchar *flags)
 {
-    int i = tr_items_first(nv), end = tr_items_end(nv);
 #ifdef TR_BLOCK_ITEMS
+    int i = tr_items_first4(nv), end = tr_items_end4(nv);
     int G = get_global_size(0), item = get_global_id(0);
     int kc = i < end ? comp[i] : ncomp, klast = i < end ? comp[end - 1] : -1;
     for (int k = 0; k < ncomp; k++)
@@ -478,6 +511,8 @@ __kernel void jt_vertex(__global const real *y, __global const real *rgrad,
             ebar_part[k * G + item] = 0.0;
     real esum = 0.0;
     real4 esum4 = (real4)(0.0);
+#else
+    int i = tr_items_first(nv), end = tr_items_end(nv);
 #endif
     while (i < end) {
 #ifdef TR_BLOCK_ITEMS
@@ -487,8 +522,8 @@ __kernel void jt_vertex(__global const real *y, __global const real *rgrad,
             esum4 = (real4)(0.0);
             kc = comp[i];
         }
-        if (i + 4 <= end && chain_run4(i, next, prev) && active4(ract, nv + i - 1) &&
-            ract[nv + i + 3] && ract[nv + i + 4] && all(vload4(0, aadjn + i) == 0)) {
+        uchar f = (i & 3) == 0 && i + 4 <= end ? flags[i >> 2] : 0;
+        if (f & JT_RUN) {
             real4 yp = vload4(0, y + i - 1), yi = vload4(0, y + i);
             real4 cp = vload4(0, y + nv + i - 1), ci = vload4(0, y + nv + i),
                   cn = vload4(0, y + nv + i + 1);
@@ -507,11 +542,10 @@ __kernel void jt_vertex(__global const real *y, __global const real *rgrad,
             JT_LANES(y)
             JT_LANES(z)
 #undef JT_LANES
-            /* jt_ebar_partial's terms (its curvature rows are active) */
-            long4 edge_on = convert_long4(vload4(0, ract + i) != 0);
-            esum4 += select((real4)(0.0), -yi, edge_on);
+            /* jt_ebar_partial's terms (the rows are active) */
+            esum4 += -yi;
             esum4 += vload4(0, cdeb + i) * ci;
-            if (all(vload4(0, cidx + i) < 0)) {
+            if (f & JT_FREE) {
                 store_rows4(g, dx, i);
             } else {
                 vstore3(tr_project_motion(cidx, cst, i, (real3)(g.x.s0, g.y.s0, g.z.s0)), i, dx);
@@ -737,16 +771,15 @@ __kernel void j_rows(__global const real *dx, __global const real *debar,
                      __global const int *comp, __global const int *sab,
                      __global const real *sw, __global const real *y, const int nv,
                      const real reg, __global const int *act, const int nl,
-                     __global real *out, __global real *yout)
+                     __global real *out, __global real *yout, __global const uchar *flags)
 {
     real sum = 0.0;
 #define J_ROW(l) j_row(l, dx, debar, cdeb, rgrad, cgq, ract, next, prev, comp, sab, sw, y, nv, reg, act, out)
 #ifdef TR_BLOCK_ITEMS
-    int nu = nl - nv, u = tr_items_first(nu), end = tr_items_end(nu);
+    int nu = nl - nv, u = tr_items_first4(nu), end = tr_items_end4(nu);
     real4 sum4 = (real4)(0.0);
     while (u < end) {
-        if (u + 4 <= min(end, nv) && active4(ract, u) && active4(ract, nv + u) &&
-            chain_run4(u, next, prev)) {
+        if ((u & 3) == 0 && u + 4 <= min(end, nv) && (flags[u >> 2] & JR_RUN)) {
             int i = u;
             rows4 dp = load_rows4(dx, i - 1), di = load_rows4(dx, i), dn = load_rows4(dx, i + 1);
             rows4 g = load_rows4(rgrad, i);

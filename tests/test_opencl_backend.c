@@ -427,6 +427,28 @@ int main(void)
             fprintf(stderr, "hopf: %s\n", err.msg);
         }
     }
+    /* A trefoil with constrained vertices inside the chain (a plane, a line,
+     * a fixed point), where the CPU kernels' four-vertex blocks hold them:
+     * block_flags' JT_FREE must send them through tr_project_motion. */
+    if (tr_make_torus(&c, 2, 3, 1024, &err) == TR_OK) {
+        const int at[3] = {41, 82, 123};
+        for (int m = 0; m < 3; m++) {
+            const double *xv = c.x + 3 * at[m];
+            tr_constraint k = {.kind = (tr_cst_kind)(TR_CST_PLANE - m), .id = m + 1,
+                               .p = {xv[0], xv[1], xv[2]}, .u = {0.0, 0.0, 1.0}, .d = xv[2]};
+            if (m == 1)
+                k.u[0] = 1.0, k.u[2] = 0.0; /* the line through it along x */
+            int ki = tr_curve_add_constraint(&c, &k, &err);
+            CHECK(ki >= 0);
+            if (ki >= 0)
+                c.vcst[at[m]] = ki;
+        }
+        ops_case("constrained trefoil", &c, 2.6, 1);
+        tr_curve_free(&c);
+    } else {
+        tr_test_failures++;
+        fprintf(stderr, "constrained trefoil: %s\n", err.msg);
+    }
     /* A tight trefoil (ropelength 32.74): thousands of listed pairs and
      * hundreds in the band of active struts, where the rows' local-minimum
      * test (rows_strut_min, with the neighbours' distances looked up in the
