@@ -926,6 +926,14 @@ __kernel void cg_p(__global real *y, __global real *p, __global const real *z,
     }
 }
 
+/* Edge row l's z with twisted.cl's step 4 (twist_ring_fix) applied; other
+ * rows' z as it is. */
+inline real ring_fixed(int l, int nv, __global const real *z, __global const int *comp,
+                       __global const real *fact, __global const real *uu)
+{
+    return l < nv ? z[l] - fact[comp[l]] * uu[l] : z[l];
+}
+
 /* cg_p with twisted.cl's step 4 (twist_ring_fix) applied to the edge
  * rows' z as it is read (z itself keeps the unfixed values; nothing else
  * reads it before the next sweep overwrites it): one pass over the rows
@@ -941,29 +949,27 @@ __kernel void cg_p_ring(__global real *y, __global real *p, __global const real 
     __global const real *fact = ends + 2 * ncomp, *uu = tw + 2 * nv;
     int l = tr_items_first(nl), end = tr_items_end(nl);
 #ifdef TR_BLOCK_ITEMS
-    /* four rows at a time where they are of one component (or not edge
-     * rows): a gather and a branch per row kept PoCL's loop scalar, at
+    /* four rows at a time, the fix in lanes where they are edge rows of one
+     * component: a gather and a branch per row kept PoCL's loop scalar, at
      * twice cg_p's time */
     for (; l + 4 <= end; l += 4) {
-        real4 zl = vload4(0, z + l);
-        if (l + 4 <= nv && comp[l] == comp[l + 3])
-            zl = zl - fact[comp[l]] * vload4(0, uu + l);
-        else if (l < nv)
-            for (int k = 0; k < 4; k++)
-                if (l + k < nv)
-                    ((real *)&zl)[k] -= fact[comp[l + k]] * uu[l + k];
+        real4 zl;
+        if (l >= nv)
+            zl = vload4(0, z + l);
+        else if (l + 4 <= nv && comp[l] == comp[l + 3])
+            zl = vload4(0, z + l) - fact[comp[l]] * vload4(0, uu + l);
+        else
+            zl = (real4)(ring_fixed(l, nv, z, comp, fact, uu), ring_fixed(l + 1, nv, z, comp, fact, uu),
+                         ring_fixed(l + 2, nv, z, comp, fact, uu), ring_fixed(l + 3, nv, z, comp, fact, uu));
         real4 pl = vload4(0, p + l);
         vstore4(vload4(0, y + l) + alpha * pl, 0, y + l);
         vstore4(zl + beta * pl, 0, p + l);
     }
 #endif
     for (; l < end; l++) {
-        real zl = z[l];
-        if (l < nv)
-            zl -= fact[comp[l]] * uu[l];
         real pl = p[l];
         y[l] += alpha * pl;
-        p[l] = zl + beta * pl;
+        p[l] = ring_fixed(l, nv, z, comp, fact, uu) + beta * pl;
     }
 }
 

@@ -79,23 +79,29 @@ inline real twist_middle(__global const real *po, __global const real *d, real b
 /* Elimination sweep of rhs into y (upper half: y_j = (rhs_j - o_{j-1}
  * y_{j-1}) ip_j; lower half: y_j = (rhs_j - o_j y_{j+1}) ip_j, as
  * rhs_j ip_j - c_j y_{j-1} and rhs_j ip_j - c_j y_{j+1}), then the middle
- * row's solution once both are known (twist_solve_mid). */
-inline void twist_sweep(int n, int side, __global const real *ip, __global const real *c,
-                        __global const real *rhs, __global real *y)
+ * row's solution once both are known (twist_solve_mid). Returns sum0 plus
+ * rhs . w over the swept rows (the CG's r . uu, twist_sweep_rows: the sum's
+ * loads and adds fit in the chain's latency). */
+inline real twist_sweep(int n, int side, __global const real *ip, __global const real *c,
+                        __global const real *rhs, __global real *y, __global const real *w,
+                        real sum0)
 {
-    /* the chain's last value stays in a register: y may alias rhs (uu is
-     * swept in place), so the compiler would otherwise reload it from
-     * memory behind the store, one store-to-load latency per row */
+    /* the chain's last value stays in a register, and rhs_j is loaded once
+     * before y_j is stored: y may alias rhs (uu is swept in place), so the
+     * compiler would otherwise reload them from memory behind the store,
+     * one store-to-load latency per row */
     int m = twist_row(n);
-    if (side == 0) {
-        real prev = m > 0 ? (y[0] = rhs[0] * ip[0]) : 0.0;
-        for (int j = 1; j < m; j++)
-            prev = y[j] = fma(-c[j], prev, rhs[j] * ip[j]);
-    } else {
-        real prev = n - 1 > m ? (y[n - 1] = rhs[n - 1] * ip[n - 1]) : 0.0;
-        for (int j = n - 2; j > m; j--)
-            prev = y[j] = fma(-c[j], prev, rhs[j] * ip[j]);
+    int first = side == 0 ? 0 : n - 1, stop = m, step = side == 0 ? 1 : -1;
+    if (first == stop)
+        return sum0;
+    real a = rhs[first], sum = sum0 + a * w[first];
+    real prev = y[first] = a * ip[first];
+    for (int j = first + step; j != stop; j += step) {
+        a = rhs[j];
+        sum += a * w[j];
+        prev = y[j] = fma(-c[j], prev, a * ip[j]);
     }
+    return sum;
 }
 
 /* x_m from the swept sides' neighbours of row m (ym1 = y_{m-1}, yp1 =
@@ -113,18 +119,28 @@ inline real twist_solve_mid(__global const real *po, int st, int n, __global con
 }
 
 /* Back substitution of one half outwards from the middle row's xm (y[m]
- * itself is not read: the other side's items may be writing it). */
-inline void twist_back(int n, int side, __global const real *g, real xm, __global real *y)
+ * itself is not read: the other side's items may be writing it). Returns
+ * sum0 plus w . x over the half's rows (the CG's r . z, twist_back_rows;
+ * w_j is loaded before x_j is stored, as in twist_sweep). */
+inline real twist_back(int n, int side, __global const real *g, real xm, __global real *y,
+                       __global const real *w, real sum0)
 {
     int m = twist_row(n);
-    real prev = xm;
+    real prev = xm, sum = sum0;
     if (side == 0) {
-        for (int j = m - 1; j >= 0; j--)
+        for (int j = m - 1; j >= 0; j--) {
+            real wj = w[j];
             prev = y[j] = fma(-g[j], prev, y[j]);
+            sum += wj * prev;
+        }
     } else {
-        for (int j = m + 1; j < n; j++)
+        for (int j = m + 1; j < n; j++) {
+            real wj = w[j];
             prev = y[j] = fma(-g[j], prev, y[j]);
+            sum += wj * prev;
+        }
     }
+    return sum;
 }
 
 /* The swept value beside row m on a half's side (0 where that half has no
@@ -199,7 +215,7 @@ __kernel void twist_factor(__global const real *pd, __global const real *po,
     else
         uu[n - 1] = po[st + n - 1];
     /* the right-hand side is zero but at the two ends: sweep it in place */
-    twist_sweep(n, side, ip, c, uu, uu);
+    twist_sweep(n, side, ip, c, uu, uu, uu, 0.0);
     mid[2 * k + side] = twist_beside(n, side, uu);
 }
 
@@ -228,8 +244,8 @@ __kernel void twist_factor_mid(__global const real *pd, __global const real *po,
     real rm = m == 0 ? -pd[st] : m == n - 1 ? po[st + n - 1] : 0.0;
     real um = twist_solve_mid(po, st, n, ip, rm, mid[2 * k], mid[2 * k + 1]);
     uu[m] = um;
-    twist_back(n, 0, g, um, uu);
-    twist_back(n, 1, g, um, uu);
+    twist_back(n, 0, g, um, uu, uu, 0.0);
+    twist_back(n, 1, g, um, uu, uu, 0.0);
 }
 
 /* Apply, step 1 (items 2k + side): sweep r into z; each half leaves its
@@ -248,33 +264,11 @@ __kernel void twist_sweep_rows(__global const real *r, __global const real *po,
             ends[5 * ncomp + 2 * k + side] = 0.0;
         return;
     }
-    __global const real *ip = tw + nv + st, *c = tw + 3 * nv + st, *rhs = r + st,
-                        *uu = tw + 2 * nv + st;
+    __global const real *rhs = r + st, *uu = tw + 2 * nv + st;
     __global real *y = z + st;
     int m = twist_row(n);
-    real ru = 0.0;
-    if (side == 0) {
-        ru = rhs[m] * uu[m];
-        real prev = 0.0;
-        if (m > 0) {
-            prev = y[0] = rhs[0] * ip[0];
-            ru += rhs[0] * uu[0];
-        }
-        for (int j = 1; j < m; j++) {
-            prev = y[j] = fma(-c[j], prev, rhs[j] * ip[j]);
-            ru += rhs[j] * uu[j];
-        }
-    } else {
-        real prev = 0.0;
-        if (n - 1 > m) {
-            prev = y[n - 1] = rhs[n - 1] * ip[n - 1];
-            ru += rhs[n - 1] * uu[n - 1];
-        }
-        for (int j = n - 2; j > m; j--) {
-            prev = y[j] = fma(-c[j], prev, rhs[j] * ip[j]);
-            ru += rhs[j] * uu[j];
-        }
-    }
+    real ru = twist_sweep(n, side, tw + nv + st, tw + 3 * nv + st, rhs, y, uu,
+                          side == 0 ? rhs[m] * uu[m] : 0.0);
     mid[2 * k + side] = twist_beside(n, side, y);
     ends[5 * ncomp + 2 * k + side] = ru;
 }
@@ -298,20 +292,9 @@ __kernel void twist_back_rows(__global const real *r, __global const real *po,
     __global real *x = z + st;
     __global const real *g = tw + st, *rr = r + st;
     real xm = twist_solve_mid(po, st, n, tw + nv + st, r[st + m], mid[2 * k], mid[2 * k + 1]);
-    real prev = xm, rz = 0.0;
-    if (side == 0) {
+    if (side == 0)
         x[m] = xm;
-        rz = rr[m] * xm;
-        for (int j = m - 1; j >= 0; j--) {
-            prev = x[j] = fma(-g[j], prev, x[j]);
-            rz += rr[j] * prev;
-        }
-    } else {
-        for (int j = m + 1; j < n; j++) {
-            prev = x[j] = fma(-g[j], prev, x[j]);
-            rz += rr[j] * prev;
-        }
-    }
+    real rz = twist_back(n, side, g, xm, x, rr, side == 0 ? rr[m] * xm : 0.0);
     /* the sweep of a half without rows leaves x_m as its end */
     ends[2 * k + side] = side == 0 ? (m > 0 ? x[0] : xm) : (m + 1 < n ? x[n - 1] : xm);
     ends[3 * ncomp + 2 * k + side] = rz;
