@@ -4,7 +4,8 @@
 #   bench/gpu_session.sh PHASE... [-- OUTDIR]
 # PHASE: setup (find the vendor's OpenCL, build in build-gpu), test (ctest),
 #        bench (tightrope bench with and without the neighbour search),
-#        e2e (N = 2400 trefoil to 32.7435 on the GPU and the reference, side by side).
+#        e2e (N = 2400 trefoil to 32.7435 on the GPU, on the GPU at every level, and on
+#        the reference, side by side).
 # Logs go to $OUT (or OUTDIR, default /tmp/gpu-out).
 set -uo pipefail
 cd "$(dirname "$0")/.."
@@ -78,13 +79,17 @@ run_e2e() {
   local w=$b/e2e; mkdir -p $w
   $tr make torus 2 3 --n 2400 -o $w/s2400.vect
   local limit=${E2E_LIMIT:-520}
-  for d in opencl reference; do
+  # opencl: coarse levels below 2048 vertices on the reference (the default,
+  # --device-from); opencl-all: every level on the GPU
+  for d in opencl opencl-all reference; do
+    local dev=(--device "${d%-all}")
+    [ "$d" = opencl-all ] && dev+=(--device-from 0)
     ( $tr tighten $w/s2400.vect --n 150 --refine-to 2400 \
-        -o $w/e2e.$d.vect --time-limit "$limit" --target 32.7435 --device $d --json \
+        -o $w/e2e.$d.vect --time-limit "$limit" --target 32.7435 "${dev[@]}" --json \
         > "$OUT/e2e.$d.json" 2> "$OUT/e2e.$d.err" ) &
   done
   wait
-  for d in opencl reference; do
+  for d in opencl opencl-all reference; do
     echo "== $d"; cat "$OUT/e2e.$d.json"; tail -2 "$OUT/e2e.$d.err"
     $tr measure $w/e2e.$d.vect
   done

@@ -60,6 +60,9 @@ static void usage(FILE *out)
             "                     (default 300), at the end and on SIGINT/SIGTERM\n"
             "  --resume FILE      continue from a checkpoint\n"
             "  --device D         reference | auto | a device spec (default $TIGHTROPE_DEVICE or auto)\n"
+            "  --device-from N    with --refine-to, coarse levels of fewer than N vertices in all\n"
+            "                     run on the serial reference, where a device's cost per kernel\n"
+            "                     launch outweighs it (default 2048; 0: the device at every level)\n"
             "  --no-polish        skip the polish stage (a serial augmented-Lagrangian / L-BFGS\n"
             "                     minimisation on the host at the finest level, which by default\n"
             "                     takes the last 80%% of the finest level's time or runs when it jams)\n"
@@ -125,13 +128,13 @@ static void scale_curve(tr_curve *c, double f)
 int tr_cmd_tighten(int argc, char **argv)
 {
     const char *in = NULL, *out = NULL, *ckpt = NULL, *resume = NULL, *device = NULL;
-    long n = 0, refine_to = 0, steps = 0;
+    long n = 0, refine_to = 0, steps = 0, device_from = -1;
     double target = 0, residual = 1e-4, time_limit = 0, ckpt_every = 300;
     int residual_given = 0; /* the default residual is a stopping rule, not a goal */
     int json = 0, quiet = 0, no_polish = 0, kkt = -1; /* -1: up to KKT_AUTO_MAX_N */
     static const char *valued[] = {"-o", "--output", "--n", "--refine-to", "--target", "--residual",
                                    "--steps", "--time-limit", "--checkpoint", "--checkpoint-every",
-                                   "--resume", "--device"};
+                                   "--resume", "--device", "--device-from"};
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
         if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
@@ -186,6 +189,8 @@ int tr_cmd_tighten(int argc, char **argv)
                 bad = tr_arg_double(v, 0, DBL_MAX, &ckpt_every) || ckpt_every <= 0;
             else if (!strcmp(a, "--resume"))
                 resume = v;
+            else if (!strcmp(a, "--device-from"))
+                bad = tr_arg_long(v, 0, LONG_MAX, &device_from);
             else
                 device = v;
             if (bad) {
@@ -217,6 +222,8 @@ int tr_cmd_tighten(int argc, char **argv)
     tr_engine_params prm;
     tr_engine_params_default(&prm);
     prm.polish = !no_polish;
+    if (device_from >= 0)
+        prm.device_min_n = (size_t)device_from;
     tr_engine *e = NULL;
     int rc;
     if (resume) {

@@ -18,6 +18,7 @@
 
 struct tr_engine {
     char device[128];
+    int coarse_ref; /* this level runs on the reference, not device (device_min_n) */
     tr_engine_params prm;
     tr_backend be;
     tr_curve curve; /* topology, constraints; coordinates as of the last download */
@@ -88,6 +89,7 @@ void tr_engine_params_default(tr_engine_params *p)
     p->polish = 1;
     p->polish_share = 0.8;
     p->polish_coarse = 1;
+    p->device_min_n = 2048;
 }
 
 const char *tr_stop_reason_name(tr_stop_reason r)
@@ -220,7 +222,8 @@ static int settle(tr_engine *e, const char *what, double overlap_ok, tr_error *e
 
 static int open_backend(tr_engine *e, const tr_curve *c, tr_error *err)
 {
-    int rc = tr_backend_open(e->device[0] ? e->device : NULL, c, &e->be, err);
+    int rc = tr_backend_open(e->coarse_ref ? "reference" : e->device[0] ? e->device : NULL, c, &e->be,
+                             err);
     if (rc)
         return rc;
     e->contacts_valid = 0;
@@ -750,6 +753,30 @@ restore:
 
 /* ---- the run loop with levels, stops, checkpoints, progress ---- */
 
+/* Whether a level of n vertices in all runs on the reference instead of
+ * the chosen device (device_min_n): only coarse levels, and only when the
+ * chosen device is not the reference already. */
+static int wants_coarse_ref(const tr_engine *e, size_t n, int final_level)
+{
+    return !final_level && n < e->prm.device_min_n && !(!e->coarse_ref && !strcmp(e->be.ops->name, "reference"));
+}
+
+/* Moves the state to the backend the level wants (wants_coarse_ref): the
+ * positions and ebar go over as they are, the contact list is rebuilt. */
+static int level_backend(tr_engine *e, int coarse_ref, tr_error *err)
+{
+    if (coarse_ref == e->coarse_ref)
+        return TR_OK;
+    int rc = e->be.ops->download(e->be.state, e->curve.x, e->ebar, err);
+    if (rc)
+        return rc;
+    tr_backend_close(&e->be);
+    e->coarse_ref = coarse_ref;
+    if ((rc = open_backend(e, &e->curve, err)) || (rc = e->be.ops->upload(e->be.state, e->curve.x, e->ebar, err)))
+        return rc;
+    return TR_OK;
+}
+
 #define STALL_STEPS 200
 #define STALL_REL 1e-5
 
@@ -766,6 +793,11 @@ int tr_engine_run(tr_engine *e, const tr_engine_limits *lim, tr_stop_reason *why
     double stall_len = INFINITY;
     double time_left_at_level = lim->time_limit > 0 ? lim->time_limit - (e->elapsed_base + now_s() - e->t0) : 0;
     *why = TR_STOP_NONE;
+    {
+        int final_level = lim->refine_to == 0 || e->curve.nv / (size_t)e->curve.ncomp >= lim->refine_to;
+        if ((rc = level_backend(e, wants_coarse_ref(e, e->curve.nv, final_level), err)))
+            return rc;
+    }
     for (;;) {
         tr_engine_progress p;
         tr_engine_get_progress(e, &p);
@@ -832,6 +864,8 @@ int tr_engine_run(tr_engine *e, const tr_engine_limits *lim, tr_stop_reason *why
         if (level_done) {
             size_t n = e->curve.nv / (size_t)e->curve.ncomp;
             size_t next = 2 * n < lim->refine_to ? 2 * n : lim->refine_to;
+            /* tr_engine_refine opens the next level's backend */
+            e->coarse_ref = wants_coarse_ref(e, next * (size_t)e->curve.ncomp, next >= lim->refine_to);
             if ((rc = tr_engine_refine(e, next, err)))
                 return rc;
             level_t0 = now_s();

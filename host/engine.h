@@ -70,6 +70,13 @@ typedef struct tr_engine_params {
     int polish;
     double polish_share;
     int polish_coarse; /* also polish every coarse level before refining it */
+    /* Coarse levels (all but the last of a run with refine_to) with fewer
+     * vertices than this run on the serial reference instead of the chosen
+     * device: there an OpenCL device's cost per kernel launch outweighs its
+     * throughput (bench/RESULTS.md: PoCL took 91 s to the N = 1200 level of
+     * the N = 2400 trefoil, the reference 28 s). 0: the chosen device at
+     * every level. */
+    size_t device_min_n;
 } tr_engine_params;
 
 void tr_engine_params_default(tr_engine_params *p);

@@ -45,3 +45,10 @@ tr_engine_test(tighten_json_resume 0 DIR ${_eng_dir}/resume ONLY "s.vect;t.vect;
 tr_engine_test(tighten_residual_kkt 0 DIR ${_eng_dir}/reskkt ONLY "c.vect;t.vect" OUT ${_eng_dir}/reskkt/t.vect
   MATCH "\n# stop jammed\n# kkt_residual [0-9][.][0-9]+e-0[4-9] "
   CMD sh -c "'${_tr}' make clasp --n 40 -o '${_eng_dir}/reskkt/c.vect' && exec '${_tr}' tighten '${_eng_dir}/reskkt/c.vect' -o '${_eng_dir}/reskkt/t.vect' --residual 1e-3 --quiet --device reference")
+# Coarse levels below --device-from run on the serial reference, the final
+# level on the chosen device (tests/scripts/device_levels.sh; skipped
+# without an OpenCL device).
+add_test(NAME tighten_device_levels
+  COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/scripts/device_levels.sh $<TARGET_FILE:tightrope>
+          ${CMAKE_CURRENT_BINARY_DIR}/cli_tighten/device_levels)
+set_tests_properties(tighten_device_levels PROPERTIES SKIP_RETURN_CODE 77 ENVIRONMENT "${TR_TEST_ENV}")
