@@ -34,6 +34,26 @@ __kernel void curv_limits(__global const real *ebar, const int ncomp, const real
     }
 }
 
+/* Vertices i .. i + 3 lie inside one run of the chain (each one's next is
+ * the one after it; with prev, also each one's prev the one before). */
+inline bool chain_run4(int i, __global const int *next, __global const int *prev)
+{
+    int4 ids = (int4)(i, i + 1, i + 2, i + 3);
+    int4 ok = vload4(0, next + i) == ids + 1;
+    if (prev) {
+        if (i == 0) /* an open chain's first vertex has prev -1 = i - 1 */
+            return false;
+        ok &= vload4(0, prev + i) == ids - 1;
+    }
+    return all(ok);
+}
+
+/* Rows r .. r + 3 are all active. */
+inline bool active4(__global const int *ract, int r)
+{
+    return all(vload4(0, ract + r) != 0);
+}
+
 #ifdef TR_BLOCK_ITEMS
 /* Four consecutive rows a .. a + 3 of an n x 3 array as x, y and z lanes. */
 typedef struct {
@@ -51,31 +71,12 @@ inline rows4 load_rows4(__global const real *p, int a)
     return r;
 }
 
-/* Vertices i .. i + 3 lie inside one run of the chain (each one's next is
- * the one after it; with prev, also each one's prev the one before). */
-inline bool chain_run4(int i, __global const int *next, __global const int *prev)
-{
-    int4 ids = (int4)(i, i + 1, i + 2, i + 3);
-    int4 ok = vload4(0, next + i) == ids + 1;
-    if (prev) {
-        if (i == 0) /* an open chain's first vertex has prev -1 = i - 1 */
-            return false;
-        ok &= vload4(0, prev + i) == ids - 1;
-    }
-    return all(ok);
-}
-
 inline void store_rows4(rows4 r, __global real *p, int a)
 {
     __global real *q = p + 3 * (long)a;
     vstore4((real4)(r.x.s0, r.y.s0, r.z.s0, r.x.s1), 0, q);
     vstore4((real4)(r.y.s1, r.z.s1, r.x.s2, r.y.s2), 1, q);
     vstore4((real4)(r.z.s2, r.x.s3, r.y.s3, r.z.s3), 2, q);
-}
-
-inline bool active4(__global const int *ract, int r)
-{
-    return all(vload4(0, ract + r) != 0);
 }
 #endif
 
@@ -469,9 +470,8 @@ __kernel void block_flags(__global const int *ract, __global const int *next,
     TR_ITEMS(b, nv / 4) {
         int i = 4 * b;
         uchar f = 0;
-        if (i > 0 && all(vload4(0, next + i) == (int4)(i + 1, i + 2, i + 3, i + 4)) &&
-            all(vload4(0, prev + i) == (int4)(i - 1, i, i + 1, i + 2))) {
-            bool edges = all(vload4(0, ract + i) != 0), curv = all(vload4(0, ract + nv + i) != 0);
+        if (chain_run4(i, next, prev)) {
+            bool edges = active4(ract, i), curv = active4(ract, nv + i);
             if (edges && curv && ract[nv + i - 1] && ract[nv + i + 4] &&
                 all(vload4(0, aadjn + i) == 0))
                 f |= JT_RUN;
