@@ -753,12 +753,20 @@ restore:
 
 /* ---- the run loop with levels, stops, checkpoints, progress ---- */
 
+/* The last level of a run: no refinement asked, or n_per_comp vertices per
+ * component reach refine_to. */
+static int is_final_level(const tr_engine_limits *lim, size_t n_per_comp)
+{
+    return lim->refine_to == 0 || n_per_comp >= lim->refine_to;
+}
+
 /* Whether a level of n vertices in all runs on the reference instead of
  * the chosen device (device_min_n): only coarse levels, and only when the
  * chosen device is not the reference already. */
 static int wants_coarse_ref(const tr_engine *e, size_t n, int final_level)
 {
-    return !final_level && n < e->prm.device_min_n && !(!e->coarse_ref && !strcmp(e->be.ops->name, "reference"));
+    int chosen_is_ref = !e->coarse_ref && !strcmp(e->be.ops->name, "reference");
+    return !final_level && n < e->prm.device_min_n && !chosen_is_ref;
 }
 
 /* Moves the state to the backend the level wants (wants_coarse_ref): the
@@ -772,9 +780,9 @@ static int level_backend(tr_engine *e, int coarse_ref, tr_error *err)
         return rc;
     tr_backend_close(&e->be);
     e->coarse_ref = coarse_ref;
-    if ((rc = open_backend(e, &e->curve, err)) || (rc = e->be.ops->upload(e->be.state, e->curve.x, e->ebar, err)))
+    if ((rc = open_backend(e, &e->curve, err)))
         return rc;
-    return TR_OK;
+    return e->be.ops->upload(e->be.state, e->curve.x, e->ebar, err);
 }
 
 #define STALL_STEPS 200
@@ -793,15 +801,14 @@ int tr_engine_run(tr_engine *e, const tr_engine_limits *lim, tr_stop_reason *why
     double stall_len = INFINITY;
     double time_left_at_level = lim->time_limit > 0 ? lim->time_limit - (e->elapsed_base + now_s() - e->t0) : 0;
     *why = TR_STOP_NONE;
-    {
-        int final_level = lim->refine_to == 0 || e->curve.nv / (size_t)e->curve.ncomp >= lim->refine_to;
-        if ((rc = level_backend(e, wants_coarse_ref(e, e->curve.nv, final_level), err)))
-            return rc;
-    }
+    rc = level_backend(e, wants_coarse_ref(e, e->curve.nv, is_final_level(lim, e->curve.nv / (size_t)e->curve.ncomp)),
+                       err);
+    if (rc)
+        return rc;
     for (;;) {
         tr_engine_progress p;
         tr_engine_get_progress(e, &p);
-        int final_level = lim->refine_to == 0 || e->curve.nv / (size_t)e->curve.ncomp >= lim->refine_to;
+        int final_level = is_final_level(lim, e->curve.nv / (size_t)e->curve.ncomp);
         tr_stop_reason stop = TR_STOP_NONE;
         int stalled = 0;
         if (lim->time_limit <= 0 && e->steps - stall_step >= STALL_STEPS) {
@@ -865,7 +872,7 @@ int tr_engine_run(tr_engine *e, const tr_engine_limits *lim, tr_stop_reason *why
             size_t n = e->curve.nv / (size_t)e->curve.ncomp;
             size_t next = 2 * n < lim->refine_to ? 2 * n : lim->refine_to;
             /* tr_engine_refine opens the next level's backend */
-            e->coarse_ref = wants_coarse_ref(e, next * (size_t)e->curve.ncomp, next >= lim->refine_to);
+            e->coarse_ref = wants_coarse_ref(e, next * (size_t)e->curve.ncomp, is_final_level(lim, next));
             if ((rc = tr_engine_refine(e, next, err)))
                 return rc;
             level_t0 = now_s();
