@@ -128,7 +128,9 @@
  *          g_i     = sum_rows y_r dC_r/dx_i   (a per-vertex gather, order below)
  *          dx_i    = P_i g_i
  *          debar_k = (sum_{rows r of comp k} y_r dC_r/debar_k) / (ebar_weight ne_k)
- *          (A y)_r = dC_r/dx . dx + dC_r/debar . debar + reg * y_r   (active r)
+ *          (A y)_r = (dC_r/dx . dx + reg * y_r) + dC_r/debar . debar   (active r;
+ *                    the debar term last: a device may add it after
+ *                    the sum over components that debar needs)
  *        Gather order for g_i: edge row prev(i) (+u_prev), edge row i (-u_i),
  *        curvature row prev(i) (-gb_prev: i is its next), curvature row i
  *        (+gb_i, then -ga_i), curvature row next(i) (+ga_next: i is its

@@ -533,7 +533,7 @@ static void apply_J(ref_state *s, const tr_correct_params *prm, const double *y,
         }
         double d[3];
         v3_sub(d, dx + 3 * (size_t)s->next[a], dx + 3 * a);
-        out[a] = v3_dot(s->rgrad + 3 * a, d) - s->debar[s->comp[a]] + prm->reg * y[a];
+        out[a] = (v3_dot(s->rgrad + 3 * a, d) + prm->reg * y[a]) - s->debar[s->comp[a]];
     }
     for (size_t i = 0; i < nv; i++) {
         size_t r = nv + i;
@@ -546,7 +546,7 @@ static void apply_J(ref_state *s, const tr_correct_params *prm, const double *y,
         double v = 0.0;
         for (int k = 0; k < 3; k++)
             v += ga[k] * dp[k] + (gb[k] - ga[k]) * di[k] - gb[k] * dn[k];
-        out[r] = v + s->cdeb[i] * s->debar[s->comp[i]] + prm->reg * y[r];
+        out[r] = (v + prm->reg * y[r]) + s->cdeb[i] * s->debar[s->comp[i]];
     }
     size_t nloop = s->compact ? s->nact : s->np;
     for (size_t l = 0; l < nloop; l++) {

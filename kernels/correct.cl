@@ -729,7 +729,7 @@ inline real j_row(int l, __global const real *dx, __global const real *debar,
         out[l] = 0.0;
     } else if (r < nv) {
         real3 d = vload3(next[r], dx) - vload3(r, dx);
-        out[l] = o = tr_dot3(vload3(r, rgrad), d) - debar[comp[r]] + reg * y[l];
+        out[l] = o = (tr_dot3(vload3(r, rgrad), d) + reg * y[l]) - debar[comp[r]];
     } else if (r < 2 * nv) {
         int i = r - nv;
         real3 ga = vload3(r, rgrad), gb = vload3(i, cgq);
@@ -739,7 +739,7 @@ inline real j_row(int l, __global const real *dx, __global const real *debar,
         v += t.x;
         v += t.y;
         v += t.z;
-        out[l] = o = v + cdeb[i] * debar[comp[i]] + reg * y[l];
+        out[l] = o = (v + reg * y[l]) + cdeb[i] * debar[comp[i]];
     } else { /* an active strut row: act_gather's copy */
         int m = l - 2 * nv, a = sab[2 * m], b = sab[2 * m + 1];
         real ss = sw[5 * m], tt = sw[5 * m + 1];
@@ -785,7 +785,7 @@ __kernel void j_rows(__global const real *dx, __global const real *debar,
             rows4 g = load_rows4(rgrad, i);
             real4 dot = g.x * (dn.x - di.x) + g.y * (dn.y - di.y) + g.z * (dn.z - di.z);
             real4 ye = vload4(0, y + i);
-            real4 oe = dot - debar[comp[i]] + reg * ye;
+            real4 oe = (dot + reg * ye) - debar[comp[i]];
             vstore4(oe, 0, out + i);
             rows4 ga = load_rows4(rgrad, nv + i), gb = load_rows4(cgq, i);
             real4 v = (real4)(0.0);
@@ -793,7 +793,7 @@ __kernel void j_rows(__global const real *dx, __global const real *debar,
             v += ga.y * dp.y + (gb.y - ga.y) * di.y - gb.y * dn.y;
             v += ga.z * dp.z + (gb.z - ga.z) * di.z - gb.z * dn.z;
             real4 yc = vload4(0, y + nv + i);
-            real4 oc = v + vload4(0, cdeb + i) * debar[comp[i]] + reg * yc;
+            real4 oc = (v + reg * yc) + vload4(0, cdeb + i) * debar[comp[i]];
             vstore4(oc, 0, out + nv + i);
             sum4 += ye * oe;
             sum4 += yc * oc;
