@@ -484,11 +484,76 @@ __kernel void block_flags(__global const int *ract, __global const int *next,
     }
 }
 
-/* dx_i = P_i (sum over rows y_r dC_r/dx_i), in the order backend.h fixes;
- * y by row list position (the chain rows' positions are their rows). On CPU
- * devices four consecutive vertices inside a run of the chain, with all
- * their curvature rows active and no struts, go at once in double4 lanes
- * (the same terms in the same order: the same bits), as in j_rows; and the
+/* dx_i = P_i (sum over rows y_r dC_r/dx_i) at one vertex, in the order
+ * backend.h fixes; y by row list position (the chain rows' positions are
+ * their rows). jt_vertex's and jjt_rows' scalar path. */
+inline real3 jt_at(int i, __global const real *y, __global const real *rgrad,
+                   __global const real *cgq, __global const int *ract, __global const int *next,
+                   __global const int *prev, __global const int *aadj, __global const int *aadjn,
+                   __global const int *aaoff, __global const real *acoef,
+                   __global const real *agrad, __global const int *cidx, __global const real *cst,
+                   const int nv)
+{
+    real3 g = (real3)(0.0);
+    int pv = prev[i], nx = next[i];
+    if (pv >= 0)
+        g = g + y[pv] * vload3(pv, rgrad);
+    if (nx >= 0)
+        g = g + (-y[i]) * vload3(i, rgrad);
+    if (pv >= 0 && ract[nv + pv])
+        g = g + (-y[nv + pv]) * vload3(pv, cgq);
+    if (ract[nv + i]) {
+        g = g + y[nv + i] * vload3(i, cgq);
+        g = g + (-y[nv + i]) * vload3(nv + i, rgrad);
+    }
+    if (nx >= 0 && ract[nv + nx])
+        g = g + y[nv + nx] * vload3(nv + nx, rgrad);
+    for (int k = aaoff[i], e = aaoff[i] + aadjn[i]; k < e; k++)
+        g = g + (acoef[k] * y[aadj[k]]) * vload3(k, agrad);
+    return tr_project_motion(cidx, cst, i, g);
+}
+#define JT_AT(i) jt_at(i, y, rgrad, cgq, ract, next, prev, aadj, aadjn, aaoff, acoef, agrad, cidx, cst, nv)
+
+#ifdef TR_BLOCK_ITEMS
+/* The unprojected sums of jt_at at the vertices i .. i + 3 of a JT_RUN
+ * block (block_flags), in double4 lanes: jt_at's terms in jt_at's order,
+ * so the same bits. */
+inline rows4 jt_run4(int i, __global const real *y, __global const real *rgrad,
+                     __global const real *cgq, const int nv)
+{
+    real4 yp = vload4(0, y + i - 1), yi = vload4(0, y + i);
+    real4 cp = vload4(0, y + nv + i - 1), ci = vload4(0, y + nv + i), cn = vload4(0, y + nv + i + 1);
+    rows4 rp = load_rows4(rgrad, i - 1), ri = load_rows4(rgrad, i);
+    rows4 qp = load_rows4(cgq, i - 1), qi = load_rows4(cgq, i);
+    rows4 ki = load_rows4(rgrad, nv + i), kn = load_rows4(rgrad, nv + i + 1);
+    rows4 g;
+#define JT_LANES(c)                                                                        \
+    g.c = (real4)(0.0) + yp * rp.c;                                                       \
+    g.c = g.c + (-yi) * ri.c;                                                             \
+    g.c = g.c + (-cp) * qp.c;                                                             \
+    g.c = g.c + ci * qi.c;                                                                \
+    g.c = g.c + (-ci) * ki.c;                                                             \
+    g.c = g.c + cn * kn.c;
+    JT_LANES(x)
+    JT_LANES(y)
+    JT_LANES(z)
+#undef JT_LANES
+    return g;
+}
+
+inline real lane4(real4 v, int k) { return k == 0 ? v.s0 : k == 1 ? v.s1 : k == 2 ? v.s2 : v.s3; }
+
+/* Lane k of g, projected (a constrained vertex's P_i). */
+inline real3 jt_lane_projected(rows4 g, int k, __global const int *cidx, __global const real *cst,
+                               int i)
+{
+    return tr_project_motion(cidx, cst, i + k, (real3)(lane4(g.x, k), lane4(g.y, k), lane4(g.z, k)));
+}
+#endif
+
+/* dx_i = jt_at for every vertex. On CPU devices four consecutive vertices
+ * inside a run of the chain, with all their curvature rows active and no
+ * struts, go at once in double4 lanes (jt_run4); and the
  * items also sum jt_ebar_partial's terms of their vertices' edge and
  * curvature rows, which they read anyway, into ebar_part[k G + g] for
  * component k and item g of G (0 for components the item has no vertex
@@ -524,56 +589,21 @@ __kernel void jt_vertex(__global const real *y, __global const real *rgrad,
         }
         uchar f = (i & 3) == 0 && i + 4 <= end ? flags[i >> 2] : 0;
         if (f & JT_RUN) {
-            real4 yp = vload4(0, y + i - 1), yi = vload4(0, y + i);
-            real4 cp = vload4(0, y + nv + i - 1), ci = vload4(0, y + nv + i),
-                  cn = vload4(0, y + nv + i + 1);
-            rows4 rp = load_rows4(rgrad, i - 1), ri = load_rows4(rgrad, i);
-            rows4 qp = load_rows4(cgq, i - 1), qi = load_rows4(cgq, i);
-            rows4 ki = load_rows4(rgrad, nv + i), kn = load_rows4(rgrad, nv + i + 1);
-            rows4 g;
-#define JT_LANES(c)                                                                        \
-    g.c = (real4)(0.0) + yp * rp.c;                                                       \
-    g.c = g.c + (-yi) * ri.c;                                                             \
-    g.c = g.c + (-cp) * qp.c;                                                             \
-    g.c = g.c + ci * qi.c;                                                                \
-    g.c = g.c + (-ci) * ki.c;                                                             \
-    g.c = g.c + cn * kn.c;
-            JT_LANES(x)
-            JT_LANES(y)
-            JT_LANES(z)
-#undef JT_LANES
+            rows4 g = jt_run4(i, y, rgrad, cgq, nv);
             /* jt_ebar_partial's terms (the rows are active) */
-            esum4 += -yi;
-            esum4 += vload4(0, cdeb + i) * ci;
+            esum4 += -vload4(0, y + i);
+            esum4 += vload4(0, cdeb + i) * vload4(0, y + nv + i);
             if (f & JT_FREE) {
                 store_rows4(g, dx, i);
             } else {
-                vstore3(tr_project_motion(cidx, cst, i, (real3)(g.x.s0, g.y.s0, g.z.s0)), i, dx);
-                vstore3(tr_project_motion(cidx, cst, i + 1, (real3)(g.x.s1, g.y.s1, g.z.s1)), i + 1, dx);
-                vstore3(tr_project_motion(cidx, cst, i + 2, (real3)(g.x.s2, g.y.s2, g.z.s2)), i + 2, dx);
-                vstore3(tr_project_motion(cidx, cst, i + 3, (real3)(g.x.s3, g.y.s3, g.z.s3)), i + 3, dx);
+                for (int k = 0; k < 4; k++)
+                    vstore3(jt_lane_projected(g, k, cidx, cst, i), i + k, dx);
             }
             i += 4;
             continue;
         }
 #endif
-        real3 g = (real3)(0.0);
-        int pv = prev[i], nx = next[i];
-        if (pv >= 0)
-            g = g + y[pv] * vload3(pv, rgrad);
-        if (nx >= 0)
-            g = g + (-y[i]) * vload3(i, rgrad);
-        if (pv >= 0 && ract[nv + pv])
-            g = g + (-y[nv + pv]) * vload3(pv, cgq);
-        if (ract[nv + i]) {
-            g = g + y[nv + i] * vload3(i, cgq);
-            g = g + (-y[nv + i]) * vload3(nv + i, rgrad);
-        }
-        if (nx >= 0 && ract[nv + nx])
-            g = g + y[nv + nx] * vload3(nv + nx, rgrad);
-        for (int k = aaoff[i], e = aaoff[i] + aadjn[i]; k < e; k++)
-            g = g + (acoef[k] * y[aadj[k]]) * vload3(k, agrad);
-        vstore3(tr_project_motion(cidx, cst, i, g), i, dx);
+        vstore3(JT_AT(i), i, dx);
 #ifdef TR_BLOCK_ITEMS
         if (ract[i])
             esum += -y[i];
