@@ -29,7 +29,7 @@
     X(twist_factor_mid) X(twist_sweep_rows) X(twist_back_rows) X(twist_ring_fact)              \
     X(twist_ring_fix) X(adj_active_count) X(adj_active_write) X(act_count) X(act_scan)         \
     X(act_write) X(act_gather) X(adj_active_sort) X(pairs_neighbours) X(rows_strut_min)     \
-    X(cg_p_ring) X(block_flags)
+    X(cg_p_ring) X(block_flags) X(jjt_rows) X(j_struts)
 #define ENUM(k) K_##k,
 #define NAME(k) #k,
 enum { KERNELS(ENUM) K_COUNT };
@@ -487,8 +487,10 @@ static int apply_JT(cl_state *s, const tr_correct_params *prm, cl_mem y, tr_erro
     if (!s->ctx.block_items) /* on CPU devices jt_vertex's items sum them */
         TR_TRY(run_groups(s, K_jt_ebar_partial, (size_t)s->ncomp * (size_t)G, err, A(y), A(s->ract),
                           A(s->start), A(s->cdeb), A(nv), A(G), A(s->ebar_part), END));
+    cl_mem none = NULL;
+    int zero = 0;
     TR_TRY(run_groups(s, K_jt_ebar, (size_t)s->ncomp, err, A(s->ebar_part), A(s->ne), A(G), A(w),
-                      A(s->debar), END));
+                      A(s->debar), A(none), A(zero), END));
 cleanup:
     return rc;
 }
@@ -635,8 +637,9 @@ static int solve_rows(cl_state *s, tr_error *err)
         TR_TRY(buffer(s, &s->agrad, 3 * c * sizeof(double), err));
         s->aacap = c;
     }
-    /* j_rows' and cg_r's dot product partials, one per work-item */
-    TR_TRY(partials(s, tr_cl_items_global(&s->ctx, (size_t)s->cg_nl), err));
+    /* j_rows' and cg_r's dot product partials, one per work-item (on CPU
+     * devices jjt_rows', jt_ebar's and j_struts', cg_iterate) */
+    TR_TRY(partials(s, 2 * tr_cl_items_global(&s->ctx, (size_t)s->cg_nl) + (size_t)s->ncomp, err));
     int izero = 0;
     TR_CL_CHECK(clEnqueueFillBuffer(s->ctx.queue, s->aadjn, &izero, sizeof izero, 0,
                                     (size_t)nv * sizeof(int), 0, NULL, NULL));
@@ -662,12 +665,40 @@ cleanup:
     return rc;
 }
 
-/* j_rows' global size: one item per row list position on a GPU; on a CPU
- * device one unit per vertex (its edge and curvature rows) and per strut
- * row (kernels/correct.cl j_rows). */
+/* j_rows' and cg_r's global size: one item per row list position on a GPU;
+ * on a CPU device one unit per vertex (its edge and curvature rows) and per
+ * strut row (kernels/correct.cl j_rows). */
 static size_t jrows_units(const cl_state *s, int nl)
 {
     return s->ctx.block_items ? (size_t)(nl - s->nv) : (size_t)nl;
+}
+
+/* q = A p on a CPU device (kernels/correct.cl jjt_rows): the chain rows
+ * less their debar term (cg_r adds it), debar, the strut rows, and p . q
+ * from jjt_rows' items' shares, then jt_ebar's debar term's shares per
+ * component, then j_struts' items' shares. */
+static int apply_JJT(cl_state *s, const tr_correct_params *prm, tr_error *err)
+{
+    int rc = TR_OK;
+    int nv = s->nv, nl = s->cg_nl, G = s->ebar_groups;
+    int iv = (int)tr_cl_items_global(&s->ctx, (size_t)nv), off = iv + s->ncomp;
+    double reg = prm->reg, w = prm->ebar_weight;
+    TR_TRY(run(s, K_jjt_rows, (size_t)nv, err, A(s->p), A(s->rgrad), A(s->cgq), A(s->ract),
+               A(s->topo.next), A(s->topo.prev), A(s->aadj), A(s->aadjn), A(s->aaoff), A(s->acoef),
+               A(s->agrad), A(s->cidx), A(s->cst), A(nv), A(s->dx), A(s->cdeb), A(s->topo.comp),
+               A(s->ncomp), A(s->ebar_part), A(s->blkf), A(reg), A(s->q), A(s->part), END));
+    TR_TRY(run_groups(s, K_jt_ebar, (size_t)s->ncomp, err, A(s->ebar_part), A(s->ne), A(G), A(w),
+                      A(s->debar), A(s->part), A(iv), END));
+    if (nl > 2 * nv) {
+        TR_TRY(run(s, K_j_struts, (size_t)(nl - 2 * nv), err, A(s->dx), A(s->debar), A(s->cdeb),
+                   A(s->rgrad), A(s->cgq), A(s->ract), A(s->topo.next), A(s->topo.prev),
+                   A(s->topo.comp), A(s->sab), A(s->sw), A(s->p), A(nv), A(reg), A(s->act), A(nl),
+                   A(s->q), A(s->part), A(off), END));
+        off += (int)tr_cl_items_global(&s->ctx, (size_t)(nl - 2 * nv));
+    }
+    TR_TRY(tr_cl_reduce_sum(&s->red, &s->ctx, s->part, off, s->sc, SC_PQ, err));
+cleanup:
+    return rc;
 }
 
 /* Preconditioned CG on A y = b from y = 0, r = b (already in place, by row
@@ -679,9 +710,9 @@ static int cg_iterate(cl_state *s, const tr_correct_params *prm, int *iters, tr_
     int rc = TR_OK;
     int nv = s->nv, nl = s->cg_nl;
     /* the dot products p . q and r . r come as partials per work-item of
-     * j_rows and cg_r (solve_rows reserved them) */
-    int items = (int)tr_cl_items_global(&s->ctx, (size_t)nl);
-    int jitems = (int)tr_cl_items_global(&s->ctx, jrows_units(s, nl));
+     * j_rows (on CPU devices apply_JJT's kernels) and cg_r (solve_rows
+     * reserved them) */
+    int items = (int)tr_cl_items_global(&s->ctx, jrows_units(s, nl));
     cl_mem rzp = s->tri_twist ? s->rzp : NULL; /* cg_r's r . z shares: the twisted path's */
     double reg = prm->reg, w = prm->ebar_weight, tol2 = prm->cg_rtol * prm->cg_rtol, it;
     TR_CL_CHECK(clEnqueueWriteBuffer(s->ctx.queue, s->sc, CL_FALSE, SC_TOL2 * sizeof(double),
@@ -716,14 +747,19 @@ static int cg_iterate(cl_state *s, const tr_correct_params *prm, int *iters, tr_
             if (done != 0.0)
                 break;
         }
-        TR_TRY(apply_JT(s, prm, s->p, err));
-        TR_TRY(run(s, K_j_rows, jrows_units(s, nl), err, A(s->dx), A(s->debar), A(s->cdeb), A(s->rgrad),
-                   A(s->cgq), A(s->ract), A(s->topo.next), A(s->topo.prev), A(s->topo.comp),
-                   A(s->sab), A(s->sw), A(s->p), A(nv), A(reg), A(s->act), A(nl), A(s->q), A(s->part),
-                   A(s->blkf), END));
-        TR_TRY(tr_cl_reduce_sum(&s->red, &s->ctx, s->part, jitems, s->sc, SC_PQ, err));
-        TR_TRY(run(s, K_cg_r, (size_t)nl, err, A(s->r), A(s->q), A(s->sc), A(nl),
-                   A(s->part), A(s->pdiag), A(s->ract), A(nv), A(s->act), A(s->z), A(rzp), END));
+        if (s->ctx.block_items)
+            TR_TRY(apply_JJT(s, prm, err));
+        else {
+            TR_TRY(apply_JT(s, prm, s->p, err));
+            TR_TRY(run(s, K_j_rows, jrows_units(s, nl), err, A(s->dx), A(s->debar), A(s->cdeb),
+                       A(s->rgrad), A(s->cgq), A(s->ract), A(s->topo.next), A(s->topo.prev),
+                       A(s->topo.comp), A(s->sab), A(s->sw), A(s->p), A(nv), A(reg), A(s->act),
+                       A(nl), A(s->q), A(s->part), A(s->blkf), END));
+            TR_TRY(tr_cl_reduce_sum(&s->red, &s->ctx, s->part, items, s->sc, SC_PQ, err));
+        }
+        TR_TRY(run(s, K_cg_r, jrows_units(s, nl), err, A(s->r), A(s->q), A(s->sc), A(nl),
+                   A(s->part), A(s->pdiag), A(s->ract), A(nv), A(s->act), A(s->z), A(rzp),
+                   A(s->debar), A(s->cdeb), A(s->topo.comp), A(s->blkf), END));
         TR_TRY(tr_cl_reduce_sum(&s->red, &s->ctx, s->part, items, s->sc, SC_RR, err));
         TR_TRY(precond_apply(s, s->r, 0, 1, items, err));
         if (s->tri_twist) {

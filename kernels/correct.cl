@@ -667,10 +667,12 @@ void jt_ebar_partial(__global const real *y, __global const int *ract,
         part[get_group_id(0)] = s[0];
 }
 
-/* ... and work-group k adds component k's G partial sums. */
+/* ... and work-group k adds component k's G partial sums. With pq (jjt_rows'
+ * CG, else NULL) it also puts debar_k times that sum, the debar term's share
+ * of p . q, at pq[pq_off + k]. */
 __kernel __attribute__((reqd_work_group_size(TR_LOCAL_SIZE, 1, 1)))
 void jt_ebar(__global const real *part, __global const int *ne, const int groups_per_comp,
-             const real ebar_weight, __global real *debar)
+             const real ebar_weight, __global real *debar, __global real *pq, const int pq_off)
 {
     __local real s[TR_LOCAL_SIZE];
     int G = groups_per_comp, k = get_group_id(0), l = get_local_id(0);
@@ -680,8 +682,12 @@ void jt_ebar(__global const real *part, __global const int *ne, const int groups
     s[l] = sum;
     barrier(CLK_LOCAL_MEM_FENCE);
     TREE(tr_add, s, l)
-    if (l == 0)
-        debar[k] = ne[k] ? s[0] / (ebar_weight * (real)ne[k]) : 0.0;
+    if (l == 0) {
+        real d = ne[k] ? s[0] / (ebar_weight * (real)ne[k]) : 0.0;
+        debar[k] = d;
+        if (pq)
+            pq[pq_off + k] = d * s[0];
+    }
 }
 
 /* Active strut rows per block of bsize list entries. */
@@ -847,6 +853,230 @@ __kernel void j_rows(__global const real *dx, __global const real *debar,
     TR_ITEM_PARTIAL(yout, sum);
 }
 
+/* jjt_rows' private window: the dx of a tile of JJ_TILE vertices, the
+ * four before it and the four after it, as x, y and z arrays (the lanes
+ * load them as they are, without load_rows4's shuffles). Small tiles keep
+ * the two halves' loads and arithmetic interleaved: at N = 10^6 (rows not in
+ * cache) 64-vertex tiles ran the pass at 4.4 ms, 16-vertex ones at 3.1. */
+#define JJ_TILE 16
+#define JJ_WINDOW (JJ_TILE + 8)
+
+#ifdef TR_BLOCK_ITEMS
+/* The ebar sums' running state of a jjt_rows or jt_vertex item. */
+typedef struct {
+    real esum;
+    real4 esum4;
+    int kc;
+} ebar_run;
+
+/* Before adding vertex i's terms: close the item's share of component kc
+ * when i starts another. */
+inline void ebar_next(ebar_run *e, int i, __global const int *comp, __global real *ebar_part, int G,
+                      int item)
+{
+    if (comp[i] != e->kc) {
+        ebar_part[e->kc * G + item] = e->esum + ((e->esum4.s0 + e->esum4.s1) + (e->esum4.s2 + e->esum4.s3));
+        e->esum = 0.0;
+        e->esum4 = (real4)(0.0);
+        e->kc = comp[i];
+    }
+}
+
+/* dx of the item's own vertices [a, b) into the window (w: the window's
+ * first vertex), with their ebar terms: jt_vertex's loop, four at a time on
+ * JT_RUN blocks that end by i1 (jt_vertex's blocks), and dx to global
+ * memory at the ends of active struts, which j_struts reads. */
+inline void jjt_span(int a, int b, int i1, int w, real *tx, real *ty, real *tz, ebar_run *e,
+                     __global const real *y, __global const real *rgrad, __global const real *cgq,
+                     __global const int *ract, __global const int *next, __global const int *prev,
+                     __global const int *aadj, __global const int *aadjn, __global const int *aaoff,
+                     __global const real *acoef, __global const real *agrad,
+                     __global const int *cidx, __global const real *cst, const int nv,
+                     __global real *dx, __global const real *cdeb, __global const int *comp,
+                     __global real *ebar_part, __global const uchar *flags, int G, int item)
+{
+    for (int i = a; i < b;) {
+        ebar_next(e, i, comp, ebar_part, G, item);
+        uchar f = (i & 3) == 0 && i + 4 <= i1 ? flags[i >> 2] : 0;
+        if (f & JT_RUN) {
+            rows4 g = jt_run4(i, y, rgrad, cgq, nv);
+            e->esum4 += -vload4(0, y + i);
+            e->esum4 += vload4(0, cdeb + i) * vload4(0, y + nv + i);
+            if (!(f & JT_FREE)) {
+                for (int k = 0; k < 4; k++) {
+                    real3 v = jt_lane_projected(g, k, cidx, cst, i);
+                    tx[i + k - w] = v.x;
+                    ty[i + k - w] = v.y;
+                    tz[i + k - w] = v.z;
+                }
+            } else {
+                vstore4(g.x, 0, tx + i - w);
+                vstore4(g.y, 0, ty + i - w);
+                vstore4(g.z, 0, tz + i - w);
+            }
+            i += 4;
+            continue;
+        }
+        real3 g = JT_AT(i);
+        tx[i - w] = g.x;
+        ty[i - w] = g.y;
+        tz[i - w] = g.z;
+        if (aadjn[i])
+            vstore3(g, i, dx);
+        if (ract[i])
+            e->esum += -y[i];
+        if (ract[nv + i])
+            e->esum += cdeb[i] * y[nv + i];
+        i++;
+    }
+}
+#endif
+
+/* One CG iteration's q = J (J^T p) + reg p on the chain rows, for CPU
+ * devices: jt_vertex and j_rows' vertex units in one pass. Why: at
+ * N = 10^6 the CG is bound by memory, and the two kernels moved dx out and
+ * back (72 bytes a vertex) and read the rows' gradients twice (80 more).
+ * Each item walks its vertices (jt_vertex's partition) a tile at a time:
+ * dx of the four vertices after the tile (jt_run4 on JT_RUN blocks, jt_at
+ * elsewhere: the same bits as jt_vertex, and jt_vertex's ebar partial sums)
+ * into the window, then the tile's edge and curvature rows from the window
+ * (a neighbour outside it, across a closed component's seam, is worked out
+ * again by jt_at); the window then slides by the tile. What cannot be done
+ * in the pass:
+ * - the debar term, which needs every item's ebar sums: out holds
+ *   dC_r/dx . dx + reg p_r, and cg_r adds dC_r/debar . debar (backend.h
+ *   puts that term last for this), while jt_ebar puts the debar term's
+ *   share of p . q, debar_k (sum_k), in yout after the items' shares;
+ * - the strut rows, which read dx anywhere: j_struts, after this pass, from
+ *   dx written here at the vertices with active struts (the only ones they
+ *   read; a JT_RUN block has none). */
+__kernel void jjt_rows(__global const real *y, __global const real *rgrad,
+                       __global const real *cgq, __global const int *ract, __global const int *next,
+                       __global const int *prev, __global const int *aadj,
+                       __global const int *aadjn, __global const int *aaoff,
+                       __global const real *acoef, __global const real *agrad,
+                       __global const int *cidx, __global const real *cst, const int nv,
+                       __global real *dx, __global const real *cdeb, __global const int *comp,
+                       const int ncomp, __global real *ebar_part, __global const uchar *flags,
+                       const real reg, __global real *out, __global real *yout)
+{
+#ifdef TR_BLOCK_ITEMS
+    real tx[JJ_WINDOW], ty[JJ_WINDOW], tz[JJ_WINDOW];
+    int i0 = tr_items_first4(nv), i1 = tr_items_end4(nv);
+    int G = get_global_size(0), item = get_global_id(0);
+    ebar_run e = {0.0, (real4)(0.0), i0 < i1 ? comp[i0] : ncomp};
+    int klast = i0 < i1 ? comp[i1 - 1] : -1;
+    for (int k = 0; k < ncomp; k++)
+        if (k < e.kc || k > klast)
+            ebar_part[k * G + item] = 0.0;
+    real sum = 0.0;
+    real4 sum4 = (real4)(0.0);
+#define JJ_SPAN(a, b)                                                                           \
+    jjt_span(a, b, i1, w, tx, ty, tz, &e, y, rgrad, cgq, ract, next, prev, aadj, aadjn, aaoff,  \
+             acoef, agrad, cidx, cst, nv, dx, cdeb, comp, ebar_part, flags, G, item)
+#define JJ_HALO(i)                                                                              \
+    do {                                                                                        \
+        real3 h_ = JT_AT(i);                                                                    \
+        tx[(i) - w] = h_.x;                                                                     \
+        ty[(i) - w] = h_.y;                                                                     \
+        tz[(i) - w] = h_.z;                                                                     \
+    } while (0)
+    int w = i0 - 4; /* the window's first vertex: the tile's start less four */
+    if (i0 < i1) {
+        if (i0 > 0)
+            JJ_HALO(i0 - 1);
+        JJ_SPAN(i0, min(i0 + 4, i1));
+    }
+    for (int t0 = i0; t0 < i1; t0 += JJ_TILE) {
+        int t1 = min(t0 + JJ_TILE, i1);
+        /* dx on [t0 + 4, t1 + 4), the window's tail, so far as the item
+         * owns it, and the next item's first vertex after the last tile */
+        JJ_SPAN(min(t0 + 4, i1), min(t1 + 4, i1));
+        if (t1 == i1 && i1 < nv)
+            JJ_HALO(i1);
+        /* the rows of [t0, t1): j_row's arithmetic less the debar term; the
+         * window holds dx on [t0 - 1, t1] */
+#define JJ_DX(v) ((v) >= t0 - 1 && (v) <= t1 ? (real3)(tx[(v) - w], ty[(v) - w], tz[(v) - w]) : JT_AT(v))
+#define JJ_ROWS4(a) ((rows4){vload4(0, tx + (a) - w), vload4(0, ty + (a) - w), vload4(0, tz + (a) - w)})
+        for (int i = t0; i < t1;) {
+            if ((i & 3) == 0 && i + 4 <= t1 && (flags[i >> 2] & JR_RUN)) {
+                rows4 dp = JJ_ROWS4(i - 1), di = JJ_ROWS4(i), dn = JJ_ROWS4(i + 1);
+                rows4 g = load_rows4(rgrad, i);
+                real4 dot = g.x * (dn.x - di.x) + g.y * (dn.y - di.y) + g.z * (dn.z - di.z);
+                real4 ye = vload4(0, y + i);
+                real4 oe = dot + reg * ye;
+                vstore4(oe, 0, out + i);
+                rows4 ga = load_rows4(rgrad, nv + i), gb = load_rows4(cgq, i);
+                real4 v = (real4)(0.0);
+                v += ga.x * dp.x + (gb.x - ga.x) * di.x - gb.x * dn.x;
+                v += ga.y * dp.y + (gb.y - ga.y) * di.y - gb.y * dn.y;
+                v += ga.z * dp.z + (gb.z - ga.z) * di.z - gb.z * dn.z;
+                real4 yc = vload4(0, y + nv + i);
+                real4 oc = v + reg * yc;
+                vstore4(oc, 0, out + nv + i);
+                sum4 += ye * oe;
+                sum4 += yc * oc;
+                i += 4;
+                continue;
+            }
+            real o = 0.0;
+            if (ract[i]) {
+                real3 d = JJ_DX(next[i]) - JJ_DX(i);
+                o = tr_dot3(vload3(i, rgrad), d) + reg * y[i];
+            }
+            out[i] = o;
+            sum += y[i] * o;
+            o = 0.0;
+            if (ract[nv + i]) {
+                real3 ga = vload3(nv + i, rgrad), gb = vload3(i, cgq);
+                real3 t = ga * JJ_DX(prev[i]) + (gb - ga) * JJ_DX(i) - gb * JJ_DX(next[i]);
+                real v = 0.0;
+                v += t.x;
+                v += t.y;
+                v += t.z;
+                o = v + reg * y[nv + i];
+            }
+            out[nv + i] = o;
+            sum += y[nv + i] * o;
+            i++;
+        }
+#undef JJ_DX
+#undef JJ_ROWS4
+        /* slide: [t1 - 4, t1 + 4) to the front, for the next tile (only a
+         * full tile has one) */
+        for (int k = 0; k < 8; k++) {
+            tx[k] = tx[k + JJ_TILE];
+            ty[k] = ty[k + JJ_TILE];
+            tz[k] = tz[k + JJ_TILE];
+        }
+        w += JJ_TILE;
+    }
+#undef JJ_SPAN
+#undef JJ_HALO
+    if (e.kc < ncomp)
+        ebar_part[e.kc * G + item] = e.esum + ((e.esum4.s0 + e.esum4.s1) + (e.esum4.s2 + e.esum4.s3));
+    yout[item] = sum + ((sum4.s0 + sum4.s1) + (sum4.s2 + sum4.s3));
+#endif
+}
+
+/* The strut rows of j_rows after jjt_rows: row list positions 2 nv ..
+ * nl - 1, the items' shares of p . q at yout[yoff + item]. */
+__kernel void j_struts(__global const real *dx, __global const real *debar,
+                       __global const real *cdeb, __global const real *rgrad,
+                       __global const real *cgq, __global const int *ract,
+                       __global const int *next, __global const int *prev,
+                       __global const int *comp, __global const int *sab,
+                       __global const real *sw, __global const real *y, const int nv,
+                       const real reg, __global const int *act, const int nl,
+                       __global real *out, __global real *yout, const int yoff)
+{
+    real sum = 0.0;
+    TR_ITEMS(m, nl - 2 * nv)
+        sum += j_row(2 * nv + m, dx, debar, cdeb, rgrad, cgq, ract, next, prev, comp, sab, sw, y, nv,
+                     reg, act, out);
+    yout[yoff + get_global_id(0)] = sum;
+}
+
 /* CG scalar updates: one item each. `done` turns the rest into no-ops.
  * alpha and beta are not kept: cg_r and cg_p work them out from the
  * dot products (every item the same quotient), and the bookkeeping of an
@@ -886,46 +1116,80 @@ inline real precond_diag_at(real rl, int l, int nv, __global const int *act,
     return ract[q] ? rl / pd[q] : 0.0;
 }
 
+#ifdef TR_BLOCK_ITEMS
+/* cg_r at row-list position l on a CPU device, where q lacks the chain
+ * rows' debar term (jjt_rows): it is added here, in j_row's order. */
+inline void cg_r_at(int l, __global real *r, __global const real *q, real alpha, __global const real *pd,
+                    __global const int *ract, int nv, __global const int *act, __global real *z,
+                    __global const real *debar, __global const real *cdeb,
+                    __global const int *comp, real *rr, real *rz)
+{
+    real ql = q[l];
+    if (l < nv && ract[l])
+        ql = ql - debar[comp[l]];
+    else if (l >= nv && l < 2 * nv && ract[l])
+        ql = ql + cdeb[l - nv] * debar[comp[l - nv]];
+    real v = r[l] - alpha * ql;
+    r[l] = v;
+    *rr += v * v;
+    if (l >= nv) {
+        real zl = precond_diag_at(v, l, nv, act, ract, pd);
+        z[l] = zl;
+        *rz += v * zl;
+    }
+}
+#endif
+
 /* r -= alpha q (alpha = r.z / p.q; y's alpha p is cg_p's, which reads p
  * anyway), the item's share of r . r
  * (0 once done: nothing reads it then), and z = r / pd on the curvature and
  * strut rows (precond_diag's part of the preconditioner, done here while r
  * is at hand; the edge rows' z is the edge block's), with those rows' share
  * of r . z in rz[item] (with the twisted edge block, whose kernels sum the
- * edge rows' share; rz is NULL otherwise). On CPU devices four entries at a time, the sums in
+ * edge rows' share; rz is NULL otherwise).
+ * On a GPU one item per row. On CPU devices q comes from jjt_rows and
+ * j_struts, and the chain rows' debar term (debar, cdeb, comp) is added
+ * here; the items walk j_rows' units (a vertex's edge and curvature row, or
+ * a strut row), JR_RUN blocks (flags) four vertices at a time, the sums in
  * four lanes: with one running sum the loop waited on the adder (as
  * dot_slice4). */
 __kernel void cg_r(__global real *r, __global const real *q, __global const real *sc, const int nl,
                     __global real *rr, __global const real *pd, __global const int *ract,
-                    const int nv, __global const int *act, __global real *z, __global real *rz)
+                    const int nv, __global const int *act, __global real *z, __global real *rz,
+                    __global const real *debar, __global const real *cdeb,
+                    __global const int *comp, __global const uchar *flags)
 {
     real sum = 0.0, sumz = 0.0;
     if (sc[SC_DONE] == 0.0) {
         real alpha = sc[SC_RZ] / sc[SC_PQ];
-        int l = tr_items_first(nl), end = tr_items_end(nl);
 #ifdef TR_BLOCK_ITEMS
+        int nu = nl - nv, u = tr_items_first4(nu), end = tr_items_end4(nu);
         real4 sum4 = (real4)(0.0), sumz4 = (real4)(0.0);
-        for (; l + 4 <= end; l += 4) {
-            real4 v = vload4(0, r + l) - alpha * vload4(0, q + l);
-            vstore4(v, 0, r + l);
-            sum4 += v * v;
-            if (l >= nv && l + 4 <= 2 * nv) { /* chain rows: row_of(l) = l */
-                long4 on = convert_long4(vload4(0, ract + l) != 0);
-                real4 zl = select((real4)(0.0), v / vload4(0, pd + l), on);
-                vstore4(zl, 0, z + l);
-                sumz4 += v * zl;
-            } else if (l + 4 > nv) {
-                for (int k = max(l, nv); k < l + 4; k++) {
-                    real zk = precond_diag_at(r[k], k, nv, act, ract, pd);
-                    z[k] = zk;
-                    sumz += r[k] * zk;
-                }
+        while (u < end) {
+            if ((u & 3) == 0 && u + 4 <= min(end, nv) && (flags[u >> 2] & JR_RUN)) {
+                real db = debar[comp[u]];
+                real4 ve = vload4(0, r + u) - alpha * (vload4(0, q + u) - db);
+                vstore4(ve, 0, r + u);
+                real4 vc = vload4(0, r + nv + u) -
+                           alpha * (vload4(0, q + nv + u) + vload4(0, cdeb + u) * db);
+                vstore4(vc, 0, r + nv + u);
+                real4 zc = vc / vload4(0, pd + nv + u);
+                vstore4(zc, 0, z + nv + u);
+                sum4 += ve * ve;
+                sum4 += vc * vc;
+                sumz4 += vc * zc;
+                u += 4;
+                continue;
             }
+            if (u < nv)
+                cg_r_at(u, r, q, alpha, pd, ract, nv, act, z, debar, cdeb, comp, &sum, &sumz);
+            cg_r_at(nv + u, r, q, alpha, pd, ract, nv, act, z, debar, cdeb, comp, &sum, &sumz);
+            u++;
         }
-        sum = (sum4.s0 + sum4.s1) + (sum4.s2 + sum4.s3);
+        sum += (sum4.s0 + sum4.s1) + (sum4.s2 + sum4.s3);
         sumz += (sumz4.s0 + sumz4.s1) + (sumz4.s2 + sumz4.s3);
-#endif
-        for (; l < end; l++) {
+#else
+        TR_ITEMS(l, nl) {
             real v = r[l] - alpha * q[l];
             r[l] = v;
             sum += v * v;
@@ -935,6 +1199,7 @@ __kernel void cg_r(__global real *r, __global const real *q, __global const real
                 sumz += v * zl;
             }
         }
+#endif
     }
     TR_ITEM_PARTIAL(rr, sum);
     if (rz) /* NULL where the edge block is not twisted */
