@@ -551,6 +551,68 @@ inline real3 jt_lane_projected(rows4 g, int k, __global const int *cidx, __globa
 }
 #endif
 
+#ifdef TR_BLOCK_ITEMS
+/* The ebar sums' running state of a jjt_rows or jt_vertex item. */
+typedef struct {
+    real esum;
+    real4 esum4;
+    int kc;
+} ebar_run;
+
+/* An item's running sums over its vertices [i0, i1), and 0 as its share of
+ * the components it has no vertex of. */
+inline ebar_run ebar_open(int i0, int i1, __global const int *comp, int ncomp, __global real *ebar_part,
+                          int G, int item)
+{
+    ebar_run e = {0.0, (real4)(0.0), i0 < i1 ? comp[i0] : ncomp};
+    int klast = i0 < i1 ? comp[i1 - 1] : -1;
+    for (int k = 0; k < ncomp; k++)
+        if (k < e.kc || k > klast)
+            ebar_part[k * G + item] = 0.0;
+    return e;
+}
+
+/* Before adding vertex i's terms: close the item's share of component kc
+ * when i starts another. */
+inline void ebar_next(ebar_run *e, int i, __global const int *comp, __global real *ebar_part, int G,
+                      int item)
+{
+    if (comp[i] != e->kc) {
+        ebar_part[e->kc * G + item] = e->esum + ((e->esum4.s0 + e->esum4.s1) + (e->esum4.s2 + e->esum4.s3));
+        e->esum = 0.0;
+        e->esum4 = (real4)(0.0);
+        e->kc = comp[i];
+    }
+}
+
+/* Vertex i's terms, off the lanes: its edge row's -y_i and its curvature
+ * row's cdeb_i y_(nv+i), each if active (jt_ebar_partial's terms). */
+inline void ebar_add(ebar_run *e, int i, __global const int *ract, __global const real *cdeb,
+                     __global const real *y, int nv)
+{
+    if (ract[i])
+        e->esum += -y[i];
+    if (ract[nv + i])
+        e->esum += cdeb[i] * y[nv + i];
+}
+
+/* The same for the four vertices of a JT_RUN block, in lanes (their rows
+ * are active). */
+inline void ebar_add4(ebar_run *e, int i, __global const real *cdeb, __global const real *y, int nv)
+{
+    e->esum4 += -vload4(0, y + i);
+    e->esum4 += vload4(0, cdeb + i) * vload4(0, y + nv + i);
+}
+
+/* The item's share of its last component. */
+inline void ebar_close(ebar_run *e, int ncomp, __global real *ebar_part, int G, int item)
+{
+    if (e->kc < ncomp)
+        ebar_part[e->kc * G + item] = e->esum + ((e->esum4.s0 + e->esum4.s1) + (e->esum4.s2 + e->esum4.s3));
+}
+
+#endif
+
 /* dx_i = jt_at for every vertex. On CPU devices four consecutive vertices
  * inside a run of the chain, with all their curvature rows active and no
  * struts, go at once in double4 lanes (jt_run4); and the
@@ -570,29 +632,17 @@ __kernel void jt_vertex(__global const real *y, __global const real *rgrad,
 #ifdef TR_BLOCK_ITEMS
     int i = tr_items_first4(nv), end = tr_items_end4(nv);
     int G = get_global_size(0), item = get_global_id(0);
-    int kc = i < end ? comp[i] : ncomp, klast = i < end ? comp[end - 1] : -1;
-    for (int k = 0; k < ncomp; k++)
-        if (k < kc || k > klast)
-            ebar_part[k * G + item] = 0.0;
-    real esum = 0.0;
-    real4 esum4 = (real4)(0.0);
+    ebar_run e = ebar_open(i, end, comp, ncomp, ebar_part, G, item);
 #else
     int i = tr_items_first(nv), end = tr_items_end(nv);
 #endif
     while (i < end) {
 #ifdef TR_BLOCK_ITEMS
-        if (comp[i] != kc) { /* the item's share of component kc is complete */
-            ebar_part[kc * G + item] = esum + ((esum4.s0 + esum4.s1) + (esum4.s2 + esum4.s3));
-            esum = 0.0;
-            esum4 = (real4)(0.0);
-            kc = comp[i];
-        }
+        ebar_next(&e, i, comp, ebar_part, G, item);
         uchar f = (i & 3) == 0 && i + 4 <= end ? flags[i >> 2] : 0;
         if (f & JT_RUN) {
             rows4 g = jt_run4(i, y, rgrad, cgq, nv);
-            /* jt_ebar_partial's terms (the rows are active) */
-            esum4 += -vload4(0, y + i);
-            esum4 += vload4(0, cdeb + i) * vload4(0, y + nv + i);
+            ebar_add4(&e, i, cdeb, y, nv);
             if (f & JT_FREE) {
                 store_rows4(g, dx, i);
             } else {
@@ -605,16 +655,12 @@ __kernel void jt_vertex(__global const real *y, __global const real *rgrad,
 #endif
         vstore3(JT_AT(i), i, dx);
 #ifdef TR_BLOCK_ITEMS
-        if (ract[i])
-            esum += -y[i];
-        if (ract[nv + i])
-            esum += cdeb[i] * y[nv + i];
+        ebar_add(&e, i, ract, cdeb, y, nv);
 #endif
         i++;
     }
 #ifdef TR_BLOCK_ITEMS
-    if (kc < ncomp)
-        ebar_part[kc * G + item] = esum + ((esum4.s0 + esum4.s1) + (esum4.s2 + esum4.s3));
+    ebar_close(&e, ncomp, ebar_part, G, item);
 #endif
 }
 
@@ -862,26 +908,6 @@ __kernel void j_rows(__global const real *dx, __global const real *debar,
 #define JJ_WINDOW (JJ_TILE + 8)
 
 #ifdef TR_BLOCK_ITEMS
-/* The ebar sums' running state of a jjt_rows or jt_vertex item. */
-typedef struct {
-    real esum;
-    real4 esum4;
-    int kc;
-} ebar_run;
-
-/* Before adding vertex i's terms: close the item's share of component kc
- * when i starts another. */
-inline void ebar_next(ebar_run *e, int i, __global const int *comp, __global real *ebar_part, int G,
-                      int item)
-{
-    if (comp[i] != e->kc) {
-        ebar_part[e->kc * G + item] = e->esum + ((e->esum4.s0 + e->esum4.s1) + (e->esum4.s2 + e->esum4.s3));
-        e->esum = 0.0;
-        e->esum4 = (real4)(0.0);
-        e->kc = comp[i];
-    }
-}
-
 /* dx of the item's own vertices [a, b) into the window (w: the window's
  * first vertex), with their ebar terms: jt_vertex's loop, four at a time on
  * JT_RUN blocks that end by i1 (jt_vertex's blocks), and dx to global
@@ -900,8 +926,7 @@ inline void jjt_span(int a, int b, int i1, int w, real *tx, real *ty, real *tz, 
         uchar f = (i & 3) == 0 && i + 4 <= i1 ? flags[i >> 2] : 0;
         if (f & JT_RUN) {
             rows4 g = jt_run4(i, y, rgrad, cgq, nv);
-            e->esum4 += -vload4(0, y + i);
-            e->esum4 += vload4(0, cdeb + i) * vload4(0, y + nv + i);
+            ebar_add4(e, i, cdeb, y, nv);
             if (!(f & JT_FREE)) {
                 for (int k = 0; k < 4; k++) {
                     real3 v = jt_lane_projected(g, k, cidx, cst, i);
@@ -923,10 +948,7 @@ inline void jjt_span(int a, int b, int i1, int w, real *tx, real *ty, real *tz, 
         tz[i - w] = g.z;
         if (aadjn[i])
             vstore3(g, i, dx);
-        if (ract[i])
-            e->esum += -y[i];
-        if (ract[nv + i])
-            e->esum += cdeb[i] * y[nv + i];
+        ebar_add(e, i, ract, cdeb, y, nv);
         i++;
     }
 }
@@ -964,11 +986,7 @@ __kernel void jjt_rows(__global const real *y, __global const real *rgrad,
     real tx[JJ_WINDOW], ty[JJ_WINDOW], tz[JJ_WINDOW];
     int i0 = tr_items_first4(nv), i1 = tr_items_end4(nv);
     int G = get_global_size(0), item = get_global_id(0);
-    ebar_run e = {0.0, (real4)(0.0), i0 < i1 ? comp[i0] : ncomp};
-    int klast = i0 < i1 ? comp[i1 - 1] : -1;
-    for (int k = 0; k < ncomp; k++)
-        if (k < e.kc || k > klast)
-            ebar_part[k * G + item] = 0.0;
+    ebar_run e = ebar_open(i0, i1, comp, ncomp, ebar_part, G, item);
     real sum = 0.0;
     real4 sum4 = (real4)(0.0);
 #define JJ_SPAN(a, b)                                                                           \
@@ -1053,8 +1071,7 @@ __kernel void jjt_rows(__global const real *y, __global const real *rgrad,
     }
 #undef JJ_SPAN
 #undef JJ_HALO
-    if (e.kc < ncomp)
-        ebar_part[e.kc * G + item] = e.esum + ((e.esum4.s0 + e.esum4.s1) + (e.esum4.s2 + e.esum4.s3));
+    ebar_close(&e, ncomp, ebar_part, G, item);
     yout[item] = sum + ((sum4.s0 + sum4.s1) + (sum4.s2 + sum4.s3));
 #endif
 }
