@@ -107,7 +107,8 @@ typedef struct cl_state {
     int tri_twist;
     cl_mem tmid, tends;
     /* work-groups per component of the ebar sums (jt_ebar_partial; on CPU
-     * devices jt_vertex's items), and their partial sums */
+     * devices jt_vertex's and jjt_rows' items, both launched over nv), and
+     * their partial sums */
     int ebar_groups;
     cl_mem ebar_part;
     size_t tri_group;

@@ -20,7 +20,8 @@
  * Wright 17.4) with L-BFGS inner solves (lbfgs.h), multiplier updates after
  * each inner solve and a tenfold penalty increase when the worst violation
  * did not fall by 4; the whole run is restarted from its result with the
- * first penalty while that still shortens the rope (max_restarts).
+ * first penalty until two restarts in a row no longer shorten the rope
+ * (max_restarts).
  *
  * Never a different knot (the engine's argument, engine.h): every L-BFGS
  * iteration moves each vertex at most max_move along a straight line; after
@@ -60,8 +61,9 @@ typedef struct tr_polish_params {
     double mu0;        /* first penalty */
     double mu_max;
     int lbfgs_m;
-    /* Runs from a fresh penalty, each from the last one's result, while a
-     * run shortens the rope by more than restart_tol (relative); 1: one run. */
+    /* Runs from a fresh penalty, each from the last one's result, until two
+     * runs in a row shorten the rope by no more than restart_tol (relative);
+     * 1: one run. */
     int max_restarts;
     double restart_tol;
     /* > 0: no further restart once an accepted run measures a ropelength at

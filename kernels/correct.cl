@@ -833,7 +833,7 @@ inline real j_row(int l, __global const real *dx, __global const real *debar,
     return y[l] * o;
 }
 
-/* out_r = dC_r/dx . dx + dC_r/debar . debar + reg y_r on active rows, else 0,
+/* out_r = (dC_r/dx . dx + reg y_r) + dC_r/debar . debar on active rows, else 0,
  * y and out by row list position l (row_of); the item's share of y . out to
  * yout (TR_ITEM_PARTIAL: the CG's p . q).
  * On a GPU one item per position l. On CPU devices (TR_BLOCK_ITEMS) the
@@ -959,9 +959,10 @@ inline void jjt_span(int a, int b, int i1, int w, real *tx, real *ty, real *tz, 
  * N = 10^6 the CG is bound by memory, and the two kernels moved dx out and
  * back (72 bytes a vertex) and read the rows' gradients twice (80 more).
  * Each item walks its vertices (jt_vertex's partition) a tile at a time:
- * dx of the four vertices after the tile (jt_run4 on JT_RUN blocks, jt_at
- * elsewhere: the same bits as jt_vertex, and jt_vertex's ebar partial sums)
- * into the window, then the tile's edge and curvature rows from the window
+ * dx up to the fourth vertex after the tile (the window holds the rest from
+ * the tile before; jt_run4 on JT_RUN blocks, jt_at elsewhere: the same bits
+ * as jt_vertex, and jt_vertex's ebar partial sums), then the tile's edge
+ * and curvature rows from the window
  * (a neighbour outside it, across a closed component's seam, is worked out
  * again by jt_at); the window then slides by the tile. What cannot be done
  * in the pass:
