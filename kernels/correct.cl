@@ -795,6 +795,45 @@ __kernel void act_gather(__global const int *act, __global const int *pa, __glob
     }
 }
 
+/* dC_r/dx . dx of vertex i's edge row (dx at i and next i) and of its
+ * curvature row (dx at prev i, i and next i): the operator's rows without
+ * their reg and debar terms, for j_row and for jjt_rows, which takes dx
+ * from its window instead of global memory. */
+inline real edge_row_dx(int i, __global const real *rgrad, real3 di, real3 dn)
+{
+    return tr_dot3(vload3(i, rgrad), dn - di);
+}
+
+inline real curv_row_dx(int i, __global const real *rgrad, __global const real *cgq, int nv,
+                        real3 dp, real3 di, real3 dn)
+{
+    real3 ga = vload3(nv + i, rgrad), gb = vload3(i, cgq);
+    real3 t = ga * dp + (gb - ga) * di - gb * dn;
+    real v = 0.0;
+    v += t.x;
+    v += t.y;
+    v += t.z;
+    return v;
+}
+
+#ifdef TR_BLOCK_ITEMS
+/* The same for the vertices i .. i + 3 of a JR_RUN block in double4 lanes
+ * (dx at i - 1 .., i .. and i + 1 .. as dp, di, dn): the same arithmetic
+ * per lane, so the same bits. */
+inline void chain_rows4_dx(int i, __global const real *rgrad, __global const real *cgq, int nv,
+                           rows4 dp, rows4 di, rows4 dn, real4 *edge, real4 *curv)
+{
+    rows4 g = load_rows4(rgrad, i);
+    *edge = g.x * (dn.x - di.x) + g.y * (dn.y - di.y) + g.z * (dn.z - di.z);
+    rows4 ga = load_rows4(rgrad, nv + i), gb = load_rows4(cgq, i);
+    real4 v = (real4)(0.0);
+    v += ga.x * dp.x + (gb.x - ga.x) * di.x - gb.x * dn.x;
+    v += ga.y * dp.y + (gb.y - ga.y) * di.y - gb.y * dn.y;
+    v += ga.z * dp.z + (gb.z - ga.z) * di.z - gb.z * dn.z;
+    *curv = v;
+}
+#endif
+
 /* Row-list position l of J (dx, debar) + reg y (j_rows): out[l], and
  * y_l out_l for the p . q sum. */
 inline real j_row(int l, __global const real *dx, __global const real *debar,
@@ -810,17 +849,11 @@ inline real j_row(int l, __global const real *dx, __global const real *debar,
     if (!ract[r]) {
         out[l] = 0.0;
     } else if (r < nv) {
-        real3 d = vload3(next[r], dx) - vload3(r, dx);
-        out[l] = o = (tr_dot3(vload3(r, rgrad), d) + reg * y[l]) - debar[comp[r]];
+        real e = edge_row_dx(r, rgrad, vload3(r, dx), vload3(next[r], dx));
+        out[l] = o = (e + reg * y[l]) - debar[comp[r]];
     } else if (r < 2 * nv) {
         int i = r - nv;
-        real3 ga = vload3(r, rgrad), gb = vload3(i, cgq);
-        real3 dp = vload3(prev[i], dx), di = vload3(i, dx), dn = vload3(next[i], dx);
-        real3 t = ga * dp + (gb - ga) * di - gb * dn;
-        real v = 0.0;
-        v += t.x;
-        v += t.y;
-        v += t.z;
+        real v = curv_row_dx(i, rgrad, cgq, nv, vload3(prev[i], dx), vload3(i, dx), vload3(next[i], dx));
         out[l] = o = (v + reg * y[l]) + cdeb[i] * debar[comp[i]];
     } else { /* an active strut row: act_gather's copy */
         int m = l - 2 * nv, a = sab[2 * m], b = sab[2 * m + 1];
@@ -863,17 +896,12 @@ __kernel void j_rows(__global const real *dx, __global const real *debar,
     while (u < end) {
         if ((u & 3) == 0 && u + 4 <= min(end, nv) && (flags[u >> 2] & JR_RUN)) {
             int i = u;
-            rows4 dp = load_rows4(dx, i - 1), di = load_rows4(dx, i), dn = load_rows4(dx, i + 1);
-            rows4 g = load_rows4(rgrad, i);
-            real4 dot = g.x * (dn.x - di.x) + g.y * (dn.y - di.y) + g.z * (dn.z - di.z);
+            real4 e, v;
+            chain_rows4_dx(i, rgrad, cgq, nv, load_rows4(dx, i - 1), load_rows4(dx, i),
+                           load_rows4(dx, i + 1), &e, &v);
             real4 ye = vload4(0, y + i);
-            real4 oe = (dot + reg * ye) - debar[comp[i]];
+            real4 oe = (e + reg * ye) - debar[comp[i]];
             vstore4(oe, 0, out + i);
-            rows4 ga = load_rows4(rgrad, nv + i), gb = load_rows4(cgq, i);
-            real4 v = (real4)(0.0);
-            v += ga.x * dp.x + (gb.x - ga.x) * di.x - gb.x * dn.x;
-            v += ga.y * dp.y + (gb.y - ga.y) * di.y - gb.y * dn.y;
-            v += ga.z * dp.z + (gb.z - ga.z) * di.z - gb.z * dn.z;
             real4 yc = vload4(0, y + nv + i);
             real4 oc = (v + reg * yc) + vload4(0, cdeb + i) * debar[comp[i]];
             vstore4(oc, 0, out + nv + i);
@@ -1019,17 +1047,11 @@ __kernel void jjt_rows(__global const real *y, __global const real *rgrad,
 #define JJ_ROWS4(a) ((rows4){vload4(0, tx + (a) - w), vload4(0, ty + (a) - w), vload4(0, tz + (a) - w)})
         for (int i = t0; i < t1;) {
             if ((i & 3) == 0 && i + 4 <= t1 && (flags[i >> 2] & JR_RUN)) {
-                rows4 dp = JJ_ROWS4(i - 1), di = JJ_ROWS4(i), dn = JJ_ROWS4(i + 1);
-                rows4 g = load_rows4(rgrad, i);
-                real4 dot = g.x * (dn.x - di.x) + g.y * (dn.y - di.y) + g.z * (dn.z - di.z);
+                real4 e, v;
+                chain_rows4_dx(i, rgrad, cgq, nv, JJ_ROWS4(i - 1), JJ_ROWS4(i), JJ_ROWS4(i + 1), &e, &v);
                 real4 ye = vload4(0, y + i);
-                real4 oe = dot + reg * ye;
+                real4 oe = e + reg * ye;
                 vstore4(oe, 0, out + i);
-                rows4 ga = load_rows4(rgrad, nv + i), gb = load_rows4(cgq, i);
-                real4 v = (real4)(0.0);
-                v += ga.x * dp.x + (gb.x - ga.x) * di.x - gb.x * dn.x;
-                v += ga.y * dp.y + (gb.y - ga.y) * di.y - gb.y * dn.y;
-                v += ga.z * dp.z + (gb.z - ga.z) * di.z - gb.z * dn.z;
                 real4 yc = vload4(0, y + nv + i);
                 real4 oc = v + reg * yc;
                 vstore4(oc, 0, out + nv + i);
@@ -1039,22 +1061,14 @@ __kernel void jjt_rows(__global const real *y, __global const real *rgrad,
                 continue;
             }
             real o = 0.0;
-            if (ract[i]) {
-                real3 d = JJ_DX(next[i]) - JJ_DX(i);
-                o = tr_dot3(vload3(i, rgrad), d) + reg * y[i];
-            }
+            if (ract[i])
+                o = edge_row_dx(i, rgrad, JJ_DX(i), JJ_DX(next[i])) + reg * y[i];
             out[i] = o;
             sum += y[i] * o;
             o = 0.0;
-            if (ract[nv + i]) {
-                real3 ga = vload3(nv + i, rgrad), gb = vload3(i, cgq);
-                real3 t = ga * JJ_DX(prev[i]) + (gb - ga) * JJ_DX(i) - gb * JJ_DX(next[i]);
-                real v = 0.0;
-                v += t.x;
-                v += t.y;
-                v += t.z;
-                o = v + reg * y[nv + i];
-            }
+            if (ract[nv + i])
+                o = curv_row_dx(i, rgrad, cgq, nv, JJ_DX(prev[i]), JJ_DX(i), JJ_DX(next[i])) +
+                    reg * y[nv + i];
             out[nv + i] = o;
             sum += y[nv + i] * o;
             i++;
