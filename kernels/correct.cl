@@ -668,7 +668,9 @@ __kernel void jt_vertex(__global const real *y, __global const real *rgrad,
  * in two stages so that a long component is summed by many work-groups (one
  * work-group per component took 14 ms per call at N = 10^6 on an H100, a
  * tenth of the step): work-group k G + g sums slice g of component k's rows
- * (partial sums over GROUP_SLICE_FOR, then a tree) into part[k G + g] ... */
+ * (partial sums over GROUP_SLICE_FOR, then a tree) into part[k G + g]
+ * (a GPU's first stage: on CPU devices the items of jt_vertex and jjt_rows
+ * sum their own vertices' terms instead) ... */
 __kernel __attribute__((reqd_work_group_size(TR_LOCAL_SIZE, 1, 1)))
 void jt_ebar_partial(__global const real *y, __global const int *ract,
                      __global const int *start, __global const real *cdeb, const int nv,
@@ -684,23 +686,7 @@ void jt_ebar_partial(__global const real *y, __global const int *ract,
     int st = start[k], len = start[k + 1] - st;
     int lo = st + (int)((long)len * g / G), hi = st + (int)((long)len * (g + 1) / G);
     real sum = 0.0;
-#ifdef TR_BLOCK_ITEMS
-    /* the item's sixty-fourth four rows at a time, summed in four lanes (as
-     * dot_slice4: one running sum made the loop wait on the adder); an
-     * inactive row adds 0 */
-    int a = tr_slice_start(lo, hi, l), e = tr_slice_start(lo, hi, l + 1);
-    real4 sum4 = (real4)(0.0);
-    for (; a + 4 <= e; a += 4) {
-        long4 edge_on = convert_long4(vload4(0, ract + a) != 0);
-        long4 curv_on = convert_long4(vload4(0, ract + nv + a) != 0);
-        sum4 += select((real4)(0.0), -vload4(0, y + a), edge_on);
-        sum4 += select((real4)(0.0), vload4(0, cdeb + a) * vload4(0, y + nv + a), curv_on);
-    }
-    sum = (sum4.s0 + sum4.s1) + (sum4.s2 + sum4.s3);
-    for (; a < e; a++) {
-#else
     GROUP_SLICE_FOR(a, lo, hi) {
-#endif
         if (ract[a])
             sum += -y[a];
         if (ract[nv + a])
