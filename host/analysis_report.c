@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "json.h"
 #include "polyline.h"
 #include "text_file.h"
 #include "vec3.h"
@@ -25,10 +26,7 @@ static int sb_finish(tr_text *b, char **out)
 
 static void sb_num(tr_text *b, double v)
 {
-    if (isfinite(v))
-        tr_text_printf(b, "%.10g", v);
-    else
-        tr_text_printf(b, "null");
+    tr_json_number(b, "%.10g", v);
 }
 
 int tr_report_curvature_csv(const tr_analysis *a, char **out)
@@ -202,10 +200,9 @@ int tr_report_summary_json(const tr_analysis *a, const tr_report_ctx *ctx, char 
     tr_text b = {0};
     const tr_symmetry *s = &a->sym;
     int cmp = ctx->compare_paper;
-    tr_text_printf(&b, "{\n  \"input\": \"");
-    for (const char *p = ctx->input ? ctx->input : ""; *p; p++)
-        tr_text_printf(&b, (*p == '"' || *p == '\\') ? "\\%c" : "%c", *p);
-    tr_text_printf(&b, "\",\n  \"component\": %d,\n  \"vertices\": %zu,\n  \"m\": %zu,\n", ctx->component,
+    tr_text_printf(&b, "{\n  \"input\": ");
+    tr_json_string(&b, ctx->input ? ctx->input : "");
+    tr_text_printf(&b, ",\n  \"component\": %d,\n  \"vertices\": %zu,\n  \"m\": %zu,\n", ctx->component,
               a->n, a->m);
     tr_text_printf(&b, "  \"scale_to_unit_thickness\": ");
     sb_num(&b, ctx->scale);
@@ -243,7 +240,12 @@ int tr_report_summary_json(const tr_analysis *a, const tr_report_ctx *ctx, char 
     sb_num(&b, s->c3.rms / s->rg);
     tr_text_printf(&b, ", \"c3_angle\": ");
     sb_num(&b, s->c3.angle);
-    tr_text_printf(&b, ", \"c3_axis\": [%.12g, %.12g, %.12g]", s->c3.axis[0], s->c3.axis[1], s->c3.axis[2]);
+    tr_text_printf(&b, ", \"c3_axis\": [");
+    for (int k = 0; k < 3; k++) {
+        tr_text_printf(&b, "%s", k ? ", " : "");
+        tr_json_number(&b, "%.12g", s->c3.axis[k]);
+    }
+    tr_text_printf(&b, "]");
     tr_text_printf(&b, ", \"twofold_points\": %zu, \"twofold_rms_max\": ", s->n_twofold);
     sb_num(&b, s->twofold_rms_max);
     tr_text_printf(&b, ", \"twofold_rms_best\": ");
@@ -285,9 +287,10 @@ int tr_report_summary_json(const tr_analysis *a, const tr_report_ctx *ctx, char 
     }
     tr_text_printf(&b, "\n  },\n  \"contacts\": {\"struts\": %zu, \"contact_functions\": %s", a->npairs,
               a->have_sigma ? "true" : "false");
-    if (!a->have_sigma)
-        tr_text_printf(&b, ", \"why_not\": \"%s\"", a->sigma_msg);
-    else {
+    if (!a->have_sigma) {
+        tr_text_printf(&b, ", \"why_not\": ");
+        tr_json_string(&b, a->sigma_msg);
+    } else {
         tr_text_printf(&b, ", \"sigma_inverse_err\": ");
         sb_num(&b, a->sigma_inverse_err);
         tr_text_printf(&b, ", \"rotation_number\": ");

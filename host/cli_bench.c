@@ -36,6 +36,7 @@
 #include "engine.h"
 #include "refine_lowpass.h"
 #include "generate.h"
+#include "json.h"
 
 #define MAX_DEV 8
 #define MAX_N 16
@@ -455,37 +456,51 @@ int tr_cmd_bench(int argc, char **argv)
     }
 
     if (json) {
-        printf("{\"benchmark\": \"tightening step (tension_step with projection 1x10 CG, correct "
-               "2x20 CG, measure) on %s\",\n \"results\": [",
-               start ? "the --start curve, Fourier-resampled to each N" : "a T(2,3) torus knot");
+        tr_text t = {0};
+        tr_text_printf(&t, "{\"benchmark\": \"tightening step (tension_step with projection 1x10 CG, "
+                           "correct 2x20 CG, measure) on %s\",\n \"results\": [",
+                       start ? "the --start curve, Fourier-resampled to each N" : "a T(2,3) torus knot");
         for (int i = 0; i < ndev * nn; i++) {
             const result *r = &res[i];
-            printf("%s\n  {\"device\": \"%s\", \"n\": %zu, \"valid\": %s, \"validation_diff\": %.3g, ",
-                   i ? "," : "", r->device, r->n, r->valid ? "true" : "false", r->valid_diff);
+            tr_text_printf(&t, "%s\n  {\"device\": ", i ? "," : "");
+            tr_json_string(&t, r->device);
+            tr_text_printf(&t, ", \"n\": %zu, \"valid\": %s, \"validation_diff\": ", r->n,
+                           r->valid ? "true" : "false");
+            tr_json_number(&t, "%.3g", r->valid_diff);
             if (r->error[0]) {
-                printf("\"error\": \"%s\"}", r->error);
+                tr_text_printf(&t, ", \"error\": ");
+                tr_json_string(&t, r->error);
+                tr_text_printf(&t, "}");
                 continue;
             }
-            printf("\"steps\": %d, \"step_s_min\": %.6g, \"step_s_median\": %.6g, "
-                   "\"steps_per_s\": %.6g, \"vertex_steps_per_s\": %.6g, \"cg_iters_per_step\": %.1f, "
-                   "\"contacts_s\": %.6g, \"pairs\": %zu, \"speedup_vs_reference\": ",
-                   r->steps, r->step_min, r->step_med, 1.0 / r->step_med, (double)r->n / r->step_med,
-                   r->cg_per_step, r->contacts_s, r->pairs);
-            /* JSON has no NaN: without the reference in the run there is no ratio */
-            if (isfinite(r->ratio))
-                printf("%.4g", r->ratio);
-            else
-                printf("null");
+            tr_text_printf(&t, ", \"steps\": %d, \"step_s_min\": %.6g, \"step_s_median\": %.6g, "
+                               "\"steps_per_s\": %.6g, \"vertex_steps_per_s\": %.6g, "
+                               "\"cg_iters_per_step\": %.1f, \"contacts_s\": ",
+                           r->steps, r->step_min, r->step_med, 1.0 / r->step_med,
+                           (double)r->n / r->step_med, r->cg_per_step);
+            /* null without a search (--no-search) or without the reference in the run */
+            tr_json_number(&t, "%.6g", r->contacts_s);
+            tr_text_printf(&t, ", \"pairs\": %zu, \"speedup_vs_reference\": ", r->pairs);
+            tr_json_number(&t, "%.4g", r->ratio);
             if (r->nk) {
-                printf(", \"kernels_per_step\": {");
+                tr_text_printf(&t, ", \"kernels_per_step\": {");
                 for (int k = 0; k < r->nk; k++)
-                    printf("%s\"%s\": {\"launches\": %.1f, \"s\": %.6g}", k ? ", " : "", r->k[k].kernel,
-                           r->k[k].launches / r->k_steps, r->k[k].seconds / r->k_steps);
-                printf("}");
+                    tr_text_printf(&t, "%s\"%s\": {\"launches\": %.1f, \"s\": %.6g}", k ? ", " : "",
+                                   r->k[k].kernel, r->k[k].launches / r->k_steps,
+                                   r->k[k].seconds / r->k_steps);
+                tr_text_printf(&t, "}");
             }
-            printf("}");
+            tr_text_printf(&t, "}");
         }
-        printf("\n ]}\n");
+        tr_text_printf(&t, "\n ]}\n");
+        char *doc = tr_text_take(&t, NULL);
+        if (!doc) {
+            fprintf(stderr, "tightrope bench: out of memory writing the JSON report\n");
+            status = 1;
+        } else {
+            fputs(doc, stdout);
+            free(doc);
+        }
     } else {
         printf("%-58s %9s %6s %11s %11s %13s %8s %10s %9s %8s\n", "device", "N", "steps", "step ms",
                "steps/s", "vertex-st/s", "cg/step", "search ms", "pairs", "vs ref");
@@ -495,9 +510,15 @@ int tr_cmd_bench(int argc, char **argv)
                 printf("%-58.58s %9zu  %s\n", r->device, r->n, r->error);
                 continue;
             }
-            printf("%-58.58s %9zu %6d %11.3f %11.3f %13.4g %8.1f %10.2f %9zu %8.3g\n", r->device, r->n,
+            /* no search (--no-search) or no reference in the run: a dash, not "nan" */
+            char search[16] = "-", ratio[16] = "-";
+            if (isfinite(r->contacts_s))
+                snprintf(search, sizeof search, "%.2f", 1e3 * r->contacts_s);
+            if (isfinite(r->ratio))
+                snprintf(ratio, sizeof ratio, "%.3g", r->ratio);
+            printf("%-58.58s %9zu %6d %11.3f %11.3f %13.4g %8.1f %10s %9zu %8s\n", r->device, r->n,
                    r->steps, 1e3 * r->step_med, 1.0 / r->step_med, (double)r->n / r->step_med,
-                   r->cg_per_step, 1e3 * r->contacts_s, r->pairs, r->ratio);
+                   r->cg_per_step, search, r->pairs, ratio);
         }
         for (int i = 0; i < ndev * nn; i++) {
             const result *r = &res[i];

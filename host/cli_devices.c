@@ -6,6 +6,7 @@
 
 #include "cl_device.h"
 #include "cli.h"
+#include "json.h"
 
 static const char *type_name(cl_device_type t)
 {
@@ -16,21 +17,6 @@ static const char *type_name(cl_device_type t)
     if (t & CL_DEVICE_TYPE_CPU)
         return "cpu";
     return "other";
-}
-
-static void json_string(const char *s)
-{
-    putchar('"');
-    for (; *s; s++) {
-        unsigned char c = (unsigned char)*s;
-        if (c == '"' || c == '\\')
-            printf("\\%c", c);
-        else if (c < 0x20)
-            printf("\\u%04x", c);
-        else
-            putchar(c);
-    }
-    putchar('"');
 }
 
 static void usage(FILE *f)
@@ -69,7 +55,7 @@ int tr_cmd_devices(int argc, char **argv)
 
     if (json) {
         printf("{\"default_spec\": ");
-        json_string(tr_device_spec_default());
+        tr_json_fputs(stdout, tr_device_spec_default());
         printf(", \"selected\": ");
         if (!picked)
             printf("null");
@@ -79,7 +65,7 @@ int tr_cmd_devices(int argc, char **argv)
             printf("\"%d:%d\"", pick.cl.platform, pick.cl.device);
         printf(", \"opencl_absent_reason\": ");
         if (l.n == 0)
-            json_string(l.none_reason);
+            tr_json_fputs(stdout, l.none_reason);
         else
             printf("null");
         printf(",\n \"devices\": [\n  {\"id\": \"reference\", \"name\": \"serial reference (host C)\", "
@@ -87,17 +73,17 @@ int tr_cmd_devices(int argc, char **argv)
         for (int i = 0; i < l.n; i++) {
             const tr_cl_device_info *d = &l.dev[i];
             printf(",\n  {\"id\": \"%d:%d\", \"platform\": ", d->platform, d->device);
-            json_string(d->platform_name);
+            tr_json_fputs(stdout, d->platform_name);
             printf(", \"platform_vendor\": ");
-            json_string(d->platform_vendor);
+            tr_json_fputs(stdout, d->platform_vendor);
             printf(", \"name\": ");
-            json_string(d->name);
+            tr_json_fputs(stdout, d->name);
             printf(", \"vendor\": ");
-            json_string(d->vendor);
+            tr_json_fputs(stdout, d->vendor);
             printf(", \"version\": ");
-            json_string(d->version);
+            tr_json_fputs(stdout, d->version);
             printf(", \"driver\": ");
-            json_string(d->driver);
+            tr_json_fputs(stdout, d->driver);
             printf(", \"type\": \"%s\", \"compute_units\": %u, \"clock_mhz\": %u, "
                    "\"global_mem_bytes\": %llu, \"fp64\": %s, \"usable\": %s, \"reason\": ",
                    type_name(d->type), d->compute_units, d->clock_mhz,
@@ -106,7 +92,7 @@ int tr_cmd_devices(int argc, char **argv)
             if (d->usable)
                 printf("null");
             else
-                json_string(d->reason);
+                tr_json_fputs(stdout, d->reason);
             printf("}");
         }
         printf("\n ]}\n");

@@ -15,6 +15,7 @@
 #include "cli.h"
 #include "cli_args.h"
 #include "curve_io.h"
+#include "json.h"
 #include "kkt.h"
 #include "text_file.h"
 #include "thickness.h"
@@ -45,10 +46,9 @@ static void usage(FILE *out)
 
 static void json_num(tr_text *t, const char *key, double v, int comma)
 {
-    if (isfinite(v))
-        tr_text_printf(t, "\"%s\": %.17g%s", key, v, comma ? ", " : "");
-    else
-        tr_text_printf(t, "\"%s\": null%s", key, comma ? ", " : "");
+    tr_text_printf(t, "\"%s\": ", key);
+    tr_json_number(t, "%.17g", v);
+    tr_text_printf(t, "%s", comma ? ", " : "");
 }
 
 static void json_fields(tr_text *t, const tr_thickness *m)
@@ -105,21 +105,6 @@ static int write_kkt_forces(const char *path, const char *file, const tr_curve *
                            sqrt(ri[0] * ri[0] + ri[1] * ri[1] + ri[2] * ri[2]), ri[0], ri[1], ri[2]);
         }
     return tr_text_write_atomic(&t, path, err);
-}
-
-static void json_string(tr_text *t, const char *s)
-{
-    tr_text_printf(t, "\"");
-    for (; *s; s++) {
-        unsigned char ch = (unsigned char)*s;
-        if (ch == '"' || ch == '\\')
-            tr_text_printf(t, "\\%c", ch);
-        else if (ch < 0x20)
-            tr_text_printf(t, "\\u%04x", ch);
-        else
-            tr_text_printf(t, "%c", ch);
-    }
-    tr_text_printf(t, "\"");
 }
 
 static void table_row(tr_text *t, const char *label, const tr_thickness *m)
@@ -300,7 +285,7 @@ int tr_cmd_measure(int argc, char **argv)
         }
         if (status == 0 && json) {
             tr_text_printf(&out, "%s{\"file\": ", nfiles > 1 ? "  " : "");
-            json_string(&out, files[f]);
+            tr_json_string(&out, files[f]);
             tr_text_printf(&out, ", \"components\": %d, ", c->ncomp);
             json_fields(&out, &m);
             if (kkt)

@@ -22,6 +22,7 @@
 #include "curve_io.h"
 #include "engine.h"
 #include "generate.h"
+#include "json.h"
 #include "kkt.h"
 #include "text_file.h"
 #include "thickness.h"
@@ -101,16 +102,9 @@ static void json_num(const char *key, double v, int comma)
 
 static void json_str(const char *key, const char *v, int comma)
 {
-    printf("  \"%s\": \"", key);
-    for (const char *q = v; *q; q++) {
-        if (*q == '"' || *q == '\\')
-            printf("\\%c", *q);
-        else if ((unsigned char)*q < 0x20)
-            printf("\\u%04x", (unsigned char)*q);
-        else
-            putchar(*q);
-    }
-    printf("\"%s\n", comma ? "," : "");
+    printf("  \"%s\": ", key);
+    tr_json_fputs(stdout, v);
+    printf("%s\n", comma ? "," : "");
 }
 
 /* Scales the curve about the origin by f, constraints included. */

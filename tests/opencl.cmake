@@ -18,6 +18,16 @@ add_test(NAME cli_bench_small COMMAND ${_tr} bench --n 300 --steps 2 --no-kernel
 set_tests_properties(cli_bench_small PROPERTIES ENVIRONMENT "${TR_TEST_ENV}"
   PASS_REGULAR_EXPRESSION "\"valid\": true, \"validation_diff\": [^,]+, \"steps\": 2"
   FAIL_REGULAR_EXPRESSION "\"valid\": false|\"error\"")
+# The JSON reports parse (CMake's own JSON parser), also where a figure does
+# not exist: without a search the search time is null, not "nan".
+set(_json_check ${CMAKE_CURRENT_SOURCE_DIR}/scripts/json_valid.cmake)
+add_test(NAME cli_bench_json_no_search COMMAND ${CMAKE_COMMAND}
+  "-DCMD=${_tr};bench;--n;300;--steps;1;--no-kernels;--no-search;--json"
+  "-DMEMBER=results;0;contacts_s" -DTYPE=NULL -P ${_json_check})
+set_tests_properties(cli_bench_json_no_search PROPERTIES ENVIRONMENT "${TR_TEST_ENV}")
+add_test(NAME cli_devices_json_parses COMMAND ${CMAKE_COMMAND}
+  "-DCMD=${_tr};devices;--json" "-DMEMBER=devices;0;id" -DTYPE=STRING -P ${_json_check})
+set_tests_properties(cli_devices_json_parses PROPERTIES ENVIRONMENT "${TR_TEST_ENV}")
 add_test(NAME cli_bench_bad_n COMMAND ${_tr} bench --n 12,abc)
 set_tests_properties(cli_bench_bad_n PROPERTIES WILL_FAIL TRUE)
 # from a tight trefoil resampled to N: a tight curve has contacts to list
