@@ -27,8 +27,9 @@ int tr_backend_open(const char *spec, const tr_curve *c, tr_backend *out, tr_err
         spec = getenv("TIGHTROPE_DEVICE");
     if (!spec || !*spec)
         spec = "auto";
-    if (!strcmp(spec, "reference"))
-        return tr_backend_reference_open(spec, c, out, err);
+    /* the serial reference's names, as tr_device_select takes them */
+    if (!strcmp(spec, "reference") || !strcmp(spec, "serial") || !strcmp(spec, "cpu-reference"))
+        return tr_backend_reference_open("reference", c, out, err);
     if (!strcmp(spec, "auto")) {
         char why[512] = "";
         for (size_t i = 0; i < N_REGISTRY; i++) {
@@ -47,14 +48,24 @@ int tr_backend_open(const char *spec, const tr_curve *c, tr_backend *out, tr_err
             snprintf(out->warning, sizeof out->warning, "using the serial reference (%.200s)", why);
         return rc;
     }
+    /* A backend that knows the device but cannot use it (no fp64, no
+     * usable device) says why; that reason, not "unknown", is the error. */
+    char why[512] = "";
     for (size_t i = 0; i < N_REGISTRY; i++) {
         if (registry[i].open == tr_backend_reference_open)
             continue;
-        int rc = registry[i].open(spec, c, out, err);
-        if (rc != TR_EUNSUPPORTED)
+        tr_error e2 = {{0}};
+        int rc = registry[i].open(spec, c, out, &e2);
+        if (rc != TR_EUNSUPPORTED) {
+            if (rc != TR_OK && err)
+                *err = e2;
             return rc;
+        }
+        snprintf(why, sizeof why, "%.500s", e2.msg);
         memset(out, 0, sizeof *out);
     }
+    if (why[0])
+        return tr_fail(err, TR_EUNSUPPORTED, "device '%.60s': %s", spec, why);
     return tr_fail(err, TR_EINVAL, "unknown device '%s' (try 'reference' or 'auto')", spec);
 }
 

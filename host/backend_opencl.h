@@ -25,8 +25,9 @@ typedef struct tr_kernel_time {
  * Returns the number of entries written (at most max). */
 int tr_backend_opencl_kernel_times(const tr_backend *b, tr_kernel_time *out, int max);
 
-/* The edge-block solver an OpenCL backend uses: "thomas", "pcr-group" or
- * "pcr-levels" (see TIGHTROPE_CL_TRIDIAG in the README); NULL for other backends. */
+/* The edge-block solver an OpenCL backend uses: "thomas", "twisted" (CPU
+ * devices' default), "pcr-group" or "pcr-levels" (see TIGHTROPE_CL_TRIDIAG in
+ * the README); NULL for other backends. */
 const char *tr_backend_opencl_tridiag(const tr_backend *b);
 
 #endif

@@ -234,7 +234,7 @@ int tr_device_select(const char *spec, tr_device_choice *out, tr_error *err)
     tr_error why; /* err may be NULL; the message is needed for the warning */
     int rc = tr_cl_enumerate(&l, &why);
     if (rc != TR_OK) {
-        if (strcmp(spec, "auto") && strcmp(spec, "opencl"))
+        if (strcmp(spec, "auto"))
             return tr_fail(err, rc, "%s", why.msg);
         /* auto: OpenCL is broken here; the reference still works. */
         out->kind = TR_DEVICE_REFERENCE;
@@ -243,15 +243,24 @@ int tr_device_select(const char *spec, tr_device_choice *out, tr_error *err)
     }
 
     if (!strcmp(spec, "auto") || !strcmp(spec, "opencl")) {
-        int best = -1;
-        for (int i = 0; i < l.n; i++)
-            if (l.dev[i].usable && (best < 0 || l.dev[i].score > l.dev[best].score))
-                best = i;
         /* "auto" means the fastest: an OpenCL driver running on this host's
          * own CPU (PoCL) was measured slower than the serial reference on the
-         * whole step (bench/RESULTS.md), so auto takes only GPUs and
-         * accelerators; "opencl" or P:D still selects a CPU driver. */
-        int cpu_only = best >= 0 && !(l.dev[best].type & (CL_DEVICE_TYPE_GPU | CL_DEVICE_TYPE_ACCELERATOR));
+         * whole step (bench/RESULTS.md), so auto takes the best GPU or
+         * accelerator, whatever a CPU driver scores; "opencl" or P:D still
+         * selects a CPU driver. */
+        int best = -1, best_accel = -1;
+        for (int i = 0; i < l.n; i++) {
+            if (!l.dev[i].usable)
+                continue;
+            if (best < 0 || l.dev[i].score > l.dev[best].score)
+                best = i;
+            if ((l.dev[i].type & (CL_DEVICE_TYPE_GPU | CL_DEVICE_TYPE_ACCELERATOR)) &&
+                (best_accel < 0 || l.dev[i].score > l.dev[best_accel].score))
+                best_accel = i;
+        }
+        if (!strcmp(spec, "auto") && best_accel >= 0)
+            best = best_accel;
+        int cpu_only = best >= 0 && best_accel < 0;
         if (best >= 0 && !(cpu_only && !strcmp(spec, "auto"))) {
             out->kind = TR_DEVICE_OPENCL;
             out->cl = l.dev[best];

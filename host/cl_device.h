@@ -61,9 +61,10 @@ const char *tr_device_spec_default(void);
  * GPU/accelerator, or the reference with a warning when there is none; "P:D" -> that
  * device; anything else -> the single usable device whose platform or device
  * name contains it (case-insensitive). "auto" skips OpenCL drivers that run
- * on the host CPU (slower than the reference, bench/RESULTS.md); "opencl" is
- * the best usable device of any type. An explicit choice of an unusable or
- * missing device is an error, never a silent fallback. */
+ * on the host CPU (slower than the reference, bench/RESULTS.md), and falls
+ * back to the reference when OpenCL itself is missing; "opencl" is the best
+ * usable device of any type. Any other choice, "opencl" included, of an
+ * unusable or missing device is an error, never a silent fallback. */
 int tr_device_select(const char *spec, tr_device_choice *out, tr_error *err);
 
 /* Device time per kernel function, summed over the launches of a profiled

@@ -64,9 +64,10 @@ static void usage(FILE *out)
             "  --device-from N    with --refine-to, coarse levels of fewer than N vertices in all\n"
             "                     run on the serial reference, where a device's cost per kernel\n"
             "                     launch outweighs it (default 2048; 0: the device at every level)\n"
-            "  --no-polish        skip the polish stage (a serial augmented-Lagrangian / L-BFGS\n"
-            "                     minimisation on the host at the finest level, which by default\n"
-            "                     takes the last 80%% of the finest level's time or runs when it jams)\n"
+            "  --no-polish        skip the polish stage at every level (a serial augmented-\n"
+            "                     Lagrangian / L-BFGS minimisation on the host, which ends each\n"
+            "                     coarse level and at the finest takes the last 80%% of its time\n"
+            "                     or runs when it jams)\n"
             "  --kkt              certify the output (KKT residual) at any N; by default only\n"
             "                     up to N = %d\n"
             "  --no-kkt           never certify the output\n"
@@ -247,7 +248,9 @@ int tr_cmd_tighten(int argc, char **argv)
     }
     if (rc) {
         fprintf(stderr, "tightrope tighten: %s\n", err.msg);
-        return 2;
+        /* cli.h: a curve or an option the user can fix is 2; a device that
+         * fails (kernel build, OpenCL call) or memory is 1 */
+        return rc == TR_EOPENCL || rc == TR_ENOMEM || rc == TR_EUNSUPPORTED ? 1 : 2;
     }
     if (tr_engine_warning(e)[0])
         fprintf(stderr, "tightrope tighten: warning: %s\n", tr_engine_warning(e));

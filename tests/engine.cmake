@@ -6,9 +6,9 @@ set(_eng_dir ${CMAKE_CURRENT_BINARY_DIR}/cli_tighten)
 set(_tr $<TARGET_FILE:tightrope>)
 
 function(tr_engine_test name expect)
-  cmake_parse_arguments(T "" "DIR;MATCH;OUT" "CMD;ONLY" ${ARGN})
+  cmake_parse_arguments(T "" "DIR;MATCH;OUT;ERRMATCH" "CMD;ONLY" ${ARGN})
   add_test(NAME ${name} COMMAND ${CMAKE_COMMAND} "-DCMD=${T_CMD}" -DEXPECT=${expect} "-DDIR=${T_DIR}"
-    "-DONLY=${T_ONLY}" "-DMATCH=${T_MATCH}" "-DOUT=${T_OUT}" -P ${_eng_check})
+    "-DONLY=${T_ONLY}" "-DMATCH=${T_MATCH}" "-DOUT=${T_OUT}" "-DERRMATCH=${T_ERRMATCH}" -P ${_eng_check})
   set_tests_properties(${name} PROPERTIES ENVIRONMENT "${TR_TEST_ENV}")
 endfunction()
 
@@ -29,6 +29,15 @@ tr_engine_test(tighten_too_coarse 2 DIR ${_eng_dir}/coarse ONLY "c.vect"
   CMD sh -c "'${_tr}' make circle --radius 3 --n 12 -o '${_eng_dir}/coarse/c.vect' && exec '${_tr}' tighten '${_eng_dir}/coarse/c.vect' -o '${_eng_dir}/coarse/x.vect'")
 tr_engine_test(tighten_bad_device 2 DIR ${_eng_dir}/dev ONLY "s.vect"
   CMD sh -c "'${_tr}' make torus 2 3 --n 72 -o '${_eng_dir}/dev/s.vect' && exec '${_tr}' tighten '${_eng_dir}/dev/s.vect' -o '${_eng_dir}/dev/x.vect' --device no-such-device-xyz")
+# --device opencl where no OpenCL platform is installed (ocl-icd reads its
+# vendors from OCL_ICD_VENDORS): the reason, not "unknown device", and exit 1
+# (the device failed; no fallback to the reference for an explicit choice)
+tr_engine_test(tighten_opencl_absent 1 DIR ${_eng_dir}/noicd ONLY "s.vect"
+  ERRMATCH "^tightrope tighten: device 'opencl': no usable opencl device"
+  CMD sh -c "'${_tr}' make torus 2 3 --n 72 -o '${_eng_dir}/noicd/s.vect' && OCL_ICD_VENDORS='${_eng_dir}/noicd/none' exec '${_tr}' tighten '${_eng_dir}/noicd/s.vect' -o '${_eng_dir}/noicd/x.vect' --device opencl")
+# "serial" names the reference, as in tr_device_select
+tr_engine_test(tighten_device_serial 0 DIR ${_eng_dir}/serial ONLY "s.vect;t.vect"
+  CMD sh -c "'${_tr}' make torus 2 3 --n 72 -o '${_eng_dir}/serial/s.vect' && exec '${_tr}' tighten '${_eng_dir}/serial/s.vect' -o '${_eng_dir}/serial/t.vect' --steps 2 --quiet --device serial")
 tr_engine_test(tighten_trefoil_steps 0 DIR ${_eng_dir}/trefoil ONLY "s.vect;t.vect" OUT ${_eng_dir}/trefoil/t.vect
   MATCH "^VECT\n# tightened by tightrope[^\n]*\n# command: tighten [^\n]*--steps 20[^\n]*\n# N 72\n# length [0-9.]+\n# MinRad [0-9.]+\n# dcsd [0-9.]+\n# thickness (1|0[.]99999999)[0-9.]*\n# ropelength [0-9.]+\n# residual [^\n]+\n# steps 20\n# stop steps\n"
   CMD sh -c "'${_tr}' make torus 2 3 --n 72 -o '${_eng_dir}/trefoil/s.vect' && exec '${_tr}' tighten '${_eng_dir}/trefoil/s.vect' -o '${_eng_dir}/trefoil/t.vect' --steps 20 --quiet")

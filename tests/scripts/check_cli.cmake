@@ -6,6 +6,7 @@
 #             exactly the entries in ONLY (a ;-list, may be empty)
 #   OCCUPY    a path under DIR made a non-empty directory before the run
 #   MATCH     a regular expression the output file OUT must match
+#   ERRMATCH  a regular expression the error line must match (EXPECT != 0)
 cmake_minimum_required(VERSION 3.16)
 if(DIR)
   file(REMOVE_RECURSE "${DIR}")
@@ -24,6 +25,9 @@ if(NOT EXPECT EQUAL 0)
   list(LENGTH lines nlines)
   if(NOT nlines EQUAL 1 OR NOT err MATCHES "^tightrope [a-z]+: ")
     message(FATAL_ERROR "want one error line 'tightrope CMD: ...', got:\n${err}")
+  endif()
+  if(ERRMATCH AND NOT err MATCHES "${ERRMATCH}")
+    message(FATAL_ERROR "error line does not match '${ERRMATCH}':\n${err}")
   endif()
   message(STATUS "error line: ${err}")
 endif()
