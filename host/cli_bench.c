@@ -32,6 +32,7 @@
 #include "backend_opencl.h"
 #include "cl_device.h"
 #include "cli.h"
+#include "cli_args.h"
 #include "curve_io.h"
 #include "engine.h"
 #include "refine_lowpass.h"
@@ -259,27 +260,35 @@ static void profile_kernels(const char *spec, const tr_curve *c, const bench_ctx
     tr_backend_close(&b);
 }
 
+/* "1e3,1e4": each an integer from 8 to 5e7, written any way strtod reads
+ * (so 1e5 works), nothing else; -1 on any bad or empty item. */
 static int parse_list(const char *s, size_t *out, int max)
 {
     int n = 0;
-    while (*s && n < max) {
-        char *end;
-        double v = strtod(s, &end);
-        if (end == s || !(v >= 8) || v > 5e7)
+    const char *p = s;
+    for (;;) {
+        const char *comma = strchr(p, ',');
+        size_t len = comma ? (size_t)(comma - p) : strlen(p);
+        char item[64];
+        double v;
+        if (n == max || len == 0 || len >= sizeof item)
+            return -1;
+        memcpy(item, p, len);
+        item[len] = 0;
+        if (tr_arg_double(item, 8, 5e7, &v) || v != floor(v))
             return -1;
         out[n++] = (size_t)v;
-        s = *end == ',' ? end + 1 : end;
-        if (*end && *end != ',')
-            return -1;
+        if (!comma)
+            return n;
+        p = comma + 1;
     }
-    return n;
 }
 
 static void usage(FILE *f)
 {
     fprintf(f,
             "usage: tightrope bench [--device SPEC]... [--n LIST] [--start FILE] [--contacts C,T] [--steps K]\n"
-            "                      [--time S] [--json]\n"
+            "                      [--time S] [--no-kernels] [--no-search] [--json]\n"
             "  --device SPEC  reference, auto, P:D or a name part; repeatable (default: the\n"
             "                 reference and every usable OpenCL device)\n"
             "  --n LIST       vertex counts, e.g. 1e3,1e4,1e5 (default 1000,10000,100000)\n"
@@ -304,54 +313,77 @@ int tr_cmd_bench(int argc, char **argv)
     double target = 2.0;
     size_t ns[MAX_N] = {1000, 10000, 100000};
     int nn = 3;
+    static const char *valued[] = {"--device", "--n", "--contacts", "--start", "--steps", "--time"};
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
-        if (!strcmp(a, "--json"))
+        if (!strcmp(a, "--json")) {
             json = 1;
-        else if (!strcmp(a, "--no-kernels"))
+            continue;
+        }
+        if (!strcmp(a, "--no-kernels")) {
             kernels = 0;
-        else if (!strcmp(a, "--no-search"))
+            continue;
+        }
+        if (!strcmp(a, "--no-search")) {
             search = 0;
-        else if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
+            continue;
+        }
+        if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
             usage(stdout);
             return 0;
-        } else if (i + 1 < argc && !strcmp(a, "--device")) {
+        }
+        int takes = 0;
+        for (size_t k = 0; k < sizeof valued / sizeof valued[0]; k++)
+            takes |= !strcmp(a, valued[k]);
+        if (!takes) {
+            fprintf(stderr, "tightrope bench: unknown %s '%s' (see tightrope bench --help)\n",
+                    a[0] == '-' ? "option" : "argument", a);
+            return 2;
+        }
+        if (i + 1 >= argc) {
+            fprintf(stderr, "tightrope bench: %s needs a value\n", a);
+            return 2;
+        }
+        const char *v = argv[++i];
+        int bad = 0;
+        if (!strcmp(a, "--device")) {
             if (ndev == MAX_DEV) {
                 fprintf(stderr, "tightrope bench: at most %d devices\n", MAX_DEV);
                 return 2;
             }
-            devs[ndev++] = argv[++i];
-        } else if (i + 1 < argc && !strcmp(a, "--n")) {
-            nn = parse_list(argv[++i], ns, MAX_N);
+            /* an unknown or unusable device is refused now, not after the
+             * other devices' runs */
+            tr_device_choice dc;
+            tr_error derr;
+            int drc = tr_device_select(v, &dc, &derr);
+            if (drc != TR_OK) {
+                fprintf(stderr, "tightrope bench: %s\n", derr.msg);
+                return drc == TR_EINVAL ? 2 : 1;
+            }
+            devs[ndev++] = v;
+        } else if (!strcmp(a, "--n")) {
+            nn = parse_list(v, ns, MAX_N);
             if (nn <= 0) {
-                fprintf(stderr, "tightrope bench: bad --n list '%s' (e.g. 1e3,1e4)\n", argv[i]);
+                fprintf(stderr, "tightrope bench: bad --n list '%s' (integers from 8 to 5e7, e.g. 1e3,1e4)\n", v);
                 return 2;
             }
-        } else if (i + 1 < argc && !strcmp(a, "--contacts")) {
+        } else if (!strcmp(a, "--contacts")) {
             char tail;
-            if (sscanf(argv[++i], "%lf,%lf%c", &shape_cut, &shape_tilt, &tail) != 2 || !(shape_cut > 2.0) ||
+            if (sscanf(v, "%lf,%lf%c", &shape_cut, &shape_tilt, &tail) != 2 || !(shape_cut > 2.0) ||
                 !(shape_cut < 100.0) || !(shape_tilt > 0.0) || !(shape_tilt <= 1.0)) {
                 fprintf(stderr, "tightrope bench: bad --contacts '%s' (CUTOFF,TILT: 2 < CUTOFF, 0 < TILT <= 1)\n",
-                        argv[i]);
+                        v);
                 return 2;
             }
-        } else if (i + 1 < argc && !strcmp(a, "--start")) {
-            start = argv[++i];
-        } else if (i + 1 < argc && !strcmp(a, "--steps")) {
-            steps = atoi(argv[++i]);
-            if (steps < 1 || steps > 100000) {
-                fprintf(stderr, "tightrope bench: bad --steps '%s'\n", argv[i]);
-                return 2;
-            }
-        } else if (i + 1 < argc && !strcmp(a, "--time")) {
-            target = atof(argv[++i]);
-            if (!(target > 0 && target < 3600)) {
-                fprintf(stderr, "tightrope bench: bad --time '%s'\n", argv[i]);
-                return 2;
-            }
+        } else if (!strcmp(a, "--start")) {
+            start = v;
+        } else if (!strcmp(a, "--steps")) {
+            bad = tr_arg_int(v, 1, 100000, &steps);
         } else {
-            fprintf(stderr, "tightrope bench: unknown option '%s'\n", a);
-            usage(stderr);
+            bad = tr_arg_double(v, 0, 3600, &target) || !(target > 0 && target < 3600);
+        }
+        if (bad) {
+            fprintf(stderr, "tightrope bench: bad %s '%s'\n", a, v);
             return 2;
         }
     }
@@ -395,19 +427,21 @@ int tr_cmd_bench(int argc, char **argv)
         if (tr_curve_read(start, TR_FORMAT_AUTO, &start_curve, &err) != TR_OK) {
             fprintf(stderr, "tightrope bench: %s\n", err.msg);
             free(res);
-            return 1;
+            return 2;
         }
     }
     for (int j = 0; j < nn; j++) {
         tr_curve c;
         tr_error err;
-        if ((start ? tr_refine_lowpass(&start_curve, ns[j], 0.5, 0.5, &c, &err)
-                   : tr_make_torus(&c, 2, 3, ns[j], &err)) != TR_OK) {
+        int crc = start ? tr_refine_lowpass(&start_curve, ns[j], 0.5, 0.5, &c, &err)
+                        : tr_make_torus(&c, 2, 3, ns[j], &err);
+        if (crc != TR_OK) {
             fprintf(stderr, "tightrope bench: %s\n", err.msg);
             if (start)
                 tr_curve_free(&start_curve);
             free(res);
-            return 1;
+            /* an N or a start curve the user can change */
+            return crc == TR_ENOMEM ? 1 : 2;
         }
         int gap = (int)ceil(3.141592653589793 / (tr_curve_length(&c) / (double)c.nv));
         bc.gap = &gap;

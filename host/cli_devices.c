@@ -38,8 +38,7 @@ int tr_cmd_devices(int argc, char **argv)
             usage(stdout);
             return 0;
         } else {
-            fprintf(stderr, "tightrope devices: unknown option '%s'\n", argv[i]);
-            usage(stderr);
+            fprintf(stderr, "tightrope devices: unknown option '%s' (see tightrope devices --help)\n", argv[i]);
             return 2;
         }
     }

@@ -196,8 +196,7 @@ int tr_cmd_measure(int argc, char **argv)
                 return 2;
             }
         } else if (a[0] == '-' && a[1] == '-') {
-            fprintf(stderr, "tightrope measure: unknown or incomplete option '%s'\n", a);
-            usage(stderr);
+            fprintf(stderr, "tightrope measure: unknown or incomplete option '%s' (see tightrope measure --help)\n", a);
             free(files);
             return 2;
         } else {
@@ -224,7 +223,7 @@ int tr_cmd_measure(int argc, char **argv)
     for (; nread < nfiles; nread++) {
         int rc = tr_curve_read(files[nread], TR_FORMAT_AUTO, &curves[nread], &err);
         if (rc) {
-            fprintf(stderr, "%s\n", err.msg);
+            fprintf(stderr, "tightrope measure: %s\n", err.msg);
             status = 2;
             break;
         }
@@ -239,7 +238,7 @@ int tr_cmd_measure(int argc, char **argv)
         tr_thickness m;
         tr_thickness_opts opts = {.strut_rel_tol = strut_tol};
         if (tr_thickness_measure(c, &opts, &m, struts_path ? &sl : NULL, &err)) {
-            fprintf(stderr, "%s: %s\n", files[f], err.msg);
+            fprintf(stderr, "tightrope measure: %s: %s\n", files[f], err.msg);
             status = 2;
             break;
         }
@@ -252,7 +251,7 @@ int tr_cmd_measure(int argc, char **argv)
             break;
         }
         if (kkt && tr_kkt_certify_forces(c, &kp, &kr, kg, kres, &err)) {
-            fprintf(stderr, "%s: %s\n", files[f], err.msg);
+            fprintf(stderr, "tightrope measure: %s: %s\n", files[f], err.msg);
             free(kg);
             free(kres);
             status = 2;
@@ -262,7 +261,7 @@ int tr_cmd_measure(int argc, char **argv)
         free(kg);
         free(kres);
         if (frc) {
-            fprintf(stderr, "%s\n", err.msg);
+            fprintf(stderr, "tightrope measure: %s\n", err.msg);
             status = 2; /* cannot write an output: like bad input, see cli.h */
             break;
         }
@@ -278,7 +277,7 @@ int tr_cmd_measure(int argc, char **argv)
                 if (c->ncomp == 1) {
                     pc[k] = m;
                 } else if (tr_thickness_measure_component(c, k, &pc[k], &err)) {
-                    fprintf(stderr, "%s: component %d: %s\n", files[f], k, err.msg);
+                    fprintf(stderr, "tightrope measure: %s: component %d: %s\n", files[f], k, err.msg);
                     status = 2;
                 }
             }
@@ -315,7 +314,7 @@ int tr_cmd_measure(int argc, char **argv)
         }
         free(pc);
         if (status == 0 && struts_path && write_struts(struts_path, c, &m, &sl, &err)) {
-            fprintf(stderr, "%s\n", err.msg);
+            fprintf(stderr, "tightrope measure: %s\n", err.msg);
             status = 2; /* cannot write an output: like bad input, see cli.h */
         }
     }

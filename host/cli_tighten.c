@@ -12,6 +12,7 @@
 #include <limits.h>
 #include <math.h>
 #include <signal.h>
+#include <sys/stat.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -56,7 +57,8 @@ static void usage(FILE *out)
             "  --target X         stop when the ropelength estimate reaches X\n"
             "  --steps S          stop after S accepted steps in all (a resumed run counts\n"
             "                     the steps before its checkpoint)\n"
-            "  --time-limit T     stop after T seconds (wall clock)\n"
+            "  --time-limit T     stop after T seconds of wall clock in all (a resumed run\n"
+            "                     counts the time before its checkpoint)\n"
             "  --checkpoint FILE  write the state to FILE every --checkpoint-every seconds\n"
             "                     (default 300), at the end and on SIGINT/SIGTERM\n"
             "  --resume FILE      continue from a checkpoint\n"
@@ -106,6 +108,28 @@ static void json_str(const char *key, const char *v, int comma)
     printf("  \"%s\": ", key);
     tr_json_fputs(stdout, v);
     printf("%s\n", comma ? "," : "");
+}
+
+/* Whether a and b name the same file: the same inode where both exist,
+ * else the same path. */
+static int same_file(const char *a, const char *b)
+{
+    struct stat sa, sb;
+    if (stat(a, &sa) == 0 && stat(b, &sb) == 0)
+        return sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
+    return !strcmp(a, b);
+}
+
+static int check_outputs(tr_engine *e, const char *out, const char *ckpt, tr_error *err)
+{
+    tr_curve c = {0};
+    int rc = tr_engine_get_curve(e, &c, err);
+    if (rc == TR_OK)
+        rc = tr_curve_check_output(out, TR_FORMAT_AUTO, &c, err);
+    tr_curve_free(&c);
+    if (rc == TR_OK && ckpt)
+        rc = tr_check_writable(ckpt, err);
+    return rc;
 }
 
 /* Scales the curve about the origin by f, constraints included. */
@@ -212,6 +236,18 @@ int tr_cmd_tighten(int argc, char **argv)
         fprintf(stderr, "tightrope tighten: no output file (-o OUT)\n");
         return 2;
     }
+    if (resume && (in || n > 0)) {
+        fprintf(stderr, "tightrope tighten: --resume continues the checkpoint's curve; %s\n",
+                in ? "drop the input file" : "--n cannot resample it");
+        return 2;
+    }
+    /* the checkpoint is rewritten during the run: over the input it would
+     * destroy the start, over the output the output would replace it */
+    if (ckpt && (same_file(ckpt, out) || (in && same_file(ckpt, in)))) {
+        fprintf(stderr, "tightrope tighten: --checkpoint %s is the %s file\n", ckpt,
+                same_file(ckpt, out) ? "output" : "input");
+        return 2;
+    }
 
     tr_error err;
     tr_engine_params prm;
@@ -252,8 +288,28 @@ int tr_cmd_tighten(int argc, char **argv)
          * fails (kernel build, OpenCL call) or memory is 1 */
         return rc == TR_EOPENCL || rc == TR_ENOMEM || rc == TR_EUNSUPPORTED ? 1 : 2;
     }
+    /* A run of hours must not end in "cannot write": the output's format
+     * and both paths are checked before it starts. */
+    rc = check_outputs(e, out, ckpt, &err);
+    if (rc) {
+        fprintf(stderr, "tightrope tighten: %s\n", err.msg);
+        tr_engine_destroy(e);
+        return rc == TR_ENOMEM ? 1 : 2;
+    }
     if (tr_engine_warning(e)[0])
         fprintf(stderr, "tightrope tighten: warning: %s\n", tr_engine_warning(e));
+    if (resume) {
+        /* both limits count the runs before the checkpoint: say so when
+         * they leave this run nothing to do */
+        tr_engine_progress p0;
+        tr_engine_get_progress(e, &p0);
+        if (steps > 0 && p0.steps >= steps)
+            fprintf(stderr, "tightrope tighten: warning: the checkpoint has %ld steps already; --steps %ld "
+                            "counts them, so no step is taken\n", p0.steps, steps);
+        if (time_limit > 0 && p0.elapsed >= time_limit)
+            fprintf(stderr, "tightrope tighten: warning: the checkpoint has used %.1f s already; "
+                            "--time-limit %g counts them, so no step is taken\n", p0.elapsed, time_limit);
+    }
 
     struct sigaction sa;
     memset(&sa, 0, sizeof sa);
@@ -290,6 +346,10 @@ int tr_cmd_tighten(int argc, char **argv)
 
     tr_engine_progress p;
     tr_engine_get_progress(e, &p);
+    /* no step ever taken (a --target the start already meets): the engine
+     * has no residual to report, and 0 would read as converged */
+    if (p.steps == 0)
+        p.residual = NAN;
     tr_curve fin = {0};
     tr_thickness th;
     rc = tr_engine_get_curve(e, &fin, &err);
@@ -318,7 +378,11 @@ int tr_cmd_tighten(int argc, char **argv)
             tr_text_printf(&cm, " %s", argv[i]);
         tr_text_printf(&cm, "\nN %zu\nlength %.17g\nMinRad %.17g\ndcsd %.17g\nthickness %.17g\nropelength %.17g\n",
                 th.vertices, th.length, th.minrad, th.dcsd, th.thickness, th.ropelength);
-        tr_text_printf(&cm, "residual %.6g\nsteps %ld\nstop %s\n%s", p.residual, p.steps, tr_stop_reason_name(why),
+        if (isfinite(p.residual))
+            tr_text_printf(&cm, "residual %.6g\n", p.residual);
+        else
+            tr_text_printf(&cm, "residual not computed (no step taken)\n");
+        tr_text_printf(&cm, "steps %ld\nstop %s\n%s", p.steps, tr_stop_reason_name(why),
                 rescaled ? "rescaled to thickness 1\n" : "");
         if (certified)
             tr_text_printf(&cm, "kkt_residual %.6e (band %g: %zu/%zu struts, %zu/%zu MinRad rows hold%s)\n", kr.residual,
@@ -365,7 +429,10 @@ int tr_cmd_tighten(int argc, char **argv)
     } else {
         printf("%s: N %zu  ropelength %.6f  (length %.6f, thickness %.9f, MinRad %.9f, dcsd %.9f)\n", out,
                th.vertices, th.ropelength, th.length, th.thickness, th.minrad, th.dcsd);
-        printf("  %ld steps in %.1f s, residual %.2e, stopped: %s\n", p.steps, p.elapsed, p.residual,
+        char res[32] = "not computed";
+        if (isfinite(p.residual))
+            snprintf(res, sizeof res, "%.2e", p.residual);
+        printf("  %ld steps in %.1f s, residual %s, stopped: %s\n", p.steps, p.elapsed, res,
                tr_stop_reason_name(why));
         if (certified)
             printf("  KKT residual %.2e (%zu/%zu struts and %zu/%zu MinRad rows hold the tension%s)\n", kr.residual,

@@ -895,6 +895,21 @@ int tr_curve_format(const tr_curve *c, tr_format fmt, const char *comments, char
     return TR_OK;
 }
 
+int tr_curve_check_output(const char *path, tr_format fmt, const tr_curve *c, tr_error *err)
+{
+    if (fmt == TR_FORMAT_AUTO)
+        fmt = tr_format_from_name(path);
+    if (fmt == TR_FORMAT_AUTO)
+        return tr_fail(err, TR_EINVAL, "cannot tell the format of %s (use .vect, .tsv or .txt)", path);
+    char *text;
+    size_t len;
+    int rc = tr_curve_format(c, fmt, NULL, &text, &len, err);
+    if (rc)
+        return tr_fail_wrap(err, rc, "not writing %s", path);
+    free(text);
+    return tr_check_writable(path, err);
+}
+
 int tr_curve_write(const char *path, tr_format fmt, const tr_curve *c, const char *comments, tr_error *err)
 {
     if (fmt == TR_FORMAT_AUTO)

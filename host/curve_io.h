@@ -30,6 +30,12 @@ int tr_curve_read(const char *path, tr_format fmt, tr_curve *out, tr_error *err)
 int tr_curve_write(const char *path, tr_format fmt, const tr_curve *c, const char *comments,
                    tr_error *err);
 
+/* Checks, writing nothing, that tr_curve_write(path, fmt, c, ...) would get
+ * past everything but the coordinates: the format is known, can hold c's
+ * components, openness and constraints, and path is writable. For commands
+ * that write their result after a long run. */
+int tr_curve_check_output(const char *path, tr_format fmt, const tr_curve *c, tr_error *err);
+
 /* Formats the curve as the text tr_curve_write would write, into a buffer
  * the caller frees; fmt must not be TR_FORMAT_AUTO. TR_EINVAL if the format
  * cannot hold the curve (open components or constraints in TSV/KnotPlot,

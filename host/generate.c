@@ -389,8 +389,9 @@ int tr_make_circle(tr_curve *out, double radius, size_t n, tr_error *err)
     memset(out, 0, sizeof *out);
     if (n < 3)
         return tr_fail(err, TR_EINVAL, "a circle needs at least 3 vertices, got %zu", n);
-    if (!(radius > 0) || !isfinite(radius))
-        return tr_fail(err, TR_EINVAL, "circle radius must be positive, got %g", radius);
+    /* above 1e12 the length (and every later sum) loses the rope's scale */
+    if (!(radius > 0) || !(radius <= 1e12))
+        return tr_fail(err, TR_EINVAL, "circle radius must be positive and at most 1e12, got %g", radius);
     int rc = tr_curve_alloc(out, 1, &n, NULL, err);
     if (rc)
         return rc;

@@ -80,6 +80,20 @@ static int open_temp(const char *path, char *tmp, size_t tmpn)
     return -1;
 }
 
+int tr_check_writable(const char *path, tr_error *err)
+{
+    struct stat st;
+    if (stat(path, &st) == 0 && S_ISDIR(st.st_mode))
+        return tr_fail(err, TR_EIO, "cannot write %s: %s", path, strerror(EISDIR));
+    char tmp[4096];
+    int fd = open_temp(path, tmp, sizeof tmp);
+    if (fd < 0)
+        return tr_fail(err, TR_EIO, "cannot write %s: %s", path, strerror(errno));
+    close(fd);
+    unlink(tmp);
+    return TR_OK;
+}
+
 int tr_write_file_atomic(const char *path, const char *text, size_t len, tr_error *err)
 {
     char tmp[4096];

@@ -19,6 +19,11 @@ int tr_read_file(const char *path, char **text, size_t *len, tr_error *err);
  * whole new one, never a part. */
 int tr_write_file_atomic(const char *path, const char *text, size_t len, tr_error *err);
 
+/* What tr_write_file_atomic needs, checked before a long computation whose
+ * result it will write: the temporary beside `path` can be created (and is
+ * removed again) and `path` is not a directory. TR_EIO with the reason. */
+int tr_check_writable(const char *path, tr_error *err);
+
 /* A growing string. Zero-initialise; tr_text_printf appends; an
  * allocation or format failure sets `oom` and later calls do nothing, so
  * callers check once at the end. */

@@ -38,6 +38,23 @@ tr_engine_test(tighten_opencl_absent 1 DIR ${_eng_dir}/noicd ONLY "s.vect"
 # "serial" names the reference, as in tr_device_select
 tr_engine_test(tighten_device_serial 0 DIR ${_eng_dir}/serial ONLY "s.vect;t.vect"
   CMD sh -c "'${_tr}' make torus 2 3 --n 72 -o '${_eng_dir}/serial/s.vect' && exec '${_tr}' tighten '${_eng_dir}/serial/s.vect' -o '${_eng_dir}/serial/t.vect' --steps 2 --quiet --device serial")
+# The output's format and both paths are checked before the run, so a long
+# run cannot end in "cannot write" (--time-limit 600 would show as a timeout).
+tr_engine_test(tighten_output_dir_missing 2 DIR ${_eng_dir}/outmiss ONLY "s.vect"
+  ERRMATCH "cannot write .*/nodir/x.vect"
+  CMD sh -c "'${_tr}' make torus 2 3 --n 72 -o '${_eng_dir}/outmiss/s.vect' && exec '${_tr}' tighten '${_eng_dir}/outmiss/s.vect' -o '${_eng_dir}/outmiss/nodir/x.vect' --time-limit 600")
+tr_engine_test(tighten_output_format 2 DIR ${_eng_dir}/outfmt ONLY "h.vect"
+  ERRMATCH "not writing .*h.txt: a knotplot list holds one component"
+  CMD sh -c "'${_tr}' make hopf --n 64 -o '${_eng_dir}/outfmt/h.vect' && exec '${_tr}' tighten '${_eng_dir}/outfmt/h.vect' -o '${_eng_dir}/outfmt/h.txt' --time-limit 600")
+tr_engine_test(tighten_checkpoint_dir_missing 2 DIR ${_eng_dir}/ckmiss ONLY "s.vect"
+  ERRMATCH "cannot write .*/nodir/ck"
+  CMD sh -c "'${_tr}' make torus 2 3 --n 72 -o '${_eng_dir}/ckmiss/s.vect' && exec '${_tr}' tighten '${_eng_dir}/ckmiss/s.vect' -o '${_eng_dir}/ckmiss/x.vect' --checkpoint '${_eng_dir}/ckmiss/nodir/ck' --time-limit 600")
+# a checkpoint over the input would destroy the start curve
+tr_engine_test(tighten_checkpoint_is_input 2 DIR ${_eng_dir}/ckin ONLY "s.vect"
+  ERRMATCH "--checkpoint .*s.vect is the input file"
+  CMD sh -c "'${_tr}' make torus 2 3 --n 72 -o '${_eng_dir}/ckin/s.vect' && exec '${_tr}' tighten '${_eng_dir}/ckin/s.vect' -o '${_eng_dir}/ckin/x.vect' --checkpoint '${_eng_dir}/ckin/./s.vect' --steps 2")
+tr_engine_test(tighten_resume_with_input 2 CMD ${_tr} tighten --resume ${_eng_dir}/none.ck ${_eng_dir}/none.vect -o ${_eng_dir}/x.vect
+  ERRMATCH "--resume continues the checkpoint's curve")
 tr_engine_test(tighten_trefoil_steps 0 DIR ${_eng_dir}/trefoil ONLY "s.vect;t.vect" OUT ${_eng_dir}/trefoil/t.vect
   MATCH "^VECT\n# tightened by tightrope[^\n]*\n# command: tighten [^\n]*--steps 20[^\n]*\n# N 72\n# length [0-9.]+\n# MinRad [0-9.]+\n# dcsd [0-9.]+\n# thickness (1|0[.]99999999)[0-9.]*\n# ropelength [0-9.]+\n# residual [^\n]+\n# steps 20\n# stop steps\n"
   CMD sh -c "'${_tr}' make torus 2 3 --n 72 -o '${_eng_dir}/trefoil/s.vect' && exec '${_tr}' tighten '${_eng_dir}/trefoil/s.vect' -o '${_eng_dir}/trefoil/t.vect' --steps 20 --quiet")

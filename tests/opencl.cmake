@@ -28,6 +28,15 @@ set_tests_properties(cli_bench_json_no_search PROPERTIES ENVIRONMENT "${TR_TEST_
 add_test(NAME cli_devices_json_parses COMMAND ${CMAKE_COMMAND}
   "-DCMD=${_tr};devices;--json" "-DMEMBER=devices;0;id" -DTYPE=STRING -P ${_json_check})
 set_tests_properties(cli_devices_json_parses PROPERTIES ENVIRONMENT "${TR_TEST_ENV}")
+# bench's numbers are whole tokens, and a device that does not exist is
+# refused before any other device is timed
+add_test(NAME cli_bench_bad_steps COMMAND ${_tr} bench --device reference --n 300 --steps 2abc)
+set_tests_properties(cli_bench_bad_steps PROPERTIES PASS_REGULAR_EXPRESSION "^tightrope bench: bad --steps '2abc'\n$")
+add_test(NAME cli_bench_bad_n_trailing COMMAND ${_tr} bench --device reference --n 300,)
+set_tests_properties(cli_bench_bad_n_trailing PROPERTIES PASS_REGULAR_EXPRESSION "^tightrope bench: bad --n list")
+add_test(NAME cli_bench_bad_device COMMAND ${_tr} bench --device reference --device no-such-device-xyz --n 300 --steps 1)
+set_tests_properties(cli_bench_bad_device PROPERTIES
+  PASS_REGULAR_EXPRESSION "^tightrope bench: no device matches 'no-such-device-xyz'[^\n]*\n$")
 add_test(NAME cli_bench_bad_n COMMAND ${_tr} bench --n 12,abc)
 set_tests_properties(cli_bench_bad_n PROPERTIES WILL_FAIL TRUE)
 # from a tight trefoil resampled to N: a tight curve has contacts to list

@@ -110,6 +110,7 @@ static void test_circle(void)
     CHECK(tr_make_circle(&c, 1.0, 2, &err) == TR_EINVAL);
     CHECK(tr_make_circle(&c, -1.0, 10, &err) == TR_EINVAL);
     CHECK(tr_make_circle(&c, NAN, 10, &err) == TR_EINVAL);
+    CHECK(tr_make_circle(&c, 1e308, 10, &err) == TR_EINVAL); /* its length would overflow */
 }
 
 /* Windings of the polygon around the z axis, and sign changes of z. */
