@@ -50,7 +50,8 @@ static void usage(FILE *out)
             "       tightrope tighten --resume CKPT -o OUT [options]\n"
             "  IN                 start curve (.vect, .tsv, KnotPlot list); distances >= 2, MinRad >= 1\n"
             "  -o, --output OUT   tightened curve with its certificate in comments\n"
-            "  --n N              first resample every component to N vertices\n"
+            "  --n N              first resample every component to N vertices (along a\n"
+            "                     spline through the vertices where that adds vertices)\n"
             "  --refine-to N      tighten, then refine (doubling, low-pass) and re-tighten up to N\n"
             "  --residual R       stop when the engine's residual falls below R (default 1e-4);\n"
             "                     given, the goal is also met by a KKT residual <= R of the output\n"
@@ -268,9 +269,16 @@ int tr_cmd_tighten(int argc, char **argv)
             if (!per) {
                 rc = tr_fail(&err, TR_ENOMEM, "out of memory");
             } else {
-                for (int k = 0; k < c.ncomp; k++)
+                /* Adding vertices on the old straight edges would keep the
+                 * polygon's corners: MinRad falls like 1/N and a smooth
+                 * start is refused as bent too tight. Along a spline
+                 * through the vertices the start stays the smooth curve. */
+                int adds = 0;
+                for (int k = 0; k < c.ncomp; k++) {
                     per[k] = (size_t)n;
-                rc = tr_resample(&c, per, &r, &err);
+                    adds |= per[k] > c.start[k + 1] - c.start[k];
+                }
+                rc = adds ? tr_resample_smooth(&c, per, &r, &err) : tr_resample(&c, per, &r, &err);
                 free(per);
                 if (rc == TR_OK) {
                     tr_curve_free(&c);
