@@ -1067,7 +1067,7 @@ static int open_on(const tr_device_choice *dev, const tr_curve *c, int profiling
         return tr_fail(err, TR_EINVAL, "%zu vertices: the opencl backend takes fewer than 2^28", c->nv);
     for (int k = 0; k < c->ncomp; k++)
         if (tr_comp_nv(c, k) < (c->closed[k] ? 3u : 2u))
-            return tr_fail(err, TR_EGEOMETRY, "component %d has only %zu vertices", k + 1,
+            return tr_fail(err, TR_EGEOMETRY, "component %d has only %zu vertices", k,
                            tr_comp_nv(c, k));
     cl_state *s = calloc(1, sizeof *s);
     if (!s)

@@ -1104,7 +1104,7 @@ int tr_backend_reference_open(const char *spec, const tr_curve *c, tr_backend *o
         size_t a = c->start[k], e = c->start[k + 1], n = e - a;
         if (n < (c->closed[k] ? 3u : 2u)) {
             ref_destroy(s);
-            return tr_fail(err, TR_EGEOMETRY, "component %d has only %zu vertices", k + 1, n);
+            return tr_fail(err, TR_EGEOMETRY, "component %d has only %zu vertices", k, n);
         }
         s->ne[k] = tr_comp_ne(c, k);
         for (size_t i = a; i < e; i++) {

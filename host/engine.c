@@ -186,7 +186,7 @@ static int settle(tr_engine *e, const char *what, double overlap_ok, tr_error *e
             return tr_fail(err, TR_EGEOMETRY,
                            "%s: component %d is too coarse for its thickness: edges of length %.3g, "
                            "need < %.3g (use more vertices)",
-                           what, k + 1, e->ebar[k], e->prm.max_edge);
+                           what, k, e->ebar[k], e->prm.max_edge);
     if (m.min_strut < e->prm.correct.strut_dist * (1.0 - 1e-6) - overlap_ok)
         return tr_fail(err, TR_EGEOMETRY,
                        "%s overlaps itself: two non-neighbouring parts are %.6g apart, closer than the "
