@@ -50,6 +50,8 @@ static void usage(FILE *out)
             "       tightrope tighten --resume CKPT -o OUT [options]\n"
             "  IN                 start curve (.vect, .tsv, KnotPlot list); distances >= 2, MinRad >= 1\n"
             "  -o, --output OUT   tightened curve with its certificate in comments\n"
+            "  --scale            first scale the start (no constraints) to thickness exactly 1:\n"
+            "                     for curves at another scale, e.g. tight knots from other codes\n"
             "  --n N              first resample every component to N vertices (along a\n"
             "                     spline through the vertices where that adds vertices)\n"
             "  --refine-to N      tighten, then refine (doubling, low-pass) and re-tighten up to N\n"
@@ -151,7 +153,7 @@ int tr_cmd_tighten(int argc, char **argv)
     long n = 0, refine_to = 0, steps = 0, device_from = -1;
     double target = 0, residual = 1e-4, time_limit = 0, ckpt_every = 300;
     int residual_given = 0; /* the default residual is a stopping rule, not a goal */
-    int json = 0, quiet = 0, no_polish = 0, kkt = -1; /* -1: up to KKT_AUTO_MAX_N */
+    int json = 0, quiet = 0, no_polish = 0, scale = 0, kkt = -1; /* -1: up to KKT_AUTO_MAX_N */
     static const char *valued[] = {"-o", "--output", "--n", "--refine-to", "--target", "--residual",
                                    "--steps", "--time-limit", "--checkpoint", "--checkpoint-every",
                                    "--resume", "--device", "--device-from"};
@@ -175,6 +177,10 @@ int tr_cmd_tighten(int argc, char **argv)
         }
         if (!strcmp(a, "--quiet")) {
             quiet = 1;
+            continue;
+        }
+        if (!strcmp(a, "--scale")) {
+            scale = 1;
             continue;
         }
         int takes = 0;
@@ -237,9 +243,9 @@ int tr_cmd_tighten(int argc, char **argv)
         fprintf(stderr, "tightrope tighten: no output file (-o OUT)\n");
         return 2;
     }
-    if (resume && (in || n > 0)) {
+    if (resume && (in || n > 0 || scale)) {
         fprintf(stderr, "tightrope tighten: --resume continues the checkpoint's curve; %s\n",
-                in ? "drop the input file" : "--n cannot resample it");
+                in ? "drop the input file" : n > 0 ? "--n cannot resample it" : "--scale cannot scale it");
         return 2;
     }
     /* the checkpoint is rewritten during the run: over the input it would
@@ -285,6 +291,22 @@ int tr_cmd_tighten(int argc, char **argv)
                     c = r;
                 }
             }
+        }
+        /* Ropelength is scale free: --scale takes a start at another scale
+         * (a tight knot from another code at thickness 0.99995, a file in
+         * its own units) to the rope's radius 1. Constraint planes sit at
+         * fixed places, so a constrained start is not scaled. */
+        if (rc == TR_OK && scale) {
+            tr_thickness t0;
+            if (c.ncst > 0)
+                rc = tr_fail(&err, TR_EINVAL, "--scale: %s has constraints, whose planes would move", in);
+            else
+                rc = tr_thickness_measure(&c, NULL, &t0, NULL, &err);
+            if (rc == TR_OK && !(t0.thickness > 0 && isfinite(t0.thickness)))
+                rc = tr_fail(&err, TR_EGEOMETRY, "--scale: %s has thickness %g; no scale makes it a rope", in,
+                             t0.thickness);
+            if (rc == TR_OK)
+                scale_curve(&c, 1.0 / t0.thickness);
         }
         if (rc == TR_OK)
             rc = tr_engine_create(&e, &c, device, &prm, &err);

@@ -190,7 +190,7 @@ static int settle(tr_engine *e, const char *what, double overlap_ok, tr_error *e
     if (m.min_strut < e->prm.correct.strut_dist * (1.0 - 1e-6) - overlap_ok)
         return tr_fail(err, TR_EGEOMETRY,
                        "%s overlaps itself: two non-neighbouring parts are %.6g apart, closer than the "
-                       "rope diameter 2 (scale it up or use a thicker start)",
+                       "rope diameter 2 (tighten --scale scales a start to thickness 1)",
                        what, m.min_strut);
     if (m.min_minrad < 0.5)
         return tr_fail(err, TR_EGEOMETRY,

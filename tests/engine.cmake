@@ -61,6 +61,15 @@ tr_engine_test(tighten_resume_with_input 2 CMD ${_tr} tighten --resume ${_eng_di
 tr_engine_test(tighten_upsample 0 DIR ${_eng_dir}/up ONLY "s.vect;t.vect" OUT ${_eng_dir}/up/t.vect
   MATCH "\n# N 1000\n# length [0-9.]+\n# MinRad 1[.][5-9]"
   CMD sh -c "'${_tr}' make torus 2 3 --n 150 -o '${_eng_dir}/up/s.vect' && exec '${_tr}' tighten '${_eng_dir}/up/s.vect' -o '${_eng_dir}/up/t.vect' --n 1000 --steps 1 --quiet --no-kkt --device reference")
+# --scale: a regular 64-gon of circumradius 1/2 (thickness = Rawdon's MinRad
+# r cos(pi/n) < 1, refused as it is) scaled to thickness 1 has ropelength
+# 2n tan(pi/n) = 6.28824 (a circle cannot get shorter)
+tr_engine_test(tighten_scale 0 DIR ${_eng_dir}/scale ONLY "c.vect;t.vect" OUT ${_eng_dir}/scale/t.vect
+  MATCH "\n# N 64\n# length 6[.]2882[34][0-9]*\n"
+  CMD sh -c "'${_tr}' make circle --radius 0.5 --n 64 -o '${_eng_dir}/scale/c.vect' && exec '${_tr}' tighten '${_eng_dir}/scale/c.vect' -o '${_eng_dir}/scale/t.vect' --scale --steps 1 --quiet --no-kkt --device reference")
+tr_engine_test(tighten_scale_constrained 2 DIR ${_eng_dir}/scalec ONLY "c.vect"
+  ERRMATCH "--scale: .* has constraints"
+  CMD sh -c "'${_tr}' make clasp -o '${_eng_dir}/scalec/c.vect' && exec '${_tr}' tighten '${_eng_dir}/scalec/c.vect' -o '${_eng_dir}/scalec/t.vect' --scale")
 tr_engine_test(tighten_trefoil_steps 0 DIR ${_eng_dir}/trefoil ONLY "s.vect;t.vect" OUT ${_eng_dir}/trefoil/t.vect
   MATCH "^VECT\n# tightened by tightrope[^\n]*\n# command: tighten [^\n]*--steps 20[^\n]*\n# N 72\n# length [0-9.]+\n# MinRad [0-9.]+\n# dcsd [0-9.]+\n# thickness (1|0[.]99999999)[0-9.]*\n# ropelength [0-9.]+\n# residual [^\n]+\n# steps 20\n# stop steps\n"
   CMD sh -c "'${_tr}' make torus 2 3 --n 72 -o '${_eng_dir}/trefoil/s.vect' && exec '${_tr}' tighten '${_eng_dir}/trefoil/s.vect' -o '${_eng_dir}/trefoil/t.vect' --steps 20 --quiet")
