@@ -863,11 +863,10 @@ static void write_lines(tr_text *b, const tr_curve *c, const char *comments)
     }
 }
 
-int tr_curve_format(const tr_curve *c, tr_format fmt, const char *comments, char **text, size_t *len,
-                    tr_error *err)
+/* Whether fmt can hold c: finite coordinates, and for TSV and KnotPlot
+ * lists closed components without constraints (one, for KnotPlot). */
+static int format_holds(const tr_curve *c, tr_format fmt, tr_error *err)
 {
-    *text = NULL;
-    *len = 0;
     if (fmt != TR_FORMAT_VECT && fmt != TR_FORMAT_TSV && fmt != TR_FORMAT_KNOTPLOT)
         return tr_fail(err, TR_EINVAL, "no curve format given (vect, tsv or knotplot)");
     for (size_t i = 0; i < 3 * c->nv; i++)
@@ -884,6 +883,17 @@ int tr_curve_format(const tr_curve *c, tr_format fmt, const char *comments, char
             return tr_fail(err, TR_EINVAL, "a knotplot list holds one component, this curve has %d; use .tsv or .vect",
                            c->ncomp);
     }
+    return TR_OK;
+}
+
+int tr_curve_format(const tr_curve *c, tr_format fmt, const char *comments, char **text, size_t *len,
+                    tr_error *err)
+{
+    *text = NULL;
+    *len = 0;
+    int rc = format_holds(c, fmt, err);
+    if (rc)
+        return rc;
     tr_text b = {0};
     if (fmt == TR_FORMAT_VECT)
         write_vect(&b, c, comments);
@@ -895,30 +905,35 @@ int tr_curve_format(const tr_curve *c, tr_format fmt, const char *comments, char
     return TR_OK;
 }
 
+/* The format a writer of path uses: fmt, or by path's extension. */
+static int output_format(const char *path, tr_format *fmt, tr_error *err)
+{
+    if (*fmt == TR_FORMAT_AUTO)
+        *fmt = tr_format_from_name(path);
+    if (*fmt == TR_FORMAT_AUTO)
+        return tr_fail(err, TR_EINVAL, "cannot tell the format of %s (use .vect, .tsv or .txt)", path);
+    return TR_OK;
+}
+
 int tr_curve_check_output(const char *path, tr_format fmt, const tr_curve *c, tr_error *err)
 {
-    if (fmt == TR_FORMAT_AUTO)
-        fmt = tr_format_from_name(path);
-    if (fmt == TR_FORMAT_AUTO)
-        return tr_fail(err, TR_EINVAL, "cannot tell the format of %s (use .vect, .tsv or .txt)", path);
-    char *text;
-    size_t len;
-    int rc = tr_curve_format(c, fmt, NULL, &text, &len, err);
+    int rc = output_format(path, &fmt, err);
+    if (rc)
+        return rc;
+    rc = format_holds(c, fmt, err);
     if (rc)
         return tr_fail_wrap(err, rc, "not writing %s", path);
-    free(text);
     return tr_check_writable(path, err);
 }
 
 int tr_curve_write(const char *path, tr_format fmt, const tr_curve *c, const char *comments, tr_error *err)
 {
-    if (fmt == TR_FORMAT_AUTO)
-        fmt = tr_format_from_name(path);
-    if (fmt == TR_FORMAT_AUTO)
-        return tr_fail(err, TR_EINVAL, "cannot tell the format of %s (use .vect, .tsv or .txt)", path);
+    int rc = output_format(path, &fmt, err);
+    if (rc)
+        return rc;
     char *text;
     size_t len;
-    int rc = tr_curve_format(c, fmt, comments, &text, &len, err);
+    rc = tr_curve_format(c, fmt, comments, &text, &len, err);
     if (rc)
         return tr_fail_wrap(err, rc, "not writing %s", path);
     rc = tr_write_file_atomic(path, text, len, err);
