@@ -10,9 +10,9 @@
 #include <stdlib.h>
 #include <time.h>
 
-#include "cl_device.h"
-#include "cl_error.h"
-#include "cl_reduce.h"
+#include "backend/opencl/cl_device.h"
+#include "backend/opencl/cl_error.h"
+#include "backend/opencl/cl_reduce.h"
 
 static double now(void)
 {

@@ -1,5 +1,5 @@
 /* Neighbour search on the device over the reference's tree of edges
- * (host/neighbour_search.c): a balanced binary tree whose leaves are runs
+ * (host/geometry/neighbour_search.c): a balanced binary tree whose leaves are runs
  * of 8 consecutive edges of one component, so that it never needs sorting
  * and refitting its boxes after a move is one pass per level. Each edge
  * walks the tree with a small private stack and keeps the partners of
@@ -88,7 +88,7 @@ __kernel void tree_inner_box(__global const int *ids, const int off, const int n
 }
 
 /* The slab along each leaf's chord u that holds its edges' slabs widened by
- * pad, for partners within D (host/neighbour_search.c block_setup): slab[id]
+ * pad, for partners within D (host/geometry/neighbour_search.c block_setup): slab[id]
  * = (p0, u, lo, hi); lo > hi marks a run that turns too much (no pruning). */
 __kernel void tree_leaf_slab(__global const real *x, __global const int *next, __global const int *tedge,
                              __global const int *leaf_id, const int nleaf, __global const int *node_a,

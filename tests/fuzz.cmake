@@ -16,16 +16,17 @@ if(TIGHTROPE_FUZZ)
     endif()
   endif()
   if(_fz_ok)
-    set(_fz_sources ${CMAKE_SOURCE_DIR}/tests/fuzz_readers.c ${CMAKE_SOURCE_DIR}/host/curve_io.c
-                    ${CMAKE_SOURCE_DIR}/host/curve.c ${CMAKE_SOURCE_DIR}/host/error.c
-                    ${CMAKE_SOURCE_DIR}/host/text_file.c)
+    set(_fz_sources ${CMAKE_SOURCE_DIR}/tests/curve/fuzz_readers.c
+                    ${CMAKE_SOURCE_DIR}/host/curve/curve_io.c ${CMAKE_SOURCE_DIR}/host/curve/curve.c
+                    ${CMAKE_SOURCE_DIR}/host/util/error.c ${CMAKE_SOURCE_DIR}/host/util/text_file.c)
     set(_fz_bin ${CMAKE_CURRENT_BINARY_DIR}/fuzz_readers)
     add_custom_command(OUTPUT ${_fz_bin}
       COMMAND ${TR_FUZZ_CLANG} -std=c17 -D_POSIX_C_SOURCE=200809L -g -O1 -Wall -Wextra -Werror
               -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined
               -I${CMAKE_SOURCE_DIR}/host ${_fz_sources} -lm -o ${_fz_bin}
-      DEPENDS ${_fz_sources} ${CMAKE_SOURCE_DIR}/host/curve_io.h ${CMAKE_SOURCE_DIR}/host/curve.h
-              ${CMAKE_SOURCE_DIR}/host/error.h ${CMAKE_SOURCE_DIR}/host/text_file.h
+      DEPENDS ${_fz_sources} ${CMAKE_SOURCE_DIR}/host/curve/curve_io.h
+              ${CMAKE_SOURCE_DIR}/host/curve/curve.h ${CMAKE_SOURCE_DIR}/host/util/error.h
+              ${CMAKE_SOURCE_DIR}/host/util/text_file.h ${CMAKE_SOURCE_DIR}/host/util/vec3.h
       COMMENT "Building the libFuzzer target fuzz_readers with clang")
     add_custom_target(fuzz_readers ALL DEPENDS ${_fz_bin})
     # New inputs go to the first corpus directory, which lives in the build
@@ -40,7 +41,7 @@ if(TIGHTROPE_FUZZ)
       COMMAND ${_fz_bin} -max_total_time=20 -timeout=10 -rss_limit_mb=2048 -print_final_stats=1
               -artifact_prefix=${CMAKE_CURRENT_BINARY_DIR}/fuzz-
               ${_fz_corpus} ${_fz_seeds})
-    set_tests_properties(fuzz_readers PROPERTIES LABELS fuzz TIMEOUT 120
+    set_tests_properties(fuzz_readers PROPERTIES LABELS "curve;fuzz" TIMEOUT 120
       ENVIRONMENT "ASAN_OPTIONS=detect_leaks=1;UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1")
   else()
     message(STATUS "TIGHTROPE_FUZZ: no clang with libFuzzer found, fuzz test not registered")

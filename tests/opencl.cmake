@@ -63,7 +63,7 @@ foreach(_solver pcr-group pcr-levels thomas twisted)
   add_test(NAME test_opencl_backend_${_solver} COMMAND test_opencl_backend)
   set_tests_properties(test_opencl_backend_${_solver} PROPERTIES SKIP_RETURN_CODE 77
     ENVIRONMENT "${TR_TEST_ENV};TIGHTROPE_CL_TRIDIAG=${_solver}"
-    WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR}
+    WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR} LABELS backend/opencl
     PASS_REGULAR_EXPRESSION "\\[${_solver}\\]: pairs.*all checks passed|skipped")
 endforeach()
 # The other launch shape of the index-looping kernels (common.clh TR_ITEMS):
@@ -72,7 +72,7 @@ endforeach()
 foreach(_t test_opencl_backend test_opencl_tree)
   add_test(NAME ${_t}_items_one COMMAND ${_t})
   set_tests_properties(${_t}_items_one PROPERTIES SKIP_RETURN_CODE 77
-    ENVIRONMENT "${TR_TEST_ENV};TIGHTROPE_CL_ITEMS=one"
+    ENVIRONMENT "${TR_TEST_ENV};TIGHTROPE_CL_ITEMS=one" LABELS backend/opencl
     WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR}
     PASS_REGULAR_EXPRESSION "all checks passed|skipped")
 endforeach()

@@ -1,0 +1,43 @@
+/* Features read off a curvature/torsion profile: the kappa = 1 plateaus
+ * (where the rope is bent as tightly as its thickness allows) and jumps of
+ * kappa and of the accumulated torsion alpha at a point, measured by one-sided
+ * fits (REFERENCE.md 3.4). */
+#ifndef TR_PROFILE_FEATURES_H
+#define TR_PROFILE_FEATURES_H
+
+#include <stddef.h>
+
+#include "analysis/curvature_torsion.h"
+#include "util/error.h"
+
+typedef struct tr_plateau {
+    size_t first, last;  /* arcs first..last (cyclic) all have kappa >= kappa_max (1 - eps) */
+    double l1, l2;       /* ends: the outer edges of the first and last arc, in position units */
+} tr_plateau;
+
+/* Maximal cyclic runs of arcs with kappa >= level, at least min_arcs long.
+ * *out is allocated (free()), *nout may be 0. A profile that is all plateau
+ * (a circle of radius 1/level) gives one run with first = 0, last = n-1. */
+int tr_find_plateaus(const tr_arc_profile *p, double level, size_t min_arcs, tr_plateau **out,
+                     size_t *nout, tr_error *err);
+
+typedef enum tr_jump_quantity { TR_JUMP_KAPPA = 0, TR_JUMP_ALPHA = 1 } tr_jump_quantity;
+
+typedef struct tr_jump {
+    double at;           /* where it was measured */
+    double left, right;  /* one-sided linear extrapolations to `at` */
+    double jump;         /* right - left */
+    double err;          /* sqrt(statistical^2 + model^2): standard errors of both intercepts,
+                            and the change when quadratics replace the lines */
+    size_t nleft, nright;
+} tr_jump;
+
+/* Fits lines to the quantity on [at - W, at - w] and [at + w, at + W]
+ * (periodic distances) and extrapolates both to `at`. Kappa is sampled at the
+ * arc positions, alpha at the junctions (its value just after each junction),
+ * accumulated from the first junction of the window so the result does not
+ * depend on where the profile starts. Needs 3 points on each side. */
+int tr_measure_jump(const tr_arc_profile *p, tr_jump_quantity q, double at, double w, double W,
+                    tr_jump *out, tr_error *err);
+
+#endif

@@ -1,0 +1,79 @@
+/* The backend registry: which backends exist and how a device spec picks one. */
+#include "backend/backend.h"
+#include "backend/opencl/backend_opencl.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+typedef struct tr_backend_entry {
+    const char *name;
+    int (*open)(const char *spec, const tr_curve *c, tr_backend *out, tr_error *err);
+} tr_backend_entry;
+
+/* Accelerated backends first, in the order "auto" tries them; the serial
+ * reference last. Adding a backend = one line here (e.g. {"opencl", tr_backend_opencl_open}). */
+static const tr_backend_entry registry[] = {
+    {"opencl", tr_backend_opencl_open},
+    {"reference", tr_backend_reference_open},
+};
+
+#define N_REGISTRY (sizeof registry / sizeof registry[0])
+
+int tr_backend_open(const char *spec, const tr_curve *c, tr_backend *out, tr_error *err)
+{
+    memset(out, 0, sizeof *out);
+    if (!spec || !*spec)
+        spec = getenv("TIGHTROPE_DEVICE");
+    if (!spec || !*spec)
+        spec = "auto";
+    /* the serial reference's names, as tr_device_select takes them */
+    if (!strcmp(spec, "reference") || !strcmp(spec, "serial") || !strcmp(spec, "cpu-reference"))
+        return tr_backend_reference_open("reference", c, out, err);
+    if (!strcmp(spec, "auto")) {
+        char why[512] = "";
+        for (size_t i = 0; i < N_REGISTRY; i++) {
+            if (registry[i].open == tr_backend_reference_open)
+                continue;
+            tr_error e2;
+            int rc = registry[i].open(spec, c, out, &e2);
+            if (rc == TR_OK)
+                return TR_OK;
+            if (rc != TR_EUNSUPPORTED || !why[0])
+                snprintf(why, sizeof why, "%.40s: %.400s", registry[i].name, e2.msg);
+            memset(out, 0, sizeof *out);
+        }
+        int rc = tr_backend_reference_open("reference", c, out, err);
+        if (rc == TR_OK && why[0])
+            snprintf(out->warning, sizeof out->warning, "using the serial reference (%.200s)", why);
+        return rc;
+    }
+    /* A backend that knows the device but cannot use it (no fp64, no
+     * usable device) says why; that reason, not "unknown", is the error. */
+    char why[512] = "";
+    for (size_t i = 0; i < N_REGISTRY; i++) {
+        if (registry[i].open == tr_backend_reference_open)
+            continue;
+        tr_error e2 = {{0}};
+        int rc = registry[i].open(spec, c, out, &e2);
+        if (rc != TR_EUNSUPPORTED) {
+            if (rc != TR_OK && err)
+                *err = e2;
+            return rc;
+        }
+        snprintf(why, sizeof why, "%.500s", e2.msg);
+        memset(out, 0, sizeof *out);
+    }
+    if (why[0])
+        return tr_fail(err, TR_EUNSUPPORTED, "device '%.60s': %s", spec, why);
+    return tr_fail(err, TR_EINVAL, "unknown device '%s' (try 'reference' or 'auto')", spec);
+}
+
+void tr_backend_close(tr_backend *b)
+{
+    if (!b)
+        return;
+    if (b->ops && b->ops->destroy)
+        b->ops->destroy(b->state);
+    memset(b, 0, sizeof *b);
+}

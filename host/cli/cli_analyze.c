@@ -1,0 +1,473 @@
+/* tightrope analyze: the paper's portrait of a tight knot (issue 5). */
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#include "analysis/analysis_plots.h"
+#include "analysis/analysis_report.h"
+#include "cli/cli.h"
+#include "cli/cli_args.h"
+#include "analysis/contacts.h"
+#include "curve/curve_io.h"
+#include "analysis/knot_analysis.h"
+#include "oracle/thickness.h"
+
+static void usage(FILE *f)
+{
+    fprintf(f,
+            "usage: tightrope analyze IN --out DIR [-m M] [--plots] [options]\n"
+            "\n"
+            "Curvature, torsion, symmetry and contact portrait of each closed component of IN\n"
+            "(REFERENCE.md 3-5). The curve is first scaled to thickness 1 (rope radius 1).\n"
+            "Writes into DIR (DIR/compK/ for a link): curvature.csv, torsion.csv, plateaus.csv,\n"
+            "symmetry.csv, contacts.csv, sigma.csv, fixed_points.csv, summary.json, report.txt;\n"
+            "with --plots also PNG plots drawn by gnuplot.\n"
+            "\n"
+            "options:\n"
+            "  -m M               averaging block (default 10, the paper's; 1 = raw polygon; at most N/4)\n"
+            "  --plots            draw PNGs with gnuplot (CSV files are written regardless)\n"
+            "  --plateau-eps E    plateau = arcs with kappa >= 1 - E, 0 < E < 1 (default 1e-4)\n"
+            "  --plateau-min K    plateaus need at least K arcs, an integer >= 1 (default 2)\n"
+            "  --jump-window w,W  one-sided fit windows [l-W, l-w], [l+w, l+W] (default 2.5me, w+max(0.03, 8me))\n"
+            "  --jump-at l,...    also measure jumps at these positions (from the origin)\n"
+            "  --sym-tol T        symmetry threshold, relative to the radius of gyration, 0 < T <= 1\n"
+            "                     (default 1e-3)\n"
+            "  --strut-tol T      contacts: struts up to (1 + T) x the shortest, 0 < T <= 1\n"
+            "                     (default 1e-4; a converged knot needs less, a loose one more)\n"
+            "  --contact-bin B    bin width for the contact functions, L x 1e-7 to L/8 of the scaled knot\n"
+            "                     (default max(4e, L/4000))\n"
+            "  --power P          functional power for the cycles, an integer 1 to 100 (default 9)\n"
+            "  --paper / --no-paper  set the paper's trefoil values beside ours (default: when the\n"
+            "                     knot is D3 with ropelength within 2%% of 32.743)\n"
+            "  --no-scale         analyse the coordinates as given\n"
+            "\n"
+            "Exit status: 0 written; 2 bad input, option or unwritable output (nothing is written\n"
+            "for a bad input or option); 1 out of memory or gnuplot failed.\n");
+}
+
+/* Comma-separated finite numbers. */
+static int parse_list(const char *s, double *v, size_t max, size_t *n)
+{
+    *n = 0;
+    while (*s && *n < max) {
+        char *end;
+        errno = 0;
+        v[*n] = strtod(s, &end);
+        if (end == s || errno || !isfinite(v[*n]))
+            return -1;
+        (*n)++;
+        if (*end == ',')
+            s = end + 1;
+        else if (*end == '\0')
+            return 0;
+        else
+            return -1;
+    }
+    return *s ? -1 : 0;
+}
+
+static int write_text(const char *dir, const char *name, char *text, tr_error *err)
+{
+    char path[4096];
+    int len = snprintf(path, sizeof path, "%s/%s", dir, name);
+    if (len < 0 || (size_t)len >= sizeof path) {
+        free(text);
+        return tr_fail(err, TR_EINVAL, "%s: output path too long", dir);
+    }
+    if (!text)
+        return tr_fail(err, TR_ENOMEM, "out of memory writing %s", path);
+    int rc = tr_write_file_atomic(path, text, strlen(text), err);
+    free(text);
+    return rc;
+}
+
+static int make_dir(const char *dir)
+{
+    if (mkdir(dir, 0777) == 0)
+        return 0;
+    struct stat st;
+    if (errno == EEXIST && stat(dir, &st) == 0 && S_ISDIR(st.st_mode))
+        return 0;
+    if (errno == EEXIST)
+        errno = ENOTDIR;
+    return -1;
+}
+
+typedef struct cli_opts {
+    tr_analysis_opts ao;
+    double jump_at[64];
+    double strut_tol;
+    int plots, paper, scale;
+} cli_opts;
+
+/* One closed component, analysed and not yet written. */
+typedef struct comp_result {
+    int k;
+    tr_curve one;     /* the component alone, scaled */
+    double scale;
+    tr_thickness th;
+    tr_analysis an;
+} comp_result;
+
+static void comp_result_free(comp_result *r)
+{
+    tr_analysis_free(&r->an);
+    tr_curve_free(&r->one);
+}
+
+/* Copies component k into its own curve, scales it to thickness 1, measures
+ * it with its struts and analyses it. Returns a process status: 0, 1 (could
+ * not be done), 2 (the input or an option is wrong for it; *optbad when an
+ * option is). Prints its own one-line message. */
+static int analyse_component(const tr_curve *c, int k, const char *in, const cli_opts *o,
+                             comp_result *r, int *optbad)
+{
+    tr_error err = {{0}};
+    memset(r, 0, sizeof *r);
+    r->k = k;
+    r->scale = 1.0;
+    size_t nv = tr_comp_nv(c, k);
+    unsigned char closed = 1;
+    if (tr_curve_alloc(&r->one, 1, &nv, &closed, &err) != TR_OK) {
+        fprintf(stderr, "tightrope analyze: %s\n", err.msg);
+        return 1;
+    }
+    memcpy(r->one.x, c->x + 3 * c->start[k], 3 * nv * sizeof *r->one.x);
+    int status = 1, rc;
+    tr_strut_list sl = {0};
+    if ((rc = tr_thickness_measure(&r->one, NULL, &r->th, NULL, &err)) != TR_OK) {
+        fprintf(stderr, "tightrope analyze: %s: component %d: thickness: %s\n", in, k, err.msg);
+        status = rc == TR_ENOMEM ? 1 : 2;
+        goto fail;
+    }
+    if (o->scale) {
+        if (!(r->th.thickness > 0) || !isfinite(r->th.thickness)) {
+            fprintf(stderr, "tightrope analyze: %s: component %d has no finite thickness\n", in, k);
+            status = 2;
+            goto fail;
+        }
+        r->scale = 1.0 / r->th.thickness;
+        for (size_t i = 0; i < 3 * nv; i++)
+            r->one.x[i] *= r->scale;
+    }
+    tr_thickness_opts to = {.strut_rel_tol = o->strut_tol};
+    if ((rc = tr_thickness_measure(&r->one, &to, &r->th, &sl, &err)) != TR_OK) {
+        fprintf(stderr, "tightrope analyze: %s: component %d: thickness: %s\n", in, k, err.msg);
+        status = rc == TR_ENOMEM ? 1 : 2;
+        goto fail;
+    }
+    /* The bin must be read against this component's length after scaling. */
+    double L = r->th.length;
+    if (o->ao.contact_bin > 0 && !(o->ao.contact_bin >= TR_CONTACT_BIN_MIN_REL * L &&
+                                   o->ao.contact_bin <= TR_CONTACT_BIN_MAX_REL * L)) {
+        fprintf(stderr,
+                "tightrope analyze: --contact-bin %g outside [%.6g, %.6g] (L x %g to L / 8) for "
+                "component %d of %s, L = %.6g\n",
+                o->ao.contact_bin, TR_CONTACT_BIN_MIN_REL * L, TR_CONTACT_BIN_MAX_REL * L,
+                TR_CONTACT_BIN_MIN_REL, k, in, L);
+        *optbad = 1;
+        status = 2;
+        goto fail;
+    }
+    tr_contact_pair *pairs = NULL;
+    size_t np = 0;
+    double dmax = isfinite(r->th.dcsd) ? (1.0 + o->strut_tol) * r->th.dcsd : INFINITY;
+    if ((rc = tr_contact_pairs_from_struts(r->one.x, nv, 0, sl.s, sl.n, dmax, &pairs, &np, &err)) !=
+        TR_OK) {
+        fprintf(stderr, "tightrope analyze: %s: component %d: %s\n", in, k, err.msg);
+        goto fail;
+    }
+    rc = tr_analyze_component(r->one.x, nv, pairs, np, &o->ao, &r->an, &err);
+    free(pairs);
+    if (rc != TR_OK) {
+        fprintf(stderr, "tightrope analyze: %s: component %d: %s\n", in, k, err.msg);
+        if (rc == TR_EINVAL)
+            *optbad = 1;
+        status = rc == TR_ENOMEM ? 1 : 2;
+        goto fail;
+    }
+    tr_strut_list_free(&sl);
+    return 0;
+fail:
+    tr_strut_list_free(&sl);
+    comp_result_free(r);
+    return status;
+}
+
+/* Writes the tables, the summary and (with --plots) the plots of one
+ * analysed component into dir, which exists. Returns a process status. */
+static int write_component(comp_result *r, const char *in, const char *dir, const cli_opts *o,
+                           int *plots_missing)
+{
+    tr_error err = {{0}};
+    const tr_analysis *an = &r->an;
+    tr_report_ctx ctx = {in, r->k, r->scale, &r->th,
+                         o->paper < 0 ? tr_report_is_trefoil_like(an, &r->th) : o->paper};
+    /* Each table is formatted (non-zero only when memory runs out), then
+     * written atomically. */
+    char *t = NULL, *txt = NULL;
+    int rc = TR_OK, fmt = 0;
+    size_t nv = r->one.nv;
+#define EMIT(name, call)                                                  \
+    do {                                                                  \
+        if (rc == TR_OK && !fmt) {                                        \
+            if ((fmt = (call)) == 0)                                      \
+                rc = write_text(dir, name, t, &err);                      \
+        }                                                                 \
+    } while (0)
+    EMIT("curvature.csv", tr_report_curvature_csv(an, &t));
+    EMIT("torsion.csv", tr_report_torsion_csv(an, &t));
+    EMIT("plateaus.csv", tr_report_plateaus_csv(an, &t));
+    EMIT("symmetry.csv", tr_report_symmetry_csv(an, &t));
+    EMIT("contacts.csv", tr_report_contacts_csv(an, r->one.x, nv, &t));
+    if (an->have_sigma) {
+        EMIT("sigma.csv", tr_report_sigma_csv(an, 4000, &t));
+        EMIT("fixed_points.csv", tr_report_fixed_points_csv(an, &t));
+    }
+    EMIT("summary.json", tr_report_summary_json(an, &ctx, &t));
+#undef EMIT
+    if (rc == TR_OK && !fmt && (fmt = tr_report_text(an, &ctx, &txt)) == 0) {
+        fputs(txt, stdout);
+        rc = write_text(dir, "report.txt", txt, &err);
+    } else {
+        free(txt);
+    }
+    if (fmt || rc == TR_ENOMEM) {
+        fprintf(stderr, "tightrope analyze: writing %s: out of memory\n", dir);
+        return 1;
+    }
+    if (rc != TR_OK) { /* an output the user can fix */
+        fprintf(stderr, "tightrope analyze: writing %s: %s\n", dir, err.msg);
+        return 2;
+    }
+    if (o->plots) {
+        rc = tr_analysis_plots(dir, an, &err);
+        if (rc == TR_EUNSUPPORTED) {
+            fprintf(stderr, "tightrope analyze: no plots: %s; the CSV files are written\n", err.msg);
+            *plots_missing = 1;
+        } else if (rc != TR_OK) {
+            fprintf(stderr, "tightrope analyze: plots: %s\n", err.msg);
+            return 1;
+        } else {
+            printf("plots: %s/{curvature_torsion,plateau_zoom,accumulated_torsion%s}.png\n", dir,
+                   an->have_sigma ? ",contact_map,sigma9" : "");
+        }
+    }
+    return 0;
+}
+
+/* Options followed by a value. */
+static int takes_value(const char *a)
+{
+    static const char *const names[] = {"--out",      "-o",          "-m",          "--plateau-eps",
+                                        "--plateau-min", "--jump-window", "--jump-at", "--sym-tol",
+                                        "--strut-tol", "--contact-bin", "--power"};
+    for (size_t i = 0; i < sizeof names / sizeof *names; i++)
+        if (!strcmp(a, names[i]))
+            return 1;
+    return 0;
+}
+
+int tr_cmd_analyze(int argc, char **argv)
+{
+    cli_opts o;
+    memset(&o, 0, sizeof o);
+    o.strut_tol = 1e-4;
+    o.paper = -1;
+    o.scale = 1;
+    const char *in = NULL, *out = NULL;
+    for (int i = 1; i < argc; i++) {
+        const char *a = argv[i];
+        const char *v = i + 1 < argc ? argv[i + 1] : NULL;
+        double d;
+        if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
+            usage(stdout);
+            return 0;
+        } else if (!strcmp(a, "--plots")) {
+            o.plots = 1;
+        } else if (!strcmp(a, "--paper")) {
+            o.paper = 1;
+        } else if (!strcmp(a, "--no-paper")) {
+            o.paper = 0;
+        } else if (!strcmp(a, "--no-scale")) {
+            o.scale = 0;
+        } else if (takes_value(a) && !v) {
+            fprintf(stderr, "tightrope analyze: %s needs a value\n", a);
+            return 2;
+        } else if (!strcmp(a, "--out") || !strcmp(a, "-o")) {
+            if (!*v) {
+                fprintf(stderr, "tightrope analyze: %s needs a directory name\n", a);
+                return 2;
+            }
+            out = v, i++;
+        } else if (!strcmp(a, "-m")) {
+            if (tr_arg_size(v, 1, 1000000, &o.ao.m)) {
+                fprintf(stderr, "tightrope analyze: -m needs an integer from 1 to 1000000, got '%s'\n", v);
+                return 2;
+            }
+            i++;
+        } else if (!strcmp(a, "--power")) {
+            if (tr_arg_int(v, 1, TR_CONTACT_POWER_MAX, &o.ao.power)) {
+                fprintf(stderr, "tightrope analyze: --power needs an integer from 1 to %d, got '%s'\n",
+                        TR_CONTACT_POWER_MAX, v);
+                return 2;
+            }
+            i++;
+        } else if (!strcmp(a, "--plateau-min")) {
+            if (tr_arg_size(v, 1, 1000000000, &o.ao.plateau_min)) {
+                fprintf(stderr, "tightrope analyze: --plateau-min needs an integer >= 1 (arcs), got '%s'\n", v);
+                return 2;
+            }
+            i++;
+        } else if (!strcmp(a, "--plateau-eps")) {
+            if (tr_arg_double(v, 0, 1, &d) || d == 0 || d == 1) {
+                fprintf(stderr, "tightrope analyze: --plateau-eps needs a number in (0, 1), got '%s'\n", v);
+                return 2;
+            }
+            o.ao.plateau_eps = d, i++;
+        } else if (!strcmp(a, "--sym-tol") || !strcmp(a, "--strut-tol")) {
+            if (tr_arg_double(v, 0, 1, &d) || d == 0) {
+                fprintf(stderr, "tightrope analyze: %s needs a number in (0, 1], got '%s'\n", a, v);
+                return 2;
+            }
+            if (!strcmp(a, "--sym-tol"))
+                o.ao.sym_tol = d;
+            else
+                o.strut_tol = d;
+            i++;
+        } else if (!strcmp(a, "--contact-bin")) {
+            /* the upper and lower bounds depend on the knot's length: checked
+             * per component once it is scaled */
+            if (tr_arg_double(v, 0, INFINITY, &d) || d == 0) {
+                fprintf(stderr, "tightrope analyze: --contact-bin needs a positive number, got '%s'\n", v);
+                return 2;
+            }
+            o.ao.contact_bin = d, i++;
+        } else if (!strcmp(a, "--jump-window")) {
+            double w[2];
+            size_t n;
+            if (parse_list(v, w, 2, &n) || n != 2 || !(w[0] >= 0) || !(w[1] > w[0])) {
+                fprintf(stderr, "tightrope analyze: --jump-window needs w,W with 0 <= w < W, got '%s'\n", v);
+                return 2;
+            }
+            o.ao.jump_w = w[0] > 0 ? w[0] : 1e-300;
+            o.ao.jump_W = w[1], i++;
+        } else if (!strcmp(a, "--jump-at")) {
+            size_t n;
+            if (parse_list(v, o.jump_at, 64, &n) || n == 0) {
+                fprintf(stderr, "tightrope analyze: --jump-at needs 1 to 64 comma-separated numbers, got '%s'\n", v);
+                return 2;
+            }
+            o.ao.jump_at = o.jump_at;
+            o.ao.n_jump_at = n, i++;
+        } else if (a[0] == '-' && a[1] != '\0') {
+            fprintf(stderr, "tightrope analyze: unknown option '%s' (see tightrope analyze --help)\n", a);
+            return 2;
+        } else if (!in) {
+            in = a;
+        } else {
+            fprintf(stderr, "tightrope analyze: one input file only ('%s' and '%s')\n", in, a);
+            return 2;
+        }
+    }
+    if (!in) {
+        fprintf(stderr, "tightrope analyze: no input curve (see tightrope analyze --help)\n");
+        return 2;
+    }
+    if (!out) {
+        fprintf(stderr, "tightrope analyze: no output directory (--out DIR)\n");
+        return 2;
+    }
+    tr_error err = {{0}};
+    tr_curve c;
+    int rc = tr_curve_read(in, TR_FORMAT_AUTO, &c, &err);
+    if (rc != TR_OK) {
+        fprintf(stderr, "tightrope analyze: %s\n", err.msg);
+        return rc == TR_EIO || rc == TR_EPARSE ? 2 : 1;
+    }
+    /* Everything about the input and the options is checked, and every
+     * component analysed, before the output directory is made. */
+    size_t m = o.ao.m ? o.ao.m : 10;
+    int nclosed = 0;
+    for (int k = 0; k < c.ncomp; k++) {
+        if (!c.closed[k])
+            continue;
+        nclosed++;
+        size_t nv = tr_comp_nv(&c, k);
+        if (nv / m < 4) {
+            fprintf(stderr, "tightrope analyze: -m %zu leaves fewer than 4 averaged vertices on component %d of %s (%zu vertices)\n",
+                    m, k, in, nv);
+            tr_curve_free(&c);
+            return 2;
+        }
+        if (o.ao.plateau_min > nv) {
+            fprintf(stderr, "tightrope analyze: --plateau-min %zu exceeds the %zu vertices of component %d of %s\n",
+                    o.ao.plateau_min, nv, k, in);
+            tr_curve_free(&c);
+            return 2;
+        }
+    }
+    if (!nclosed) {
+        fprintf(stderr, "tightrope analyze: %s has no closed component\n", in);
+        tr_curve_free(&c);
+        return 2;
+    }
+    comp_result *res = calloc((size_t)nclosed, sizeof *res);
+    int *done = calloc((size_t)nclosed, sizeof *done);
+    if (!res || !done) {
+        fprintf(stderr, "tightrope analyze: out of memory\n");
+        free(res), free(done);
+        tr_curve_free(&c);
+        return 1;
+    }
+    int status = 0, ndone = 0, optbad = 0;
+    for (int k = 0, q = 0; k < c.ncomp && !optbad; k++) {
+        if (!c.closed[k]) {
+            fprintf(stderr, "tightrope analyze: warning: %s: component %d is open; skipped (the portrait is for closed knots)\n", in, k);
+            continue;
+        }
+        int s = analyse_component(&c, k, in, &o, &res[q], &optbad);
+        if (s == 0)
+            done[q] = 1, ndone++;
+        else if (s > status)
+            status = s;
+        q++;
+    }
+    if (optbad) /* an option wrong for the input: nothing is written */
+        ndone = 0, status = 2;
+    int plots_missing = 0;
+    if (ndone && make_dir(out)) {
+        fprintf(stderr, "tightrope analyze: cannot create directory %s: %s\n", out, strerror(errno));
+        status = errno == ENOMEM ? 1 : 2;
+        ndone = 0;
+    }
+    for (int q = 0; q < nclosed && ndone; q++) {
+        if (!done[q])
+            continue;
+        char dir[4096];
+        int len = c.ncomp > 1 ? snprintf(dir, sizeof dir, "%s/comp%d", out, res[q].k)
+                              : snprintf(dir, sizeof dir, "%s", out);
+        if (len < 0 || (size_t)len >= sizeof dir) {
+            fprintf(stderr, "tightrope analyze: output directory name too long: %s\n", out);
+            status = 2;
+            break;
+        }
+        if (c.ncomp > 1 && make_dir(dir)) {
+            fprintf(stderr, "tightrope analyze: cannot create directory %s: %s\n", dir, strerror(errno));
+            status = 2;
+            break;
+        }
+        int s = write_component(&res[q], in, dir, &o, &plots_missing);
+        if (s > status)
+            status = s;
+    }
+    for (int q = 0; q < nclosed; q++)
+        if (done[q])
+            comp_result_free(&res[q]);
+    free(res), free(done);
+    tr_curve_free(&c);
+    return status;
+}

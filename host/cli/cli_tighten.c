@@ -1,0 +1,494 @@
+/* tightrope tighten IN -o OUT [options]
+ *
+ * Tightens a knot, link or clasp (engine.h), optionally through refinement
+ * levels, and writes the result with its certificate: the thickness oracle's
+ * numbers for the written curve (rescaled to thickness exactly 1 when no
+ * vertex is constrained, so that ropelength = length), the engine's
+ * residual, the KKT certificate of the written curve (kkt.h; by default up
+ * to KKT_AUTO_MAX_N vertices, where it takes seconds), the steps and the
+ * command line. SIGINT/SIGTERM stop the run at the next step,
+ * write a last checkpoint (with --checkpoint) and the output, and exit 1. */
+#include <float.h>
+#include <limits.h>
+#include <math.h>
+#include <signal.h>
+#include <sys/stat.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "cli/cli.h"
+#include "cli/cli_args.h"
+#include "curve/curve_io.h"
+#include "engine/engine.h"
+#include "curve/generate.h"
+#include "util/json.h"
+#include "oracle/kkt.h"
+#include "util/text_file.h"
+#include "oracle/thickness.h"
+
+/* The one piece of process state: raised by the signal handler, polled by
+ * the engine between steps. */
+static volatile sig_atomic_t stop_requested = 0;
+
+/* The certificate costs ~0.05 s at N = 400, ~1.2 s at 1600 and ~12 s at
+ * 2400 on a 2-core machine (bench/RESULTS.md), growing faster than N^2:
+ * above this it runs only when asked for (--kkt). */
+#define KKT_AUTO_MAX_N 2400
+
+static void on_signal(int sig)
+{
+    (void)sig;
+    stop_requested = 1;
+}
+
+static void usage(FILE *out)
+{
+    fprintf(out,
+            "usage: tightrope tighten IN -o OUT [options]\n"
+            "       tightrope tighten --resume CKPT -o OUT [options]\n"
+            "  IN                 start curve (.vect, .tsv, KnotPlot list); distances >= 2, MinRad >= 1\n"
+            "  -o, --output OUT   tightened curve with its certificate in comments\n"
+            "  --scale            first scale the start (no constraints) to thickness exactly 1:\n"
+            "                     for curves at another scale, e.g. tight knots from other codes\n"
+            "  --n N              first resample every component to N vertices (along a\n"
+            "                     spline through the vertices where that adds vertices)\n"
+            "  --refine-to N      tighten, then refine (doubling, low-pass) and re-tighten up to N\n"
+            "  --residual R       stop when the engine's residual falls below R (default 1e-4);\n"
+            "                     given, the goal is also met by a KKT residual <= R of the output\n"
+            "  --target X         stop when the ropelength estimate reaches X\n"
+            "  --steps S          stop after S accepted steps in all (a resumed run counts\n"
+            "                     the steps before its checkpoint)\n"
+            "  --time-limit T     stop after T seconds of wall clock in all (a resumed run\n"
+            "                     counts the time before its checkpoint)\n"
+            "  --checkpoint FILE  write the state to FILE every --checkpoint-every seconds\n"
+            "                     (default 300), at the end and on SIGINT/SIGTERM\n"
+            "  --resume FILE      continue from a checkpoint\n"
+            "  --device D         reference | auto | a device spec (default $TIGHTROPE_DEVICE or auto)\n"
+            "  --device-from N    with --refine-to, coarse levels of fewer than N vertices in all\n"
+            "                     run on the serial reference, where a device's cost per kernel\n"
+            "                     launch outweighs it (default 2048; 0: the device at every level)\n"
+            "  --no-polish        skip the polish stage at every level (a serial augmented-\n"
+            "                     Lagrangian / L-BFGS minimisation on the host, which ends each\n"
+            "                     coarse level and at the finest takes the last 80%% of its time\n"
+            "                     or runs when it jams)\n"
+            "  --kkt              certify the output (KKT residual) at any N; by default only\n"
+            "                     up to N = %d\n"
+            "  --no-kkt           never certify the output\n"
+            "  --json             print a JSON summary on stdout\n"
+            "  --quiet            no progress line\n",
+            KKT_AUTO_MAX_N);
+}
+
+typedef struct progress_ctx {
+    int tty;
+    int printed;
+} progress_ctx;
+
+static void on_progress(const tr_engine_progress *p, void *user)
+{
+    progress_ctx *ctx = user;
+    if (!ctx->tty)
+        return;
+    fprintf(stderr, "\rropelength %.6f  residual %.2e  %7.1f steps/s  N %zu  steps %ld  elapsed %.1f s   ",
+            p->ropelength, p->residual, p->steps_per_s, p->n, p->steps, p->elapsed);
+    fflush(stderr);
+    ctx->printed = 1;
+}
+
+
+static void json_num(const char *key, double v, int comma)
+{
+    if (isfinite(v))
+        printf("  \"%s\": %.17g%s\n", key, v, comma ? "," : "");
+    else
+        printf("  \"%s\": null%s\n", key, comma ? "," : "");
+}
+
+static void json_str(const char *key, const char *v, int comma)
+{
+    printf("  \"%s\": ", key);
+    tr_json_fputs(stdout, v);
+    printf("%s\n", comma ? "," : "");
+}
+
+/* Whether a and b name the same file: the same inode where both exist,
+ * else the same path. */
+static int same_file(const char *a, const char *b)
+{
+    struct stat sa, sb;
+    if (stat(a, &sa) == 0 && stat(b, &sb) == 0)
+        return sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
+    return !strcmp(a, b);
+}
+
+static int check_outputs(tr_engine *e, const char *out, const char *ckpt, tr_error *err)
+{
+    tr_curve c = {0};
+    int rc = tr_engine_get_curve(e, &c, err);
+    if (rc == TR_OK)
+        rc = tr_curve_check_output(out, TR_FORMAT_AUTO, &c, err);
+    tr_curve_free(&c);
+    if (rc == TR_OK && ckpt)
+        rc = tr_check_writable(ckpt, err);
+    return rc;
+}
+
+/* Scales the curve about the origin by f, constraints included. */
+static void scale_curve(tr_curve *c, double f)
+{
+    for (size_t i = 0; i < 3 * c->nv; i++)
+        c->x[i] *= f;
+    for (int q = 0; q < c->ncst; q++) {
+        for (int a = 0; a < 3; a++)
+            c->cst[q].p[a] *= f;
+        c->cst[q].d *= f;
+    }
+}
+
+int tr_cmd_tighten(int argc, char **argv)
+{
+    const char *in = NULL, *out = NULL, *ckpt = NULL, *resume = NULL, *device = NULL;
+    long n = 0, refine_to = 0, steps = 0, device_from = -1;
+    double target = 0, residual = 1e-4, time_limit = 0, ckpt_every = 300;
+    int residual_given = 0; /* the default residual is a stopping rule, not a goal */
+    int json = 0, quiet = 0, no_polish = 0, scale = 0, kkt = -1; /* -1: up to KKT_AUTO_MAX_N */
+    static const char *valued[] = {"-o", "--output", "--n", "--refine-to", "--target", "--residual",
+                                   "--steps", "--time-limit", "--checkpoint", "--checkpoint-every",
+                                   "--resume", "--device", "--device-from"};
+    for (int i = 1; i < argc; i++) {
+        const char *a = argv[i];
+        if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
+            usage(stdout);
+            return 0;
+        }
+        if (!strcmp(a, "--json")) {
+            json = 1;
+            continue;
+        }
+        if (!strcmp(a, "--no-polish")) {
+            no_polish = 1;
+            continue;
+        }
+        if (!strcmp(a, "--kkt") || !strcmp(a, "--no-kkt")) {
+            kkt = a[2] == 'k';
+            continue;
+        }
+        if (!strcmp(a, "--quiet")) {
+            quiet = 1;
+            continue;
+        }
+        if (!strcmp(a, "--scale")) {
+            scale = 1;
+            continue;
+        }
+        int takes = 0;
+        for (size_t k = 0; k < sizeof valued / sizeof valued[0]; k++)
+            takes |= !strcmp(a, valued[k]);
+        if (takes) {
+            if (i + 1 >= argc) {
+                fprintf(stderr, "tightrope tighten: %s needs a value\n", a);
+                return 2;
+            }
+            const char *v = argv[++i];
+            int bad = 0;
+            if (!strcmp(a, "-o") || !strcmp(a, "--output"))
+                out = v;
+            else if (!strcmp(a, "--n"))
+                bad = tr_arg_long(v, 4, LONG_MAX, &n);
+            else if (!strcmp(a, "--refine-to"))
+                bad = tr_arg_long(v, 4, LONG_MAX, &refine_to);
+            else if (!strcmp(a, "--target"))
+                bad = tr_arg_double(v, 0, DBL_MAX, &target) || target <= 0;
+            else if (!strcmp(a, "--residual")) {
+                bad = tr_arg_double(v, 0, DBL_MAX, &residual);
+                residual_given = 1;
+            }
+            else if (!strcmp(a, "--steps"))
+                bad = tr_arg_long(v, 1, LONG_MAX, &steps);
+            else if (!strcmp(a, "--time-limit"))
+                bad = tr_arg_double(v, 0, DBL_MAX, &time_limit) || time_limit <= 0;
+            else if (!strcmp(a, "--checkpoint"))
+                ckpt = v;
+            else if (!strcmp(a, "--checkpoint-every"))
+                bad = tr_arg_double(v, 0, DBL_MAX, &ckpt_every) || ckpt_every <= 0;
+            else if (!strcmp(a, "--resume"))
+                resume = v;
+            else if (!strcmp(a, "--device-from"))
+                bad = tr_arg_long(v, 0, LONG_MAX, &device_from);
+            else
+                device = v;
+            if (bad) {
+                fprintf(stderr, "tightrope tighten: bad %s '%s'\n", a, v);
+                return 2;
+            }
+            continue;
+        }
+        if (a[0] == '-' && a[1]) {
+            fprintf(stderr, "tightrope tighten: unknown option '%s' (see tightrope tighten --help)\n", a);
+            return 2;
+        }
+        if (in) {
+            fprintf(stderr, "tightrope tighten: unexpected argument '%s'\n", a);
+            return 2;
+        }
+        in = a;
+    }
+    if (!in && !resume) {
+        fprintf(stderr, "tightrope tighten: no input curve (see tightrope tighten --help)\n");
+        return 2;
+    }
+    if (!out) {
+        fprintf(stderr, "tightrope tighten: no output file (-o OUT)\n");
+        return 2;
+    }
+    if (resume && (in || n > 0 || scale)) {
+        fprintf(stderr, "tightrope tighten: --resume continues the checkpoint's curve; %s\n",
+                in ? "drop the input file" : n > 0 ? "--n cannot resample it" : "--scale cannot scale it");
+        return 2;
+    }
+    /* the checkpoint is rewritten during the run: over the input it would
+     * destroy the start, over the output the output would replace it */
+    if (ckpt && (same_file(ckpt, out) || (in && same_file(ckpt, in)))) {
+        fprintf(stderr, "tightrope tighten: --checkpoint %s is the %s file\n", ckpt,
+                same_file(ckpt, out) ? "output" : "input");
+        return 2;
+    }
+
+    tr_error err;
+    tr_engine_params prm;
+    tr_engine_params_default(&prm);
+    prm.polish = !no_polish;
+    if (device_from >= 0)
+        prm.device_min_n = (size_t)device_from;
+    tr_engine *e = NULL;
+    int rc;
+    if (resume) {
+        rc = tr_engine_resume(&e, resume, device, &prm, &err);
+    } else {
+        tr_curve c;
+        rc = tr_curve_read(in, TR_FORMAT_AUTO, &c, &err);
+        if (rc == TR_OK && n > 0) {
+            size_t *per = malloc((size_t)c.ncomp * sizeof *per);
+            tr_curve r;
+            if (!per) {
+                rc = tr_fail(&err, TR_ENOMEM, "out of memory");
+            } else {
+                /* Adding vertices on the old straight edges would keep the
+                 * polygon's corners: MinRad falls like 1/N and a smooth
+                 * start is refused as bent too tight. Along a spline
+                 * through the vertices the start stays the smooth curve. */
+                int adds = 0;
+                for (int k = 0; k < c.ncomp; k++) {
+                    per[k] = (size_t)n;
+                    adds |= per[k] > c.start[k + 1] - c.start[k];
+                }
+                rc = adds ? tr_resample_smooth(&c, per, &r, &err) : tr_resample(&c, per, &r, &err);
+                free(per);
+                if (rc == TR_OK) {
+                    tr_curve_free(&c);
+                    c = r;
+                }
+            }
+        }
+        /* Ropelength is scale free: --scale takes a start at another scale
+         * (a tight knot from another code at thickness 0.99995, a file in
+         * its own units) to the rope's radius 1. Constraint planes sit at
+         * fixed places, so a constrained start is not scaled. */
+        if (rc == TR_OK && scale) {
+            tr_thickness t0;
+            if (c.ncst > 0)
+                rc = tr_fail(&err, TR_EINVAL, "--scale: %s has constraints, whose planes would move", in);
+            else
+                rc = tr_thickness_measure(&c, NULL, &t0, NULL, &err);
+            if (rc == TR_OK && !(t0.thickness > 0 && isfinite(t0.thickness)))
+                rc = tr_fail(&err, TR_EGEOMETRY, "--scale: %s has thickness %g; no scale makes it a rope", in,
+                             t0.thickness);
+            if (rc == TR_OK)
+                scale_curve(&c, 1.0 / t0.thickness);
+        }
+        if (rc == TR_OK)
+            rc = tr_engine_create(&e, &c, device, &prm, &err);
+        tr_curve_free(&c);
+    }
+    if (rc) {
+        fprintf(stderr, "tightrope tighten: %s\n", err.msg);
+        /* cli.h: a curve or an option the user can fix is 2; a device that
+         * fails (kernel build, OpenCL call) or memory is 1 */
+        return rc == TR_EOPENCL || rc == TR_ENOMEM || rc == TR_EUNSUPPORTED ? 1 : 2;
+    }
+    /* A run of hours must not end in "cannot write": the output's format
+     * and both paths are checked before it starts. */
+    rc = check_outputs(e, out, ckpt, &err);
+    if (rc) {
+        fprintf(stderr, "tightrope tighten: %s\n", err.msg);
+        tr_engine_destroy(e);
+        return rc == TR_ENOMEM ? 1 : 2;
+    }
+    if (tr_engine_warning(e)[0])
+        fprintf(stderr, "tightrope tighten: warning: %s\n", tr_engine_warning(e));
+    if (resume) {
+        /* both limits count the runs before the checkpoint: say so when
+         * they leave this run nothing to do */
+        tr_engine_progress p0;
+        tr_engine_get_progress(e, &p0);
+        if (steps > 0 && p0.steps >= steps)
+            fprintf(stderr, "tightrope tighten: warning: the checkpoint has %ld steps already; --steps %ld "
+                            "counts them, so no step is taken\n", p0.steps, steps);
+        if (time_limit > 0 && p0.elapsed >= time_limit)
+            fprintf(stderr, "tightrope tighten: warning: the checkpoint has used %.1f s already; "
+                            "--time-limit %g counts them, so no step is taken\n", p0.elapsed, time_limit);
+    }
+
+    struct sigaction sa;
+    memset(&sa, 0, sizeof sa);
+    sa.sa_handler = on_signal;
+    sigemptyset(&sa.sa_mask);
+    sigaction(SIGINT, &sa, NULL);
+    sigaction(SIGTERM, &sa, NULL);
+
+    progress_ctx pctx = {.tty = !quiet && isatty(2), .printed = 0};
+    tr_engine_limits lim = {.refine_to = (size_t)refine_to,
+                            .residual = residual,
+                            .target = target,
+                            .max_steps = steps,
+                            .time_limit = time_limit,
+                            .coarse_residual = 1e-3,
+                            .checkpoint_every = ckpt ? ckpt_every : 0,
+                            .checkpoint_path = ckpt,
+                            .stop = &stop_requested,
+                            .progress_every = 0.25,
+                            .progress = on_progress,
+                            .user = &pctx};
+    tr_stop_reason why;
+    rc = tr_engine_run(e, &lim, &why, &err);
+    if (pctx.printed)
+        fprintf(stderr, "\n");
+    if (rc) {
+        fprintf(stderr, "tightrope tighten: %s\n", err.msg);
+        tr_engine_destroy(e);
+        /* exit codes as cli.h: a checkpoint that cannot be written or a bad
+         * option is the user's to fix (2); a refused step, a device or
+         * memory failure is a run that did not get there (1) */
+        return rc == TR_EIO || rc == TR_EINVAL || rc == TR_EPARSE ? 2 : 1;
+    }
+
+    tr_engine_progress p;
+    tr_engine_get_progress(e, &p);
+    /* no step ever taken (a --target the start already meets): the engine
+     * has no residual to report, and 0 would read as converged */
+    if (p.steps == 0)
+        p.residual = NAN;
+    tr_curve fin = {0};
+    tr_thickness th;
+    rc = tr_engine_get_curve(e, &fin, &err);
+    if (rc == TR_OK)
+        rc = tr_thickness_measure(&fin, NULL, &th, NULL, &err);
+    int rescaled = 0;
+    if (rc == TR_OK && fin.ncst == 0 && isfinite(th.thickness) && th.thickness > 0) {
+        /* certificate at thickness exactly 1: ropelength = length */
+        scale_curve(&fin, 1.0 / th.thickness);
+        rc = tr_thickness_measure(&fin, NULL, &th, NULL, &err);
+        rescaled = 1;
+    }
+    /* the certificate of what is written, computed on it alone */
+    tr_kkt kr = {0};
+    int certified = 0;
+    if (rc == TR_OK && why != TR_STOP_SIGNAL && (kkt == 1 || (kkt < 0 && fin.nv <= KKT_AUTO_MAX_N))) {
+        rc = tr_kkt_certify(&fin, NULL, &kr, &err);
+        certified = rc == TR_OK;
+    }
+    tr_text cm = {0};
+    char *comments = NULL;
+    if (rc == TR_OK) {
+        tr_text_printf(&cm, "tightened by tightrope %s on %s\n", TIGHTROPE_VERSION, tr_engine_device(e));
+        tr_text_printf(&cm, "command:");
+        for (int i = 0; i < argc; i++)
+            tr_text_printf(&cm, " %s", argv[i]);
+        tr_text_printf(&cm, "\nN %zu\nlength %.17g\nMinRad %.17g\ndcsd %.17g\nthickness %.17g\nropelength %.17g\n",
+                th.vertices, th.length, th.minrad, th.dcsd, th.thickness, th.ropelength);
+        if (isfinite(p.residual))
+            tr_text_printf(&cm, "residual %.6g\n", p.residual);
+        else
+            tr_text_printf(&cm, "residual not computed (no step taken)\n");
+        tr_text_printf(&cm, "steps %ld\nstop %s\n%s", p.steps, tr_stop_reason_name(why),
+                rescaled ? "rescaled to thickness 1\n" : "");
+        if (certified)
+            tr_text_printf(&cm, "kkt_residual %.6e (band %g: %zu/%zu struts, %zu/%zu MinRad rows hold%s)\n", kr.residual,
+                           TR_KKT_DEFAULT_BAND, kr.strut_active, kr.strut_rows, kr.minrad_active, kr.minrad_rows,
+                           kr.converged ? "" : "; an upper bound");
+        else
+            tr_text_printf(&cm, "kkt_residual not computed (%s)\n",
+                           why == TR_STOP_SIGNAL ? "interrupted" : kkt == 0 ? "--no-kkt" : "N above the default limit; --kkt");
+        if (p.polished)
+            tr_text_printf(&cm, "polish %s: ropelength %.9f -> %.9f in %.2f s%s%s%s\n", p.polished > 0 ? "accepted" : "rejected",
+                    p.polish_before, p.polish_after, p.polish_seconds, p.polish_why ? " (" : "",
+                    p.polish_why ? p.polish_why : "", p.polish_why ? ")" : "");
+        comments = tr_text_take(&cm, NULL);
+        if (!comments)
+            rc = tr_fail(&err, TR_ENOMEM, "out of memory");
+    }
+    if (rc == TR_OK)
+        rc = tr_curve_write(out, TR_FORMAT_AUTO, &fin, comments, &err);
+    if (rc) {
+        fprintf(stderr, "tightrope tighten: %s\n", err.msg);
+        free(comments);
+        tr_curve_free(&fin);
+        tr_engine_destroy(e);
+        return 2;
+    }
+    if (json) {
+        printf("{\n");
+        json_str("output", out, 1);
+        json_str("device", tr_engine_device(e), 1);
+        json_str("stop", tr_stop_reason_name(why), 1);
+        printf("  \"N\": %zu,\n  \"steps\": %ld,\n  \"rejected\": %ld,\n", th.vertices, p.steps, p.rejected);
+        json_num("length", th.length, 1);
+        json_num("minrad", th.minrad, 1);
+        json_num("dcsd", th.dcsd, 1);
+        json_num("thickness", th.thickness, 1);
+        json_num("ropelength", th.ropelength, 1);
+        json_num("residual", p.residual, 1);
+        json_num("kkt_residual", certified ? kr.residual : NAN, 1);
+        if (certified)
+            printf("  \"kkt_converged\": %s,\n", kr.converged ? "true" : "false");
+        json_num("elapsed_s", p.elapsed, 1);
+        json_num("steps_per_s", p.steps_per_s, 0);
+        printf("}\n");
+    } else {
+        printf("%s: N %zu  ropelength %.6f  (length %.6f, thickness %.9f, MinRad %.9f, dcsd %.9f)\n", out,
+               th.vertices, th.ropelength, th.length, th.thickness, th.minrad, th.dcsd);
+        char res[32] = "not computed";
+        if (isfinite(p.residual))
+            snprintf(res, sizeof res, "%.2e", p.residual);
+        printf("  %ld steps in %.1f s, residual %s, stopped: %s\n", p.steps, p.elapsed, res,
+               tr_stop_reason_name(why));
+        if (certified)
+            printf("  KKT residual %.2e (%zu/%zu struts and %zu/%zu MinRad rows hold the tension%s)\n", kr.residual,
+                   kr.strut_active, kr.strut_rows, kr.minrad_active, kr.minrad_rows,
+                   kr.converged ? "" : "; an upper bound");
+        if (p.polished)
+            printf("  polish %s: ropelength %.6f -> %.6f in %.1f s%s%s%s\n", p.polished > 0 ? "accepted" : "rejected",
+                   p.polish_before, p.polish_after, p.polish_seconds, p.polish_why ? " (" : "",
+                   p.polish_why ? p.polish_why : "", p.polish_why ? ")" : "");
+    }
+    if (why == TR_STOP_SIGNAL)
+        fprintf(stderr, "tightrope tighten: interrupted; %s%s%swrote %s\n", ckpt ? "checkpoint " : "",
+                ckpt ? ckpt : "", ckpt ? " and " : "", out);
+    /* a requested ropelength or residual that was not reached is a run that
+     * did not reach its goal: the best state is written, the status says so */
+    int goal = target > 0 || residual_given;
+    /* --residual is met by the engine's own force balance or, once the run
+     * has stopped for another reason (jammed, steps), by the certificate of
+     * what was written, which is the stricter measure (kkt.h) */
+    int reached = why == TR_STOP_TARGET || why == TR_STOP_RESIDUAL ||
+                  (target <= 0 && residual_given && certified && kr.residual <= residual);
+    if (goal && !reached && why != TR_STOP_SIGNAL)
+        fprintf(stderr, "tightrope tighten: stopped (%s) before reaching the requested %s; wrote %s\n",
+                tr_stop_reason_name(why), target > 0 ? "ropelength" : "residual", out);
+    free(comments);
+    tr_curve_free(&fin);
+    tr_engine_destroy(e);
+    return why == TR_STOP_SIGNAL || (goal && !reached) ? 1 : 0;
+}

@@ -1,0 +1,178 @@
+#include "curve/curve.h"
+
+#include <math.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "util/vec3.h"
+
+int tr_curve_alloc(tr_curve *c, int ncomp, const size_t *nv, const unsigned char *closed,
+                   tr_error *err)
+{
+    memset(c, 0, sizeof *c);
+    if (ncomp <= 0)
+        return tr_fail(err, TR_EINVAL, "a curve needs at least one component");
+    size_t total = 0;
+    for (int k = 0; k < ncomp; k++) {
+        /* 3 doubles per vertex must fit in size_t: refuse before any wrap */
+        if (nv[k] > SIZE_MAX / (3 * sizeof(double)) - total)
+            return tr_fail(err, TR_EINVAL, "curve of more than %zu vertices is too large",
+                           SIZE_MAX / (3 * sizeof(double)));
+        total += nv[k];
+    }
+    c->ncomp = ncomp;
+    c->nv = total;
+    c->start = malloc((size_t)(ncomp + 1) * sizeof *c->start);
+    c->closed = malloc((size_t)ncomp);
+    c->x = calloc(total ? 3 * total : 3, sizeof *c->x);
+    if (!c->start || !c->closed || !c->x) {
+        tr_curve_free(c);
+        return tr_fail(err, TR_ENOMEM, "out of memory allocating a curve of %zu vertices", total);
+    }
+    c->start[0] = 0;
+    for (int k = 0; k < ncomp; k++) {
+        c->start[k + 1] = c->start[k] + nv[k];
+        c->closed[k] = closed ? (closed[k] != 0) : 1;
+    }
+    return TR_OK;
+}
+
+void tr_curve_free(tr_curve *c)
+{
+    if (!c)
+        return;
+    free(c->x);
+    free(c->start);
+    free(c->closed);
+    free(c->vcst);
+    free(c->cst);
+    memset(c, 0, sizeof *c);
+}
+
+int tr_curve_copy(tr_curve *dst, const tr_curve *src, tr_error *err)
+{
+    memset(dst, 0, sizeof *dst); /* a failed copy leaves a curve that tr_curve_free accepts */
+    size_t *nv = malloc((size_t)src->ncomp * sizeof *nv);
+    if (!nv)
+        return tr_fail(err, TR_ENOMEM, "out of memory copying a curve");
+    for (int k = 0; k < src->ncomp; k++)
+        nv[k] = tr_comp_nv(src, k);
+    int rc = tr_curve_alloc(dst, src->ncomp, nv, src->closed, err);
+    free(nv);
+    if (rc)
+        return rc;
+    memcpy(dst->x, src->x, 3 * src->nv * sizeof *src->x);
+    if (src->ncst > 0) {
+        dst->cst = malloc((size_t)src->ncst * sizeof *dst->cst);
+        dst->vcst = malloc(src->nv * sizeof *dst->vcst);
+        if (!dst->cst || !dst->vcst) {
+            tr_curve_free(dst);
+            return tr_fail(err, TR_ENOMEM, "out of memory copying constraints");
+        }
+        memcpy(dst->cst, src->cst, (size_t)src->ncst * sizeof *dst->cst);
+        memcpy(dst->vcst, src->vcst, src->nv * sizeof *dst->vcst);
+        dst->ncst = src->ncst;
+    }
+    return TR_OK;
+}
+
+int tr_curve_add_constraint(tr_curve *c, const tr_constraint *k, tr_error *err)
+{
+    if (!c->vcst) {
+        c->vcst = malloc((c->nv ? c->nv : 1) * sizeof *c->vcst);
+        if (!c->vcst)
+            return tr_fail(err, TR_ENOMEM, "out of memory adding a constraint");
+        for (size_t i = 0; i < c->nv; i++)
+            c->vcst[i] = -1;
+    }
+    tr_constraint *grown = realloc(c->cst, (size_t)(c->ncst + 1) * sizeof *grown);
+    if (!grown)
+        return tr_fail(err, TR_ENOMEM, "out of memory adding a constraint");
+    c->cst = grown;
+    c->cst[c->ncst] = *k;
+    return c->ncst++;
+}
+
+int tr_curve_comp_of(const tr_curve *c, size_t i)
+{
+    int lo = 0, hi = c->ncomp - 1;
+    while (lo < hi) {
+        int mid = (lo + hi + 1) / 2;
+        if (c->start[mid] <= i)
+            lo = mid;
+        else
+            hi = mid - 1;
+    }
+    return lo;
+}
+
+void tr_constraint_project(const tr_constraint *k, double *x)
+{
+    switch (k->kind) {
+    case TR_CST_FIXED:
+        x[0] = k->p[0];
+        x[1] = k->p[1];
+        x[2] = k->p[2];
+        break;
+    case TR_CST_LINE: {
+        double t = (x[0] - k->p[0]) * k->u[0] + (x[1] - k->p[1]) * k->u[1] + (x[2] - k->p[2]) * k->u[2];
+        for (int a = 0; a < 3; a++)
+            x[a] = k->p[a] + t * k->u[a];
+        break;
+    }
+    case TR_CST_PLANE: {
+        double s = x[0] * k->u[0] + x[1] * k->u[1] + x[2] * k->u[2] - k->d;
+        for (int a = 0; a < 3; a++)
+            x[a] -= s * k->u[a];
+        break;
+    }
+    }
+}
+
+void tr_constraint_project_motion(const tr_constraint *k, double *v)
+{
+    double d = v[0] * k->u[0] + v[1] * k->u[1] + v[2] * k->u[2];
+    switch (k->kind) {
+    case TR_CST_PLANE:
+        for (int a = 0; a < 3; a++)
+            v[a] -= d * k->u[a];
+        break;
+    case TR_CST_LINE:
+        for (int a = 0; a < 3; a++)
+            v[a] = d * k->u[a];
+        break;
+    default:
+        v[0] = v[1] = v[2] = 0.0;
+    }
+}
+
+double tr_constraint_violation(const tr_constraint *k, const double *x)
+{
+    double y[3] = {x[0], x[1], x[2]};
+    tr_constraint_project(k, y);
+    return sqrt(v3_dist2(x, y));
+}
+
+double tr_comp_length(const tr_curve *c, int k)
+{
+    size_t s = c->start[k], n = tr_comp_nv(c, k), ne = tr_comp_ne(c, k);
+    double sum = 0.0, comp = 0.0;
+    for (size_t j = 0; j < ne; j++) {
+        const double *a = c->x + 3 * (s + j);
+        const double *b = c->x + 3 * (s + (j + 1) % n);
+        double l = sqrt(v3_dist2(a, b));
+        double t = sum + l;
+        comp += (fabs(sum) >= fabs(l)) ? (sum - t) + l : (l - t) + sum;
+        sum = t;
+    }
+    return sum + comp;
+}
+
+double tr_curve_length(const tr_curve *c)
+{
+    double sum = 0.0;
+    for (int k = 0; k < c->ncomp; k++)
+        sum += tr_comp_length(c, k);
+    return sum;
+}

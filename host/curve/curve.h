@@ -1,0 +1,76 @@
+/* A curve: one or more polygonal components (a knot, a link, open ropes),
+ * stored flat so that every backend sees one array of vertices.
+ *
+ * Vertices of component k are x[3*i .. 3*i+2] for i in [start[k], start[k+1]).
+ * A closed component does not repeat its first vertex.
+ * Vertices may carry a constraint (plCurve convention): a fixed point, a line
+ * or a plane the vertex must stay on; vcst[i] is an index into cst[] or -1. */
+#ifndef TR_CURVE_H
+#define TR_CURVE_H
+
+#include <stddef.h>
+
+#include "util/error.h"
+
+typedef enum tr_cst_kind {
+    TR_CST_FIXED = 1, /* vertex stays at point p */
+    TR_CST_LINE = 2,  /* vertex stays on the line p + t u (u unit) */
+    TR_CST_PLANE = 3  /* vertex stays on the plane n.x = d (n unit) */
+} tr_cst_kind;
+
+typedef struct tr_constraint {
+    tr_cst_kind kind;
+    int id;       /* the number the file gave it ("# Constraint 3 ...") */
+    double p[3];  /* FIXED: the point; LINE: a point on the line */
+    double u[3];  /* LINE: unit direction; PLANE: unit normal */
+    double d;     /* PLANE: offset, n.x = d */
+} tr_constraint;
+
+typedef struct tr_curve {
+    size_t nv;              /* total number of vertices */
+    double *x;              /* 3*nv coordinates */
+    int ncomp;
+    size_t *start;          /* ncomp+1 offsets into the vertex array */
+    unsigned char *closed;  /* ncomp flags */
+    int *vcst;              /* nv entries (index into cst or -1); NULL if ncst == 0 */
+    int ncst;
+    tr_constraint *cst;
+} tr_curve;
+
+/* Allocates a curve with the given component sizes and closure flags;
+ * coordinates are zeroed, no constraints. */
+int tr_curve_alloc(tr_curve *c, int ncomp, const size_t *nv, const unsigned char *closed,
+                   tr_error *err);
+void tr_curve_free(tr_curve *c);
+int tr_curve_copy(tr_curve *dst, const tr_curve *src, tr_error *err);
+
+/* Adds a constraint table entry; returns its index or a negative status. */
+int tr_curve_add_constraint(tr_curve *c, const tr_constraint *k, tr_error *err);
+
+static inline size_t tr_comp_nv(const tr_curve *c, int k) { return c->start[k + 1] - c->start[k]; }
+
+/* Number of edges of component k: nv for a closed one, nv-1 for an open one. */
+static inline size_t tr_comp_ne(const tr_curve *c, int k)
+{
+    size_t n = tr_comp_nv(c, k);
+    return c->closed[k] ? n : (n ? n - 1 : 0);
+}
+
+/* Component that vertex i belongs to (binary search over start). */
+int tr_curve_comp_of(const tr_curve *c, size_t i);
+
+/* Moves point x (3 doubles) to the nearest point satisfying constraint k. */
+void tr_constraint_project(const tr_constraint *k, double *x);
+
+/* Removes from a motion (or force) v the part constraint k forbids: the
+ * normal part on a plane, all but the direction on a line, all if fixed. */
+void tr_constraint_project_motion(const tr_constraint *k, double *v);
+
+/* Distance from x to the set that constraint k allows. */
+double tr_constraint_violation(const tr_constraint *k, const double *x);
+
+/* Total polygon length, compensated (Neumaier) summation. */
+double tr_curve_length(const tr_curve *c);
+double tr_comp_length(const tr_curve *c, int k);
+
+#endif

@@ -1,0 +1,488 @@
+/* Rawdon's thickness of a polygon with octrope's conventions (REFERENCE.md 2):
+ * MinRad as octrope_minrad computes it, struts as octrope_struts accepts them
+ * (Lumelsky closest points, the endpoint normal-wedge test, the pi_count index
+ * rule), the paper's L_p, L_c, L_a, with a tree search in place of octrope's
+ * octree so the cost stays linear in N. */
+#include "oracle/thickness.h"
+
+#include <float.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "geometry/neighbour_search.h"
+#include "util/vec3.h"
+
+/* Edge lengths of a "near-equilateral" component differ by at most this
+ * fraction of their mean; only then are L_c and L_a meaningful (the arcs of
+ * K_c meet near the edge midpoints). */
+#define NEAR_EQUILATERAL_REL 1e-3
+
+/* A vertex whose edges are parallel to this relative accuracy is straight
+ * (infinite radius). octrope uses an absolute 1e-12 on |a x b|, which at
+ * N = 10^6 (edges ~3e-5) skips every vertex and loses MinRad; relative to
+ * |a||b| the test means the same on the knots octrope was made for. */
+#define STRAIGHT_SIN 1e-12
+
+typedef struct neumaier {
+    double sum, comp;
+} neumaier;
+
+static void nm_add(neumaier *s, double v)
+{
+    double t = s->sum + v;
+    s->comp += (fabs(s->sum) >= fabs(v)) ? (s->sum - t) + v : (v - t) + s->sum;
+    s->sum = t;
+}
+
+static double nm_get(const neumaier *s) { return s->sum + s->comp; }
+
+/* octrope's find_poca (Lumelsky's segment-segment closest points): s on
+ * segment a, t on segment b. Ill-conditioned cases go to long double exactly
+ * where octrope does (denominator < 1e-10); octrope's "parallel" test
+ * (long-double denominator < 1e-25) is made relative (sin^2 of the angle
+ * < 1e-20) so that tiny edges are not all called parallel, and parallel overlapping edges get an interior
+ * closest pair (see below). */
+double tr_segment_closest(const double *a0, const double *a1, const double *b0, const double *b1,
+                          double *s_out, double *t_out)
+{
+    double d1[3], d2[3], d12[3];
+    v3_sub(d1, a1, a0);
+    v3_sub(d2, b1, b0);
+    v3_sub(d12, b0, a0);
+    double D1 = v3_dot(d1, d1), D2 = v3_dot(d2, d2), R = v3_dot(d1, d2);
+    double S1 = v3_dot(d1, d12), S2 = v3_dot(d2, d12);
+    double denom = D1 * D2 - R * R;
+    if (denom < 1e-10) {
+        long double LD1 = D1, LD2 = D2, LR = R, LS1 = S1, LS2 = S2;
+        /* |d1 x d2|^2 rather than D1 D2 - R^2: no cancellation, so nearly
+         * parallel edges are told from parallel ones. */
+        long double cx = (long double)d1[1] * d2[2] - (long double)d1[2] * d2[1];
+        long double cy = (long double)d1[2] * d2[0] - (long double)d1[0] * d2[2];
+        long double cz = (long double)d1[0] * d2[1] - (long double)d1[1] * d2[0];
+        long double Ldenom = cx * cx + cy * cy + cz * cz;
+        long double LT, LU;
+        if (Ldenom < 1e-20L * LD1 * LD2) {
+            /* Parallel. octrope takes LT = 0, which lands on an end vertex
+             * and misses the strut between parallel edges that overlap
+             * (e.g. opposite edges of a rectangle); take the middle of the
+             * overlap of the projections instead, when there is one. */
+            long double u0 = LS1 / LD1, u1 = (LS1 + LR) / LD1;
+            long double lo = u0 < u1 ? u0 : u1, hi = u0 < u1 ? u1 : u0;
+            if (lo < 0)
+                lo = 0;
+            if (hi > 1)
+                hi = 1;
+            LT = lo <= hi ? 0.5L * (lo + hi) : 0;
+        } else {
+            LT = (LS1 * LD2 - LS2 * LR) / Ldenom;
+            if (LT > 1)
+                LT = 1;
+            else if (LT < 0)
+                LT = 0;
+        }
+        LU = (LT * LR - LS2) / LD2;
+        if (LU > 1) {
+            LU = 1;
+            LT = (LU * LR + LS1) / LD1;
+            if (LT > 1)
+                LT = 1;
+            else if (LT < 0)
+                LT = 0;
+        } else if (LU < 0) {
+            LU = 0;
+            LT = (LU * LR + LS1) / LD1;
+            if (LT > 1)
+                LT = 1;
+            else if (LT < 0)
+                LT = 0;
+        }
+        long double q = 0;
+        for (int k = 0; k < 3; k++) {
+            long double w = LT * d1[k] - LU * d2[k] - d12[k];
+            q += w * w;
+        }
+        *s_out = (double)LT;
+        *t_out = (double)LU;
+        return sqrt((double)q);
+    }
+    double T = (S1 * D2 - S2 * R) / denom;
+    if (T > 1)
+        T = 1;
+    else if (T < 0)
+        T = 0;
+    double U = (T * R - S2) / D2;
+    if (U > 1) {
+        U = 1;
+        T = (U * R + S1) / D1;
+        if (T > 1)
+            T = 1;
+        else if (T < 0)
+            T = 0;
+    } else if (U < 0) {
+        U = 0;
+        T = (U * R + S1) / D1;
+        if (T > 1)
+            T = 1;
+        else if (T < 0)
+            T = 0;
+    }
+    double q = 0;
+    for (int k = 0; k < 3; k++) {
+        double w = T * d1[k] - U * d2[k] - d12[k];
+        q += w * w;
+    }
+    *s_out = T;
+    *t_out = U;
+    return sqrt(q);
+}
+
+/* octrope's wedge_check: is y in the normal wedge at the start vertex v of
+ * an edge (v -> next), i.e. not in front of the edge's normal plane at v and
+ * not behind the previous edge's normal plane at v? */
+static int in_normal_wedge(const double *prev, const double *v, const double *next, const double *y)
+{
+    double slab[3], ramp[3], w[3];
+    v3_sub(slab, next, v);
+    v3_sub(ramp, prev, v);
+    v3_sub(w, y, v);
+    if (v3_dot(slab, w) > 0)
+        return 0;
+    if (v3_dot(ramp, w) > 0)
+        return 0;
+    return 1;
+}
+
+static void point_on(double *r, const double *a, const double *b, double s)
+{
+    for (int k = 0; k < 3; k++)
+        r[k] = (1.0 - s) * a[k] + s * b[k];
+}
+
+typedef struct strut_search {
+    const tr_nsearch *ns;
+    double rel_tol;     /* collect struts within (1 + rel_tol) of the best */
+    double best;        /* shortest doubly-critical distance so far */
+    tr_strut best_strut;
+    tr_strut_list *list; /* may be NULL */
+    int oom;
+} strut_search;
+
+static int is_last_edge(const tr_nsearch *ns, size_t e)
+{
+    int k = ns->ecomp[e];
+    return !ns->c->closed[k] && e + 1 == ns->estart[k + 1];
+}
+
+static int list_push(tr_strut_list *l, const tr_strut *s)
+{
+    if (l->n == l->cap) {
+        size_t cap = l->cap ? 2 * l->cap : 64;
+        tr_strut *g = realloc(l->s, cap * sizeof *g);
+        if (!g)
+            return -1;
+        l->s = g;
+        l->cap = cap;
+    }
+    l->s[l->n++] = *s;
+    return 0;
+}
+
+/* The exact test of octrope's check_boxes for one pair, edge i the "main"
+ * edge (the later one in our order). */
+static int strut_candidate(void *ctx, size_t ei, size_t ej, double *cutoff)
+{
+    strut_search *S = ctx;
+    const tr_nsearch *ns = S->ns;
+    const double *x = ns->c->x;
+    const double *a0 = x + 3 * ns->ea[ei], *a1 = x + 3 * ns->eb[ei], *ap = x + 3 * ns->eprev[ei];
+    const double *b0 = x + 3 * ns->ea[ej], *b1 = x + 3 * ns->eb[ej], *bp = x + 3 * ns->eprev[ej];
+    double s, t;
+    double dist = tr_segment_closest(a0, a1, b0, b1, &s, &t);
+    if (!(dist <= *cutoff))
+        return 0;
+    if (!(s < 1 || is_last_edge(ns, ei)) || !(t < 1 || is_last_edge(ns, ej)))
+        return 0;
+    if (!(s > 0)) {
+        double y[3];
+        point_on(y, b0, b1, t);
+        if (!in_normal_wedge(ap, a0, a1, y))
+            return 0;
+    }
+    if (!(t > 0)) {
+        double y[3];
+        point_on(y, a0, a1, s);
+        if (!in_normal_wedge(bp, b0, b1, y))
+            return 0;
+    }
+    tr_strut st = {.ei = ei, .ej = ej, .si = s, .sj = t, .dist = dist};
+    if (dist < S->best) {
+        S->best = dist;
+        S->best_strut = st;
+        *cutoff = S->rel_tol > 0 ? dist * (1.0 + S->rel_tol) : dist;
+    }
+    if (S->list && list_push(S->list, &st)) {
+        S->oom = 1;
+        return TR_ENOMEM;
+    }
+    return 0;
+}
+
+/* Seeding: the same exact test with the later edge as the main one, but
+ * nothing collected; only the cutoff (and the best strut) move. */
+static int strut_seed(void *ctx, size_t ei, size_t ej, double *cutoff)
+{
+    strut_search *S = ctx;
+    tr_strut_list *keep = S->list;
+    S->list = NULL;
+    int rc = ei > ej ? strut_candidate(ctx, ei, ej, cutoff) : strut_candidate(ctx, ej, ei, cutoff);
+    S->list = keep;
+    return rc;
+}
+
+/* octrope's max_turning_angle: acos of the normalised dot product, NaN
+ * (rounding past +-1) ignored as octrope's max() does. */
+static double max_turning_angle(const tr_curve *c)
+{
+    double mx = 0.0;
+    for (int k = 0; k < c->ncomp; k++) {
+        size_t v0 = c->start[k], n = tr_comp_nv(c, k);
+        if (n < 3)
+            continue;
+        size_t first = c->closed[k] ? 0 : 1, end = c->closed[k] ? n : n - 1;
+        for (size_t j = first; j < end; j++) {
+            const double *p = c->x + 3 * (v0 + (j + n - 1) % n);
+            const double *v = c->x + 3 * (v0 + j);
+            const double *q = c->x + 3 * (v0 + (j + 1) % n);
+            double e1[3], e2[3];
+            v3_sub(e1, v, p);
+            v3_sub(e2, q, v);
+            double ang = acos(v3_dot(e1, e2) / sqrt(v3_dot(e1, e1) * v3_dot(e2, e2)));
+            if (ang > mx)
+                mx = ang;
+        }
+    }
+    return mx;
+}
+
+/* Octrope's pi_count: fewer edges than this cannot turn by pi, so no strut
+ * joins edges closer in index (at least 2: neighbours never). */
+static size_t pi_count(const tr_curve *c, size_t ne)
+{
+    double mt = max_turning_angle(c);
+    double q = floor(acos(-1.0) / mt);
+    size_t pc;
+    if (!(q < (double)ne + 2.0))
+        pc = ne + 2; /* straight or nearly: every same-component pair skipped */
+    else
+        pc = (size_t)q;
+    return pc < 2 ? 2 : pc;
+}
+
+/* MinRad (octrope_minrad) and the inscribed-arc lengths of one component. */
+typedef struct comp_lengths {
+    double minrad;
+    size_t minrad_vertex;
+    double length;
+    double L_c; /* NAN unless closed and near-equilateral */
+} comp_lengths;
+
+/* theta / tan(theta/2) without cancellation for small theta. */
+static double arc_factor(double theta)
+{
+    double x = 0.5 * theta;
+    if (x < 1e-4) {
+        double x2 = x * x;
+        return 2.0 * (1.0 - x2 / 3.0 - x2 * x2 / 45.0);
+    }
+    return 2.0 * x / tan(x);
+}
+
+static void component_lengths(const tr_curve *c, int k, comp_lengths *out)
+{
+    size_t v0 = c->start[k], n = tr_comp_nv(c, k), ne = tr_comp_ne(c, k);
+    int closed = c->closed[k];
+    out->minrad = INFINITY;
+    out->minrad_vertex = v0;
+    neumaier len = {0, 0};
+    double emin = INFINITY, emax = 0.0;
+    for (size_t j = 0; j < ne; j++) {
+        double l = sqrt(v3_dist2(c->x + 3 * (v0 + j), c->x + 3 * (v0 + (j + 1) % n)));
+        nm_add(&len, l);
+        emin = fmin(emin, l);
+        emax = fmax(emax, l);
+    }
+    out->length = nm_get(&len);
+    /* Vertices with two edges: all on a closed component, interior ones on an
+     * open one (octrope's convention). */
+    size_t first = closed ? 0 : 1, end = closed ? n : (n >= 2 ? n - 1 : 0);
+    neumaier arcs = {0, 0};
+    for (size_t j = first; j < end; j++) {
+        const double *p = c->x + 3 * (v0 + (j + n - 1) % n);
+        const double *v = c->x + 3 * (v0 + j);
+        const double *q = c->x + 3 * (v0 + (j + 1) % n);
+        double in[3], o[3], cr[3];
+        v3_sub(in, v, p);
+        v3_sub(o, q, v);
+        double normin = v3_norm(in), normout = v3_norm(o);
+        double dot = v3_dot(in, o);
+        v3_cross(cr, in, o);
+        double crn = v3_norm(cr);
+        double tj = 0.5 * fmin(normin, normout);
+        if (closed)
+            nm_add(&arcs, tj * arc_factor(atan2(crn, dot)));
+        double rad;
+        if (crn <= STRAIGHT_SIN * normin * normout) {
+            if (dot >= 0)
+                continue; /* straight: no bend, infinite radius */
+            rad = 0.0;    /* a hairpin (the rope folds back on itself): MinRad 0, not straight */
+        } else {
+            rad = (normin * normout + dot) / (2 * crn);
+        }
+        double mrminus = normin * rad, mrplus = normout * rad;
+        double mr = mrminus < mrplus ? mrminus : mrplus;
+        if (mr < out->minrad) {
+            out->minrad = mr;
+            out->minrad_vertex = v0 + j;
+        }
+    }
+    out->L_c = NAN;
+    if (closed && ne >= 3) {
+        double e_av = out->length / (double)ne;
+        if (emax - emin <= NEAR_EQUILATERAL_REL * e_av) {
+            /* Straight pieces between consecutive arcs: |e_j| - t_j - t_{j+1};
+             * zero for an equilateral polygon. */
+            for (size_t j = 0; j < ne; j++) {
+                double lp = sqrt(v3_dist2(c->x + 3 * (v0 + (j + n - 1) % n), c->x + 3 * (v0 + j)));
+                double l = sqrt(v3_dist2(c->x + 3 * (v0 + j), c->x + 3 * (v0 + (j + 1) % n)));
+                double ln = sqrt(v3_dist2(c->x + 3 * (v0 + (j + 1) % n), c->x + 3 * (v0 + (j + 2) % n)));
+                double piece = l - 0.5 * fmin(lp, l) - 0.5 * fmin(l, ln);
+                nm_add(&arcs, piece);
+            }
+            double R_c = sqrt(1.0 - 0.25 * e_av * e_av);
+            out->L_c = nm_get(&arcs) / R_c;
+        }
+    }
+}
+
+int tr_thickness_measure(const tr_curve *c, const tr_thickness_opts *opts, tr_thickness *out,
+                         tr_strut_list *struts, tr_error *err)
+{
+    memset(out, 0, sizeof *out);
+    if (!c || c->ncomp <= 0 || !c->x)
+        return tr_fail(err, TR_EINVAL, "thickness of an empty curve");
+    double rel_tol = opts ? opts->strut_rel_tol : 0.0;
+    if (!(rel_tol >= 0) || !isfinite(rel_tol))
+        return tr_fail(err, TR_EINVAL, "strut tolerance must be finite and >= 0, got %g", rel_tol);
+    for (int k = 0; k < c->ncomp; k++) {
+        size_t n = tr_comp_nv(c, k);
+        if (n < 2 || (c->closed[k] && n < 3))
+            return tr_fail(err, TR_EGEOMETRY, "component %d has too few vertices (%zu)", k, n);
+    }
+    for (size_t i = 0; i < 3 * c->nv; i++)
+        if (!isfinite(c->x[i]))
+            return tr_fail(err, TR_EGEOMETRY, "vertex %zu is not finite", i / 3);
+
+    out->vertices = c->nv;
+    neumaier len = {0, 0}, lc = {0, 0};
+    int all_equilateral = 1;
+    out->minrad = INFINITY;
+    for (int k = 0; k < c->ncomp; k++) {
+        comp_lengths cl;
+        component_lengths(c, k, &cl);
+        nm_add(&len, cl.length);
+        if (cl.minrad < out->minrad) {
+            out->minrad = cl.minrad;
+            out->minrad_vertex = cl.minrad_vertex;
+        }
+        if (isnan(cl.L_c))
+            all_equilateral = 0;
+        else
+            nm_add(&lc, cl.L_c);
+    }
+    out->length = nm_get(&len);
+    if (all_equilateral) {
+        out->L_p = out->length;
+        out->L_c = nm_get(&lc);
+        out->L_a = 0.8 * out->L_p + 0.2 * out->L_c;
+    } else {
+        out->L_p = out->L_c = out->L_a = NAN;
+    }
+
+    tr_nsearch ns;
+    int rc = tr_nsearch_build(&ns, c, err);
+    if (rc)
+        return rc;
+    strut_search S = {.ns = &ns, .rel_tol = rel_tol, .best = INFINITY, .list = struts};
+    if (struts)
+        struts->n = 0;
+    size_t pc = pi_count(c, ns.ne);
+    double cutoff = INFINITY;
+    if (opts && opts->brute_force) {
+        rc = tr_nsearch_pairs_brute(&ns, &cutoff, pc, TR_NSEARCH_CRITICAL, strut_candidate, &S);
+    } else {
+        /* A first strut from a few sample edges bounds dcsd from above, so
+         * the search below prunes by distance from its first edge on. Every
+         * pair under that bound is still looked at, so the result is exact. */
+        size_t step = ns.ne / 64 + 1;
+        for (size_t i = 0; i < ns.ne && rc == 0; i += step)
+            rc = tr_nsearch_edge(&ns, i, &cutoff, pc, TR_NSEARCH_CRITICAL, strut_seed, &S);
+        if (rc == 0)
+            rc = tr_nsearch_pairs(&ns, &cutoff, pc, TR_NSEARCH_CRITICAL, strut_candidate, &S);
+    }
+    tr_nsearch_free(&ns);
+    if (rc)
+        return tr_fail(err, TR_ENOMEM, "out of memory collecting struts");
+
+    out->dcsd = S.best;
+    if (isfinite(S.best))
+        out->shortest = S.best_strut;
+    if (struts) {
+        /* Keep the struts within the tolerance of the final shortest. */
+        double lim = S.best * (1.0 + rel_tol);
+        size_t m = 0;
+        for (size_t i = 0; i < struts->n; i++)
+            if (struts->s[i].dist <= lim)
+                struts->s[m++] = struts->s[i];
+        struts->n = m;
+    }
+    out->thickness = fmin(out->minrad, 0.5 * out->dcsd);
+    out->ropelength = out->length / out->thickness;
+    return TR_OK;
+}
+
+int tr_thickness_measure_component(const tr_curve *c, int k, tr_thickness *out, tr_error *err)
+{
+    if (k < 0 || k >= c->ncomp)
+        return tr_fail(err, TR_EINVAL, "no component %d (the curve has %d)", k, c->ncomp);
+    size_t n = tr_comp_nv(c, k);
+    unsigned char closed = c->closed[k];
+    tr_curve one;
+    int rc = tr_curve_alloc(&one, 1, &n, &closed, err);
+    if (rc)
+        return rc;
+    memcpy(one.x, c->x + 3 * c->start[k], 3 * n * sizeof *one.x);
+    rc = tr_thickness_measure(&one, NULL, out, NULL, err);
+    tr_curve_free(&one);
+    if (rc == TR_OK) {
+        /* Report indices in the whole curve's numbering. */
+        out->minrad_vertex += c->start[k];
+        size_t e0 = 0;
+        for (int q = 0; q < k; q++)
+            e0 += tr_comp_ne(c, q);
+        if (isfinite(out->dcsd)) {
+            out->shortest.ei += e0;
+            out->shortest.ej += e0;
+        }
+    }
+    return rc;
+}
+
+void tr_strut_list_free(tr_strut_list *l)
+{
+    if (!l)
+        return;
+    free(l->s);
+    l->s = NULL;
+    l->n = l->cap = 0;
+}

@@ -1,0 +1,49 @@
+/* Whole text files in and out, and the growing text buffer the writers
+ * format into. One place for the three things every command needs:
+ * read a file whole (with the reason when it cannot be read), write one
+ * so that a reader never sees it half-written, and printf into memory. */
+#ifndef TIGHTROPE_TEXT_FILE_H
+#define TIGHTROPE_TEXT_FILE_H
+
+#include <stddef.h>
+
+#include "util/error.h"
+
+/* Reads all of `path` into a NUL-terminated buffer (*text, caller frees);
+ * *len (may be NULL) gets the byte count without the NUL. A directory,
+ * a missing file or a read error is TR_EIO with the system's reason. */
+int tr_read_file(const char *path, char **text, size_t *len, tr_error *err);
+
+/* Writes `len` bytes to a temporary file beside `path` (same file system),
+ * fsyncs it and renames it over `path`: readers see the old file or the
+ * whole new one, never a part. */
+int tr_write_file_atomic(const char *path, const char *text, size_t len, tr_error *err);
+
+/* What tr_write_file_atomic needs, checked before a long computation whose
+ * result it will write: the temporary beside `path` can be created (and is
+ * removed again) and `path` is not a directory. TR_EIO with the reason. */
+int tr_check_writable(const char *path, tr_error *err);
+
+/* A growing string. Zero-initialise; tr_text_printf appends; an
+ * allocation or format failure sets `oom` and later calls do nothing, so
+ * callers check once at the end. */
+typedef struct tr_text {
+    char *s;
+    size_t n, cap;
+    int oom;
+} tr_text;
+
+void tr_text_printf(tr_text *t, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 2, 3)))
+#endif
+    ;
+
+/* Hands the string to the caller (NULL after a failure, also freed). */
+char *tr_text_take(tr_text *t, size_t *len);
+
+/* Writes the string to path atomically (tr_write_file_atomic) and frees
+ * it; a formatting failure is TR_ENOMEM naming path, and writes nothing. */
+int tr_text_write_atomic(tr_text *t, const char *path, tr_error *err);
+
+#endif
