@@ -9,3 +9,9 @@ tr_engine_test(tighten_polish 0 DIR ${_pol_dir}/on ONLY "s.vect;t.vect" OUT ${_p
 tr_engine_test(tighten_no_polish 0 DIR ${_pol_dir}/off ONLY "s.vect;t.vect" OUT ${_pol_dir}/off/t.vect
   MATCH "\n# stop [a-z-]+\n# rescaled to thickness 1\n# kkt_residual not computed [(]--no-kkt[)]\n1 72 0"
   CMD sh -c "'${_tr}' make torus 2 3 --n 72 -o '${_pol_dir}/off/s.vect' && exec '${_tr}' tighten '${_pol_dir}/off/s.vect' -o '${_pol_dir}/off/t.vect' --time-limit 1 --no-polish --no-kkt --quiet --device reference")
+# --newton: the second-order solver takes the polish's place at the finest
+# level (its own line in the certificate, no polish line) and leaves a curve
+# at thickness 1 (the engine's settle, then the oracle's measure).
+tr_engine_test(tighten_newton 0 DIR ${_pol_dir}/newton ONLY "s.vect;t.vect" OUT ${_pol_dir}/newton/t.vect
+  MATCH "\n# kkt_residual [0-9]\\.[0-9]+e[-+][0-9]+ [^\n]*\n# newton accepted: ropelength [0-9.]+ -> [0-9.]+ in [0-9.]+ s, [0-9]+ steps\n1 72 0"
+  CMD sh -c "'${_tr}' make torus 2 3 --n 72 -o '${_pol_dir}/newton/s.vect' && exec '${_tr}' tighten '${_pol_dir}/newton/s.vect' -o '${_pol_dir}/newton/t.vect' --time-limit 3 --newton --quiet --device reference")

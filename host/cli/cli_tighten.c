@@ -69,6 +69,10 @@ static void usage(FILE *out)
             "  --device-from N    with --refine-to, coarse levels of fewer than N vertices in all\n"
             "                     run on the serial reference, where a device's cost per kernel\n"
             "                     launch outweighs it (default 2048; 0: the device at every level)\n"
+            "  --newton           after the polish at the finest level, the second-order\n"
+            "                     solver (Newton steps on an augmented Lagrangian, exact\n"
+            "                     strut Hessians, CHOLMOD) on curves without end constraints;\n"
+            "                     it runs in the time the polish leaves\n"
             "  --no-polish        skip the polish stage at every level (a serial augmented-\n"
             "                     Lagrangian / L-BFGS minimisation on the host, which ends each\n"
             "                     coarse level and at the finest takes the last 80%% of its time\n"
@@ -153,7 +157,7 @@ int tr_cmd_tighten(int argc, char **argv)
     long n = 0, refine_to = 0, steps = 0, device_from = -1;
     double target = 0, residual = 1e-4, time_limit = 0, ckpt_every = 300;
     int residual_given = 0; /* the default residual is a stopping rule, not a goal */
-    int json = 0, quiet = 0, no_polish = 0, scale = 0, kkt = -1; /* -1: up to KKT_AUTO_MAX_N */
+    int json = 0, quiet = 0, no_polish = 0, newton = 0, scale = 0, kkt = -1; /* -1: up to KKT_AUTO_MAX_N */
     static const char *valued[] = {"-o", "--output", "--n", "--refine-to", "--target", "--residual",
                                    "--steps", "--time-limit", "--checkpoint", "--checkpoint-every",
                                    "--resume", "--device", "--device-from"};
@@ -165,6 +169,10 @@ int tr_cmd_tighten(int argc, char **argv)
         }
         if (!strcmp(a, "--json")) {
             json = 1;
+            continue;
+        }
+        if (!strcmp(a, "--newton")) {
+            newton = 1;
             continue;
         }
         if (!strcmp(a, "--no-polish")) {
@@ -260,6 +268,7 @@ int tr_cmd_tighten(int argc, char **argv)
     tr_engine_params prm;
     tr_engine_params_default(&prm);
     prm.polish = !no_polish;
+    prm.newton = newton;
     if (device_from >= 0)
         prm.device_min_n = (size_t)device_from;
     tr_engine *e = NULL;
@@ -421,10 +430,14 @@ int tr_cmd_tighten(int argc, char **argv)
         else
             tr_text_printf(&cm, "kkt_residual not computed (%s)\n",
                            why == TR_STOP_SIGNAL ? "interrupted" : kkt == 0 ? "--no-kkt" : "N above the default limit; --kkt");
-        if (p.polished)
+        if (p.polished && !p.newton_ran)
             tr_text_printf(&cm, "polish %s: ropelength %.9f -> %.9f in %.2f s%s%s%s\n", p.polished > 0 ? "accepted" : "rejected",
                     p.polish_before, p.polish_after, p.polish_seconds, p.polish_why ? " (" : "",
                     p.polish_why ? p.polish_why : "", p.polish_why ? ")" : "");
+        if (p.newton_ran)
+            tr_text_printf(&cm, "newton %s: ropelength %.9f -> %.9f in %.2f s, %d steps\n",
+                           p.newton_ran > 0 ? "accepted" : "rejected", p.newton_before, p.newton_after,
+                           p.newton_seconds, p.newton_iters);
         comments = tr_text_take(&cm, NULL);
         if (!comments)
             rc = tr_fail(&err, TR_ENOMEM, "out of memory");
@@ -468,10 +481,14 @@ int tr_cmd_tighten(int argc, char **argv)
             printf("  KKT residual %.2e (%zu/%zu struts and %zu/%zu MinRad rows hold the tension%s)\n", kr.residual,
                    kr.strut_active, kr.strut_rows, kr.minrad_active, kr.minrad_rows,
                    kr.converged ? "" : "; an upper bound");
-        if (p.polished)
+        if (p.polished && !p.newton_ran)
             printf("  polish %s: ropelength %.6f -> %.6f in %.1f s%s%s%s\n", p.polished > 0 ? "accepted" : "rejected",
                    p.polish_before, p.polish_after, p.polish_seconds, p.polish_why ? " (" : "",
                    p.polish_why ? p.polish_why : "", p.polish_why ? ")" : "");
+        if (p.newton_ran)
+            printf("  newton %s: ropelength %.9f -> %.9f in %.1f s, %d steps\n",
+                   p.newton_ran > 0 ? "accepted" : "rejected", p.newton_before, p.newton_after, p.newton_seconds,
+                   p.newton_iters);
     }
     if (why == TR_STOP_SIGNAL)
         fprintf(stderr, "tightrope tighten: interrupted; %s%s%swrote %s\n", ckpt ? "checkpoint " : "",

@@ -8,6 +8,7 @@
 
 #include "curve/curve_io.h"
 #include "engine/polish.h"
+#include "solver/newton.h"
 #include "engine/refine_lowpass.h"
 #include "util/text_file.h"
 #include "oracle/thickness.h"
@@ -38,6 +39,9 @@ struct tr_engine {
     int polished; /* 0: not yet; 1: accepted; -1: ran and kept the engine's curve */
     double polish_before, polish_after, polish_seconds;
     const char *polish_why;
+    int newton_ran; /* as polished, for the second-order solver */
+    double newton_before, newton_after, newton_seconds;
+    int newton_iters;
     /* The polished curve itself, kept when settling it onto the engine's
      * constraint set cost ropelength (the oracle's, which is scale free):
      * until the engine takes another step it is the curve handed out. */
@@ -377,6 +381,11 @@ void tr_engine_get_progress(const tr_engine *e, tr_engine_progress *p)
     p->polish_after = e->polish_after;
     p->polish_seconds = e->polish_seconds;
     p->polish_why = e->polish_why;
+    p->newton_ran = e->newton_ran;
+    p->newton_before = e->newton_before;
+    p->newton_after = e->newton_after;
+    p->newton_seconds = e->newton_seconds;
+    p->newton_iters = e->newton_iters;
 }
 
 int tr_engine_get_curve(tr_engine *e, tr_curve *out, tr_error *err)
@@ -678,9 +687,35 @@ static int keep_if_settle_lost(tr_engine *e, double polished_rl, double *scratch
  * the engine's exact constraint set (equal edges to 1e-9). The polished
  * curve is at thickness 1 with every constraint satisfied, so settle moves
  * it by no more than its edge deviation. */
-static int run_polish(tr_engine *e, double seconds, double target, volatile sig_atomic_t *stop,
+/* The second-order solver on the host curve (the polished one, or the
+ * engine's where polish kept it), with its share of the time; reports
+ * whether it replaced the curve. */
+static int run_newton(tr_engine *e, double seconds, volatile sig_atomic_t *stop, int *accepted, tr_error *err)
+{
+    *accepted = 0;
+    if (e->curve.ncst > 0)
+        return TR_OK;
+    tr_newton_params np;
+    tr_newton_params_default(&np);
+    np.time_limit = seconds;
+    np.stop = stop;
+    tr_newton_stats ns;
+    int rc = tr_newton(&e->curve, &np, &ns, err);
+    if (rc)
+        return rc == TR_EGEOMETRY ? TR_OK : rc;
+    e->newton_ran = ns.accepted ? 1 : -1;
+    e->newton_before = ns.ropelength_before;
+    e->newton_after = ns.ropelength_after;
+    e->newton_seconds = ns.seconds;
+    e->newton_iters = ns.iters;
+    *accepted = ns.accepted;
+    return TR_OK;
+}
+
+static int run_polish(tr_engine *e, double seconds, double target, int final, volatile sig_atomic_t *stop,
                       tr_error *err)
 {
+    int newton = final && e->prm.newton && e->curve.ncst == 0;
     size_t nx = 3 * e->curve.nv;
     double *keep = malloc((nx + (size_t)e->curve.ncomp) * sizeof *keep);
     if (!keep)
@@ -697,18 +732,36 @@ static int run_polish(tr_engine *e, double seconds, double target, volatile sig_
     pp.target = target;
     pp.stop = stop;
     tr_polish_stats ps;
-    if ((rc = tr_polish(&e->curve, &pp, &ps, err))) {
-        free(keep);
-        if (rc != TR_EGEOMETRY)
+    memset(&ps, 0, sizeof ps);
+    if (newton) {
+        /* at the finest level the second-order solver takes the polish's
+         * place (bench/RESULTS.md, "Second-order solver") */
+        int nacc = 0;
+        if ((rc = run_newton(e, seconds, stop, &nacc, err))) {
+            free(keep);
             return rc;
-        e->polished = -1; /* nothing to polish (no finite thickness): the engine goes on */
-        return TR_OK;
+        }
+        ps.accepted = nacc;
+        ps.ropelength_after = e->newton_after;
+        e->polished = nacc ? 1 : -1;
+        e->polish_before = e->newton_before;
+        e->polish_after = e->newton_after;
+        e->polish_seconds = e->newton_seconds;
+        e->polish_why = nacc ? NULL : "the second-order solver's result is not shorter";
+    } else {
+        if ((rc = tr_polish(&e->curve, &pp, &ps, err))) {
+            free(keep);
+            if (rc != TR_EGEOMETRY)
+                return rc;
+            e->polished = -1; /* nothing to polish (no finite thickness): the engine goes on */
+            return TR_OK;
+        }
+        e->polish_before = ps.ropelength_before;
+        e->polish_after = ps.ropelength_after;
+        e->polish_seconds = ps.seconds;
+        e->polish_why = ps.skipped ? "below thickness 1 with constrained vertices" : ps.why_rejected;
+        e->polished = ps.accepted ? 1 : -1;
     }
-    e->polish_before = ps.ropelength_before;
-    e->polish_after = ps.ropelength_after;
-    e->polish_seconds = ps.seconds;
-    e->polish_why = ps.skipped ? "below thickness 1 with constrained vertices" : ps.why_rejected;
-    e->polished = ps.accepted ? 1 : -1;
     if (!ps.accepted) {
         free(keep);
         return TR_OK;
@@ -835,7 +888,7 @@ int tr_engine_run(tr_engine *e, const tr_engine_limits *lim, tr_stop_reason *why
              (stop == TR_STOP_NONE && lim->time_limit > 0 &&
               now_s() - level_t0 >= (1.0 - e->prm.polish_share) * time_left_at_level))) {
             double left = lim->time_limit > 0 ? lim->time_limit - p.elapsed : 0.0;
-            if ((rc = run_polish(e, lim->time_limit > 0 ? fmax(left, 1e-3) : 0.0, lim->target,
+            if ((rc = run_polish(e, lim->time_limit > 0 ? fmax(left, 1e-3) : 0.0, lim->target, 1,
                                  lim->stop, err)))
                 return rc;
             continue;
@@ -853,7 +906,7 @@ int tr_engine_run(tr_engine *e, const tr_engine_limits *lim, tr_stop_reason *why
                 level_done = 1;
             if (level_done && pc && e->polished == 0) {
                 double budget = lim->time_limit > 0 ? fmax(0.5 * time_left_at_level - used, 1e-3) : 0.0;
-                if ((rc = run_polish(e, budget, 0.0, lim->stop, err)))
+                if ((rc = run_polish(e, budget, 0.0, 0, lim->stop, err)))
                     return rc;
                 continue;
             }

@@ -70,6 +70,11 @@ typedef struct tr_engine_params {
     int polish;
     double polish_share;
     int polish_coarse; /* also polish every coarse level before refining it */
+    /* The second-order solver (solver/newton.h) after the polish at the
+     * finest level, on curves without vertex constraints, in the time the
+     * polish left. Kept only if the oracle finds its result shorter at
+     * thickness 1. */
+    int newton;
     /* Coarse levels (all but the last of a run with refine_to) with fewer
      * vertices than this run on the serial reference instead of the chosen
      * device: there an OpenCL device's cost per kernel launch outweighs its
@@ -115,6 +120,9 @@ typedef struct tr_engine_progress {
     double polish_before, polish_after; /* oracle ropelength around it */
     double polish_seconds;
     const char *polish_why; /* static text: why polish kept the engine's curve (NULL otherwise) */
+    int newton_ran;         /* 1: the second-order solver ran and was accepted; -1: ran, rejected */
+    double newton_before, newton_after, newton_seconds;
+    int newton_iters;
 } tr_engine_progress;
 
 typedef struct tr_engine_limits {

@@ -1,0 +1,66 @@
+/* bench/newton_run: the second-order solver (host/newton.h) alone on a
+ * curve, optionally spline-resampled to N vertices per component, with one
+ * progress line per Newton step: how the solver is measured apart from the
+ * engine's route (bench/RESULTS.md, "Second-order solver").
+ *   newton_run IN.vect OUT.vect [N] [TIME_LIMIT_S] */
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "curve/curve_io.h"
+#include "curve/generate.h"
+#include "engine/refine_lowpass.h"
+#include "solver/newton.h"
+#include "oracle/thickness.h"
+
+static void show(void *user, const tr_newton_progress *p)
+{
+    (void)user;
+    printf("it %3d outer %2d  length %.10f  viol %.2e  stat %.2e  mu %.1e  lm %.1e  step %.3f  struts %zu active %zu  %.2f s\n",
+           p->iter, p->outer, p->length, p->viol, p->stat, p->mu, p->lm, p->step, p->struts, p->active, p->seconds);
+    fflush(stdout);
+}
+
+int main(int argc, char **argv)
+{
+    if (argc < 3) {
+        fprintf(stderr, "usage: newton_run IN OUT [N] [TIME_LIMIT_S]\n");
+        return 2;
+    }
+    tr_error err = {0};
+    tr_curve c = {0}, r = {0};
+    if (tr_curve_read(argv[1], TR_FORMAT_AUTO, &c, &err)) {
+        fprintf(stderr, "newton_run: %s\n", err.msg);
+        return 1;
+    }
+    if (argc > 3 && atol(argv[3]) > 0) {
+        /* as the engine refines (tr_engine_refine) */
+        if (tr_refine_lowpass(&c, (size_t)atol(argv[3]), 0.5, 0.5, &r, &err)) {
+            fprintf(stderr, "newton_run: %s\n", err.msg);
+            return 1;
+        }
+        tr_curve_free(&c);
+        c = r;
+    }
+    tr_newton_params p;
+    tr_newton_params_default(&p);
+    p.progress = show;
+    if (argc > 4)
+        p.time_limit = atof(argv[4]);
+    tr_newton_stats st;
+    if (tr_newton(&c, &p, &st, &err)) {
+        fprintf(stderr, "newton_run: %s\n", err.msg);
+        return 1;
+    }
+    printf("newton: %s%s, ropelength %.10f -> %.10f, %d steps, %d updates, %d factorizations, %d rebuilds, %.2f s "
+           "(eval %.2f, factor %.2f, solve %.2f, search %.2f, rebuild %.2f), viol %.1e stat %.1e, struts %zu active %zu%s%s\n",
+           st.accepted ? "accepted" : "rejected", st.converged ? " converged" : (st.settled ? " settled" : ""), st.ropelength_before,
+           st.ropelength_after, st.iters, st.outer, st.factorizations, st.rebuilds, st.seconds, st.t_eval,
+           st.t_factor, st.t_solve, st.t_search, st.t_rebuild, st.max_viol, st.stat, st.struts, st.active,
+           st.why_rejected ? " - " : "", st.why_rejected ? st.why_rejected : "");
+    if (st.accepted && tr_curve_write(argv[2], TR_FORMAT_AUTO, &c, "newton_run", &err)) {
+        fprintf(stderr, "newton_run: %s\n", err.msg);
+        return 1;
+    }
+    tr_curve_free(&c);
+    return 0;
+}

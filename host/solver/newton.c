@@ -1,0 +1,864 @@
+/* This file contains the second-order solver: Newton steps on the augmented
+ * Lagrangian of the ideal-knot problem, factored by CHOLMOD (newton.h has
+ * the formulation and why it converges). */
+#include "solver/newton.h"
+
+#include <cholmod.h>
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "geometry/neighbour_search.h"
+#include "geometry/segdist.h"
+#include "solver/strut_hessian.h"
+#include "oracle/thickness.h"
+#include "util/vec3.h"
+
+#ifndef M_PI
+#define M_PI 3.14159265358979323846
+#endif
+
+#define NONE SIZE_MAX
+/* a step after which a listed pair is closer than this is cut back */
+#define GUARD_DIST 1.0
+
+void tr_newton_params_default(tr_newton_params *p)
+{
+    memset(p, 0, sizeof *p);
+    p->max_iter = 5000;
+    p->max_inner = 8;
+    p->skin = 0.08;
+    p->max_move = p->skin / 8;
+    p->mu0 = 10.0;
+    p->mu_max = 1e9;
+    p->viol_tol = 1e-11;
+    p->stat_tol = 1e-7;
+}
+
+static double now_s(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+typedef struct strut_row {
+    size_t a, b; /* first vertices of the two edges, a < b */
+    double lam;
+} strut_row;
+
+typedef struct solver {
+    tr_curve w; /* topology; x = the positions at the last list build */
+    const tr_newton_params *p;
+    size_t nv, n; /* vertices, variables (3 nv + ncomp) */
+    int nc;
+    size_t *next, *prev;
+    int *comp;
+    size_t *ne; /* edges per component */
+    int *gap;
+    double *l0, *scale_m; /* start edge, 4 l0^2 per component */
+    double l0min;
+    double mu;
+    double *lam_e, *lam_m, *pi_e, *pi_m; /* per edge (by first vertex) / vertex */
+    double *pi_s;
+    strut_row *sp;
+    size_t nsp;
+    tr_nsearch ns;
+    /* the Hessian's upper triangle as triplets */
+    size_t nz, capz;
+    SuiteSparse_long *ti, *tj;
+    double *tx;
+    int oom;
+    /* gauge: 6 coordinates held, so that no rigid motion is left in the
+     * Hessian's null space (a Levenberg shift there would also damp the
+     * knot's soft global modes, which Newton must see) */
+    size_t fixed[6];
+    int nfixed;
+    /* results of the last evaluation */
+    double viol, dmin, length;
+    size_t active;
+    cholmod_common cm;
+} solver;
+
+/* ---- the rows ---- */
+
+/* c(l) = 4 l^4 / (4 + l^2) and its first two derivatives in l */
+static void minrad_c(double l, double *c, double *dc, double *d2c)
+{
+    double u = l * l, q = 4.0 + u;
+    double dcdu = (32.0 * u + 4.0 * u * u) / (q * q);
+    *c = 4.0 * u * u / q;
+    *dc = dcdu * 2.0 * l;
+    *d2c = 128.0 / (q * q * q) * 4.0 * u + 2.0 * dcdu;
+}
+
+static int is_fixed(const solver *s, size_t i)
+{
+    for (int k = 0; k < s->nfixed; k++)
+        if (s->fixed[k] == i)
+            return 1;
+    return 0;
+}
+
+static void tri_push(solver *s, size_t i, size_t j, double v)
+{
+    if (s->nz == s->capz) {
+        size_t nc = s->capz ? 2 * s->capz : 1 << 16;
+        SuiteSparse_long *ti = realloc(s->ti, nc * sizeof *ti), *tj = ti ? realloc(s->tj, nc * sizeof *tj) : NULL;
+        if (ti)
+            s->ti = ti;
+        if (tj)
+            s->tj = tj;
+        double *tx = tj ? realloc(s->tx, nc * sizeof *tx) : NULL;
+        if (!tx) {
+            s->oom = 1;
+            return;
+        }
+        s->tx = tx;
+        s->capz = nc;
+    }
+    if (i > j) {
+        size_t k = i;
+        i = j;
+        j = k;
+    }
+    s->ti[s->nz] = (SuiteSparse_long)i;
+    s->tj[s->nz] = (SuiteSparse_long)j;
+    s->tx[s->nz] = v;
+    s->nz++;
+}
+
+/* Adds cg gr gr^T + cH H (H m x m row major, or NULL) over the variables idx
+ * (distinct), and -pi gr to the gradient. */
+static void row_terms(solver *s, int m, const size_t *idx, const double *gr, const double *H, double cg,
+                      double cH, double pi, double *grad, int hess)
+{
+    for (int a = 0; a < m; a++)
+        grad[idx[a]] -= pi * gr[a];
+    if (!hess)
+        return;
+    int held[16];
+    for (int a = 0; a < m; a++)
+        held[a] = idx[a] < 3 * s->nv && is_fixed(s, idx[a]);
+    for (int a = 0; a < m; a++)
+        for (int b = a; b < m; b++) {
+            if (held[a] || held[b])
+                continue;
+            double v = cg * gr[a] * gr[b] + (H ? cH * H[a * m + b] : 0.0);
+            if (v != 0.0)
+                tri_push(s, idx[a], idx[b], v);
+        }
+}
+
+/* Rows within this (relative) of their bound enter the Newton matrix with
+ * their penalty term mu grad g grad g^T even while inactive (pi = 0): a
+ * convex addition, so the step is still a descent direction, and it keeps
+ * the first steps from a cold start (multipliers 0) from shrinking the rope
+ * straight through its contacts, along the scaling mode that nothing else
+ * stiffens while no row is active. */
+#define NEAR_ACTIVE 1e-6
+
+/* The PHR term of an inequality row g >= 0: value; *pi = max(0, lam - mu g) */
+static double ineq_term(double g, double lam, double mu, double *pi)
+{
+    if (lam - mu * g > 0.0) {
+        *pi = lam - mu * g;
+        return -lam * g + 0.5 * mu * g * g;
+    }
+    *pi = 0.0;
+    return -lam * lam / (2.0 * mu);
+}
+
+/* L_A at y; with grad != NULL also its gradient, the multiplier estimates
+ * pi and (hess) the Hessian's triplets. Sets viol, dmin, length, active. */
+static double al_eval(solver *s, const double *y, double *grad, int hess)
+{
+    size_t nv = s->nv;
+    const double *x = y, *l = y + 3 * nv;
+    double mu = s->mu, f = 0.0, viol = 0.0, dmin = INFINITY, len = 0.0;
+    if (grad)
+        memset(grad, 0, s->n * sizeof *grad);
+    if (hess)
+        s->nz = 0;
+    for (int k = 0; k < s->nc; k++) {
+        f += (double)s->ne[k] * l[k];
+        if (grad)
+            grad[3 * nv + (size_t)k] += (double)s->ne[k];
+    }
+    /* edges */
+    for (size_t a = 0; a < nv; a++) {
+        size_t b = s->next[a];
+        if (b == NONE)
+            continue;
+        int k = s->comp[a];
+        double u[3];
+        v3_sub(u, x + 3 * b, x + 3 * a);
+        double el = v3_norm(u);
+        len += el;
+        double h = el - l[k];
+        double pi = s->lam_e[a] - mu * h;
+        f += -s->lam_e[a] * h + 0.5 * mu * h * h;
+        viol = fmax(viol, fabs(h) / s->l0[k]);
+        if (!grad)
+            continue;
+        s->pi_e[a] = pi;
+        for (int d = 0; d < 3; d++)
+            u[d] /= el;
+        size_t idx[7] = {3 * a, 3 * a + 1, 3 * a + 2, 3 * b, 3 * b + 1, 3 * b + 2, 3 * nv + (size_t)k};
+        double gr[7] = {-u[0], -u[1], -u[2], u[0], u[1], u[2], -1.0};
+        double H[49];
+        memset(H, 0, sizeof H);
+        for (int r = 0; r < 3; r++)
+            for (int c = 0; c < 3; c++) {
+                double P = ((r == c) - u[r] * u[c]) / el;
+                H[r * 7 + c] = H[(r + 3) * 7 + c + 3] = P;
+                H[r * 7 + c + 3] = H[(r + 3) * 7 + c] = -P;
+            }
+        row_terms(s, 7, idx, gr, H, mu, -pi, pi, grad, hess);
+    }
+    /* MinRad */
+    for (size_t i = 0; i < nv; i++) {
+        size_t ip = s->prev[i], in = s->next[i];
+        if (ip == NONE || in == NONE)
+            continue;
+        int k = s->comp[i];
+        double c, dc, d2c, w[3];
+        minrad_c(l[k], &c, &dc, &d2c);
+        for (int d = 0; d < 3; d++)
+            w[d] = x[3 * in + d] - 2.0 * x[3 * i + d] + x[3 * ip + d];
+        double w2 = v3_dot(w, w), S = s->scale_m[k];
+        double g = (c - w2) / S, pi;
+        f += ineq_term(g, s->lam_m[i], mu, &pi);
+        viol = fmax(viol, 0.5 * (w2 / c - 1.0));
+        if (!grad)
+            continue;
+        s->pi_m[i] = pi;
+        if (pi == 0.0 && !(hess && g < NEAR_ACTIVE * s->l0[k] * s->l0[k]))
+            continue;
+        static const double v[3] = {1.0, -2.0, 1.0};
+        size_t vx[3] = {ip, i, in};
+        size_t idx[10];
+        double gr[10], H[100];
+        memset(H, 0, sizeof H);
+        for (int j = 0; j < 3; j++)
+            for (int d = 0; d < 3; d++) {
+                idx[3 * j + d] = 3 * vx[j] + (size_t)d;
+                gr[3 * j + d] = -2.0 * v[j] * w[d] / S;
+                for (int j2 = 0; j2 < 3; j2++)
+                    H[(3 * j + d) * 10 + 3 * j2 + d] = -2.0 * v[j] * v[j2] / S;
+            }
+        idx[9] = 3 * nv + (size_t)k;
+        gr[9] = dc / S;
+        H[99] = d2c / S;
+        row_terms(s, 10, idx, gr, H, mu, -pi, pi, grad, hess);
+    }
+    /* struts */
+    size_t active = 0;
+    for (size_t r = 0; r < s->nsp; r++) {
+        size_t a = s->sp[r].a, b = s->sp[r].b, na = s->next[a], nb = s->next[b];
+        double d = tr_strut_distance_derivs(x + 3 * a, x + 3 * na, x + 3 * b, x + 3 * nb, NULL, NULL);
+        dmin = fmin(dmin, d);
+        double pi;
+        f += ineq_term(d - 2.0, s->sp[r].lam, mu, &pi);
+        viol = fmax(viol, 0.5 * (2.0 - d));
+        if (!grad)
+            continue;
+        s->pi_s[r] = pi;
+        if (pi == 0.0 && !(hess && d - 2.0 < NEAR_ACTIVE))
+            continue;
+        active += pi > 0.0;
+        double gr[12], H[144];
+        tr_strut_distance_derivs(x + 3 * a, x + 3 * na, x + 3 * b, x + 3 * nb, gr, hess ? H : NULL);
+        size_t vx[4] = {a, na, b, nb}, idx[12];
+        for (int j = 0; j < 4; j++)
+            for (int d = 0; d < 3; d++)
+                idx[3 * j + d] = 3 * vx[j] + (size_t)d;
+        row_terms(s, 12, idx, gr, hess ? H : NULL, mu, -pi, pi, grad, hess);
+    }
+    if (grad)
+        for (int k = 0; k < s->nfixed; k++)
+            grad[s->fixed[k]] = 0.0;
+    s->viol = viol;
+    s->dmin = dmin;
+    s->length = len;
+    if (grad)
+        s->active = active;
+    return f;
+}
+
+/* ---- the strut list ---- */
+
+static int cmp_row(const void *x, const void *y)
+{
+    const strut_row *a = x, *b = y;
+    if (a->a != b->a)
+        return a->a < b->a ? -1 : 1;
+    return a->b < b->b ? -1 : (a->b > b->b);
+}
+
+typedef struct collect {
+    solver *s;
+    strut_row *out;
+    size_t n, cap;
+    double cutoff;
+    int oom;
+} collect;
+
+static int collect_pair(void *vc, size_t ei, size_t ej, double *cutoff)
+{
+    (void)cutoff;
+    collect *cl = vc;
+    solver *s = cl->s;
+    const tr_nsearch *ns = &s->ns;
+    int k = ns->ecomp[ei];
+    if (k == ns->ecomp[ej]) {
+        size_t li = ei - ns->estart[k], lj = ej - ns->estart[k];
+        size_t g = li > lj ? li - lj : lj - li;
+        if (s->w.closed[k] && s->ne[k] - g < g)
+            g = s->ne[k] - g;
+        if (g < (size_t)s->gap[k])
+            return 0;
+    }
+    size_t a = ns->ea[ei], b = ns->ea[ej];
+    double sp, tp;
+    const double *x = s->w.x;
+    double d = tr_segment_distance(x + 3 * a, x + 3 * s->next[a], x + 3 * b, x + 3 * s->next[b], &sp, &tp);
+    if (!(d < cl->cutoff))
+        return 0;
+    if (cl->n == cl->cap) {
+        size_t nc = cl->cap ? 2 * cl->cap : 4096;
+        strut_row *g2 = realloc(cl->out, nc * sizeof *g2);
+        if (!g2) {
+            cl->oom = 1;
+            return 1;
+        }
+        cl->out = g2;
+        cl->cap = nc;
+    }
+    strut_row q = {.a = a < b ? a : b, .b = a < b ? b : a, .lam = 0.0};
+    cl->out[cl->n++] = q;
+    return 0;
+}
+
+
+static double pair_dist(const solver *s, size_t a, size_t b)
+{
+    double sp, tp;
+    const double *x = s->w.x;
+    return tr_segment_distance(x + 3 * a, x + 3 * s->next[a], x + 3 * b, x + 3 * s->next[b], &sp, &tp);
+}
+
+/* Is b a local minimum of d(a, .) along its strand, or a one of d(., b)? */
+static int is_local_min(const solver *s, size_t a, size_t b, double d)
+{
+    size_t bn = s->next[b], bp = s->prev[b], an = s->next[a], ap = s->prev[a];
+    int over_b = (bn == NONE || s->next[bn] == NONE || pair_dist(s, a, bn) >= d) &&
+                 (bp == NONE || pair_dist(s, a, bp) >= d);
+    int over_a = (an == NONE || s->next[an] == NONE || pair_dist(s, an, b) >= d) &&
+                 (ap == NONE || pair_dist(s, ap, b) >= d);
+    return over_b || over_a;
+}
+
+/* Of the pairs within the cutoff (sorted), keeps those within NEAR_MIN
+ * places along either strand of a local minimum of the distance: a strand
+ * pair in contact has ~1/edge pairs within any fixed cutoff, but the
+ * constraint is the distance between the strands, which the local minima
+ * carry; their neighbours keep the contact from slipping between list
+ * rebuilds, which follow the motion (minimise). */
+#define NEAR_MIN 2
+static size_t keep_near_minima(solver *s, strut_row *r, size_t n)
+{
+    unsigned char *keep = calloc(n ? n : 1, 1);
+    if (!keep)
+        return n; /* keep them all: slower, as correct */
+    for (size_t i = 0; i < n; i++) {
+        if (!is_local_min(s, r[i].a, r[i].b, pair_dist(s, r[i].a, r[i].b)))
+            continue;
+        /* mark (a', b') with a' within NEAR_MIN of a and b' within NEAR_MIN of b */
+        size_t av[2 * NEAR_MIN + 1], bv[2 * NEAR_MIN + 1];
+        int na = 0, nb = 0;
+        av[na++] = r[i].a;
+        bv[nb++] = r[i].b;
+        for (int side = 0; side < 2; side++) {
+            size_t u = r[i].a, v = r[i].b;
+            for (int g = 0; g < NEAR_MIN; g++) {
+                u = u == NONE ? NONE : (side ? s->next[u] : s->prev[u]);
+                v = v == NONE ? NONE : (side ? s->next[v] : s->prev[v]);
+                if (u != NONE && s->next[u] != NONE)
+                    av[na++] = u;
+                if (v != NONE && s->next[v] != NONE)
+                    bv[nb++] = v;
+            }
+        }
+        for (int ia = 0; ia < na; ia++)
+            for (int ib = 0; ib < nb; ib++) {
+                strut_row q = {.a = av[ia] < bv[ib] ? av[ia] : bv[ib], .b = av[ia] < bv[ib] ? bv[ib] : av[ia]};
+                strut_row *hit = bsearch(&q, r, n, sizeof *r, cmp_row);
+                if (hit)
+                    keep[hit - r] = 1;
+            }
+    }
+    size_t m = 0;
+    for (size_t i = 0; i < n; i++)
+        if (keep[i])
+            r[m++] = r[i];
+    free(keep);
+    return m;
+}
+
+/* Rebuilds the strut list at y, carrying the multipliers of kept pairs. */
+static int rebuild(solver *s, const double *y, tr_error *err)
+{
+    memcpy(s->w.x, y, 3 * s->nv * sizeof *y);
+    tr_nsearch_refit(&s->ns);
+    collect cl = {.s = s, .cutoff = 2.0 + s->p->skin};
+    double cut = cl.cutoff;
+    int gmin = s->gap[0];
+    for (int k = 1; k < s->nc; k++)
+        gmin = s->gap[k] < gmin ? s->gap[k] : gmin;
+    tr_nsearch_pairs(&s->ns, &cut, (size_t)gmin, 0, collect_pair, &cl);
+    if (cl.oom) {
+        free(cl.out);
+        return tr_fail(err, TR_ENOMEM, "out of memory (strut list)");
+    }
+    if (cl.n)
+        qsort(cl.out, cl.n, sizeof *cl.out, cmp_row);
+    cl.n = keep_near_minima(s, cl.out, cl.n);
+    size_t j = 0;
+    for (size_t i = 0; i < cl.n; i++) {
+        while (j < s->nsp && cmp_row(&s->sp[j], &cl.out[i]) < 0)
+            j++;
+        if (j < s->nsp && cmp_row(&s->sp[j], &cl.out[i]) == 0)
+            cl.out[i].lam = s->sp[j].lam;
+    }
+    free(s->sp);
+    free(s->pi_s);
+    s->sp = cl.out;
+    s->nsp = cl.n;
+    s->pi_s = calloc(cl.n ? cl.n : 1, sizeof *s->pi_s);
+    if (!s->pi_s)
+        return tr_fail(err, TR_ENOMEM, "out of memory (strut list)");
+    return TR_OK;
+}
+
+/* ---- the Newton step ---- */
+
+/* Factors the assembled Hessian (plus the smallest Levenberg shift that
+ * makes it positive definite) and solves H dir = -grad. *lm: the shift
+ * tried first on entry, the one used on return. */
+static int newton_dir(solver *s, const double *grad, double *dir, double *lm, tr_newton_stats *st,
+                      tr_error *err)
+{
+    double t0 = now_s();
+    cholmod_common *cm = &s->cm;
+    cholmod_triplet *T = cholmod_l_allocate_triplet(s->n, s->n, s->nz + s->n, 1, CHOLMOD_REAL, cm);
+    if (!T)
+        return tr_fail(err, TR_ENOMEM, "out of memory (Hessian, %zu entries)", s->nz);
+    SuiteSparse_long *ti = T->i, *tj = T->j;
+    double *tx = T->x;
+    memcpy(ti, s->ti, s->nz * sizeof *ti);
+    memcpy(tj, s->tj, s->nz * sizeof *tj);
+    memcpy(tx, s->tx, s->nz * sizeof *tx);
+    /* every diagonal present, so the shift reaches every variable */
+    double dmax = 0.0;
+    for (size_t k = 0; k < s->nz; k++)
+        if (s->ti[k] == s->tj[k])
+            dmax = fmax(dmax, fabs(s->tx[k]));
+    for (size_t k = 0; k < s->n; k++) {
+        ti[s->nz + k] = tj[s->nz + k] = (SuiteSparse_long)k;
+        tx[s->nz + k] = is_fixed(s, k) ? 1.0 : 0.0;
+    }
+    T->nnz = s->nz + s->n;
+    cholmod_sparse *A = cholmod_l_triplet_to_sparse(T, T->nnz, cm);
+    cholmod_l_free_triplet(&T, cm);
+    if (!A)
+        return tr_fail(err, TR_ENOMEM, "out of memory (Hessian)");
+    cholmod_factor *L = cholmod_l_analyze(A, cm);
+    int rc = TR_OK;
+    if (!L) {
+        rc = tr_fail(err, TR_ENOMEM, "CHOLMOD could not analyse the Hessian (status %d)", cm->status);
+        goto done;
+    }
+    /* rounding's share only: the gauge holds the rigid motions */
+    double floor_shift = 1e-14 * dmax, shift = fmax(*lm, floor_shift);
+    for (int tries = 0;; tries++) {
+        double beta[2] = {shift, 0.0};
+        int ok = cholmod_l_factorize_p(A, beta, NULL, 0, L, cm);
+        st->factorizations++;
+        if (ok && cm->status == CHOLMOD_OK)
+            break;
+        if (cm->status != CHOLMOD_NOT_POSDEF || tries > 30) {
+            rc = tr_fail(err, TR_EGEOMETRY, "CHOLMOD could not factor the Hessian (status %d)", cm->status);
+            goto done;
+        }
+        shift = fmax(shift * 10.0, 1e-8 * dmax);
+    }
+    *lm = shift;
+    double t1 = now_s();
+    st->t_factor += t1 - t0;
+    cholmod_dense *b = cholmod_l_allocate_dense(s->n, 1, s->n, CHOLMOD_REAL, cm);
+    if (!b) {
+        rc = tr_fail(err, TR_ENOMEM, "out of memory");
+        goto done;
+    }
+    double *bx = b->x;
+    for (size_t k = 0; k < s->n; k++)
+        bx[k] = -grad[k];
+    cholmod_dense *xs = cholmod_l_solve(CHOLMOD_A, L, b, cm);
+    cholmod_l_free_dense(&b, cm);
+    if (!xs) {
+        rc = tr_fail(err, TR_ENOMEM, "CHOLMOD solve failed (status %d)", cm->status);
+        goto done;
+    }
+    memcpy(dir, xs->x, s->n * sizeof *dir);
+    cholmod_l_free_dense(&xs, cm);
+    st->t_solve += now_s() - t1;
+done:
+    cholmod_l_free_factor(&L, cm);
+    cholmod_l_free_sparse(&A, cm);
+    return rc;
+}
+
+static void solver_free(solver *s)
+{
+    tr_nsearch_free(&s->ns);
+    tr_curve_free(&s->w);
+    free(s->next);
+    free(s->prev);
+    free(s->comp);
+    free(s->ne);
+    free(s->gap);
+    free(s->l0);
+    free(s->scale_m);
+    free(s->lam_e);
+    free(s->lam_m);
+    free(s->pi_e);
+    free(s->pi_m);
+    free(s->pi_s);
+    free(s->sp);
+    free(s->ti);
+    free(s->tj);
+    free(s->tx);
+    cholmod_l_finish(&s->cm);
+}
+
+/* Holds x_0, the two coordinates of x_{N/3} across u = x_{N/3} - x_0 and
+ * the coordinate of x_{2N/3} along which the rotation about u moves it
+ * most: translations and rotations are then fixed. */
+static void set_gauge(solver *s)
+{
+    size_t nv = s->nv, k = nv / 3, m = 2 * nv / 3;
+    const double *x = s->w.x;
+    double u[3], r[3], v[3];
+    v3_sub(u, x + 3 * k, x);
+    v3_sub(r, x + 3 * m, x);
+    v3_cross(v, u, r);
+    int cu = 0, cv = 0;
+    for (int c = 1; c < 3; c++) {
+        if (fabs(u[c]) > fabs(u[cu]))
+            cu = c;
+        if (fabs(v[c]) > fabs(v[cv]))
+            cv = c;
+    }
+    s->nfixed = 0;
+    if (nv < 3 || !(v3_norm(v) > 1e-6 * v3_dot(u, u)))
+        return; /* degenerate (straight): leave it to the Levenberg shift */
+    for (int c = 0; c < 3; c++)
+        s->fixed[s->nfixed++] = (size_t)c;
+    for (int c = 0; c < 3; c++)
+        if (c != cu)
+            s->fixed[s->nfixed++] = 3 * k + (size_t)c;
+    s->fixed[s->nfixed++] = 3 * m + (size_t)cv;
+}
+
+static int solver_init(solver *s, const tr_curve *cv, double scale, tr_error *err)
+{
+    int rc = tr_curve_copy(&s->w, cv, err);
+    if (rc)
+        return rc;
+    for (size_t i = 0; i < 3 * s->w.nv; i++)
+        s->w.x[i] *= scale;
+    size_t nv = s->nv = s->w.nv;
+    int nc = s->nc = s->w.ncomp;
+    s->n = 3 * nv + (size_t)nc;
+    s->next = malloc(nv * sizeof *s->next);
+    s->prev = malloc(nv * sizeof *s->prev);
+    s->comp = malloc(nv * sizeof *s->comp);
+    s->ne = calloc((size_t)nc, sizeof *s->ne);
+    s->gap = calloc((size_t)nc, sizeof *s->gap);
+    s->l0 = calloc((size_t)nc, sizeof *s->l0);
+    s->scale_m = calloc((size_t)nc, sizeof *s->scale_m);
+    s->lam_e = calloc(nv, sizeof *s->lam_e);
+    s->lam_m = calloc(nv, sizeof *s->lam_m);
+    s->pi_e = calloc(nv, sizeof *s->pi_e);
+    s->pi_m = calloc(nv, sizeof *s->pi_m);
+    cholmod_l_start(&s->cm);
+    s->cm.print = 0;
+    s->cm.error_handler = NULL;
+    if (!s->next || !s->prev || !s->comp || !s->ne || !s->gap || !s->l0 || !s->scale_m || !s->lam_e ||
+        !s->lam_m || !s->pi_e || !s->pi_m)
+        return tr_fail(err, TR_ENOMEM, "out of memory (Newton solver, %zu vertices)", nv);
+    s->l0min = INFINITY;
+    for (int k = 0; k < nc; k++) {
+        size_t st = s->w.start[k], n = tr_comp_nv(&s->w, k);
+        for (size_t j = 0; j < n; j++) {
+            size_t i = st + j;
+            s->comp[i] = k;
+            s->next[i] = j + 1 < n ? i + 1 : (s->w.closed[k] ? st : NONE);
+            s->prev[i] = j > 0 ? i - 1 : (s->w.closed[k] ? st + n - 1 : NONE);
+            /* the tension: every edge's multiplier balances one unit of length */
+            s->lam_e[i] = -1.0;
+        }
+        s->ne[k] = tr_comp_ne(&s->w, k);
+        s->l0[k] = tr_comp_length(&s->w, k) / (double)s->ne[k];
+        s->scale_m[k] = 4.0 * s->l0[k] * s->l0[k];
+        s->l0min = fmin(s->l0min, s->l0[k]);
+        double g = ceil(M_PI / s->l0[k]);
+        s->gap[k] = g < 2.0 ? 2 : (g > 1e9 ? 1000000000 : (int)g);
+    }
+    set_gauge(s);
+    return tr_nsearch_build(&s->ns, &s->w, err);
+}
+
+/* The largest vertex displacement of dir (3 nv entries). */
+static double max_vertex_move(const double *dir, size_t nv)
+{
+    double m = 0.0;
+    for (size_t i = 0; i < nv; i++)
+        m = fmax(m, v3_dot(dir + 3 * i, dir + 3 * i));
+    return sqrt(m);
+}
+
+static double stationarity(const solver *s, const double *grad)
+{
+    double m = 0.0;
+    for (size_t i = 0; i < 3 * s->nv; i++)
+        m = fmax(m, fabs(grad[i]));
+    m /= s->l0min;
+    for (int k = 0; k < s->nc; k++)
+        m = fmax(m, fabs(grad[3 * s->nv + (size_t)k]) / (double)s->ne[k]);
+    return m;
+}
+
+static void update_multipliers(solver *s)
+{
+    for (size_t i = 0; i < s->nv; i++) {
+        if (s->next[i] != NONE)
+            s->lam_e[i] = s->pi_e[i];
+        s->lam_m[i] = s->pi_m[i];
+    }
+    for (size_t r = 0; r < s->nsp; r++)
+        s->sp[r].lam = s->pi_s[r];
+}
+
+/* The minimisation itself, on y (3 nv + ncomp). */
+static int minimise(solver *s, double *y, tr_newton_stats *st, double t0, tr_error *err)
+{
+    const tr_newton_params *p = s->p;
+    size_t n = s->n, nv = s->nv;
+    double *grad = malloc(n * sizeof *grad), *dir = malloc(n * sizeof *dir), *yt = malloc(n * sizeof *yt);
+    int rc = TR_OK;
+    if (!grad || !dir || !yt) {
+        rc = tr_fail(err, TR_ENOMEM, "out of memory (Newton solver)");
+        goto done;
+    }
+    s->mu = p->mu0 / s->l0min;
+    double omega = 1e-2, prev_viol = INFINITY, lm = 0.0, prev_len = INFINITY;
+    int inner = 0, settled = 0;
+    for (int it = 0; it < p->max_iter; it++) {
+        if ((p->time_limit > 0 && now_s() - t0 > p->time_limit) || (p->stop && *p->stop))
+            break;
+        double te = now_s();
+        s->oom = 0;
+        double f = al_eval(s, y, grad, 1);
+        st->t_eval += now_s() - te;
+        if (s->oom) {
+            rc = tr_fail(err, TR_ENOMEM, "out of memory (Hessian)");
+            goto done;
+        }
+        double stat = stationarity(s, grad);
+        st->stat = stat;
+        st->max_viol = s->viol;
+        st->active = s->active;
+        st->struts = s->nsp;
+        if (stat <= omega || inner >= p->max_inner) {
+            if (s->viol <= p->viol_tol && stat <= p->stat_tol) {
+                st->converged = 1;
+                break;
+            }
+            /* Settled: feasible to viol_tol and the length unchanged to
+             * 1e-12 over three multiplier updates. The unbalanced force can
+             * stay O(l0) where a strand wraps a single edge of another
+             * (many struts on one edge: the discrete problem's multipliers
+             * are then not unique and the force the wrap puts on that edge
+             * has no balance within MinRad), while the length no longer
+             * moves: bench/RESULTS.md, "Second-order solver". */
+            if (s->viol <= p->viol_tol && fabs(s->length - prev_len) <= 1e-12 * s->length) {
+                if (++settled >= 3) {
+                    st->settled = 1;
+                    break;
+                }
+            } else
+                settled = 0;
+            prev_len = s->length;
+            update_multipliers(s);
+            if (s->viol > 0.25 * prev_viol && s->viol > p->viol_tol)
+                s->mu = fmin(10.0 * s->mu, p->mu_max / s->l0min);
+            prev_viol = s->viol;
+            omega = fmax(0.1 * omega, 0.1 * p->stat_tol);
+            inner = 0;
+            st->outer++;
+            double tr = now_s();
+            if ((rc = rebuild(s, y, err)))
+                goto done;
+            st->rebuilds++;
+            st->t_rebuild += now_s() - tr;
+            continue;
+        }
+        /* Levenberg-Marquardt: a direction that is no descent (the
+         * factor of a nearly singular matrix is inaccurate) or that would
+         * move a vertex far beyond the cap (a soft mode, nothing holding
+         * it yet) is computed again with a larger shift, in units of the
+         * tension's stiffness 1 / l0 */
+        double alpha = 0.0, ft = f, slope = 0.0, mv = 0.0, cap = 1.0;
+        int ok = 0;
+        double ts = now_s();
+        for (int lmtry = 0; lmtry < 6 && !ok; lmtry++) {
+            if (lmtry > 0)
+                lm = fmax(100.0 * lm, 1e-6 / s->l0min);
+            if ((rc = newton_dir(s, grad, dir, &lm, st, err)))
+                goto done;
+            mv = max_vertex_move(dir, nv);
+            cap = 1.0;
+            if (mv > p->max_move)
+                cap = p->max_move / mv;
+            for (int k = 0; k < s->nc; k++) {
+                double dl = fabs(dir[3 * nv + (size_t)k]);
+                if (dl * cap > 0.1 * s->l0[k])
+                    cap = 0.1 * s->l0[k] / dl;
+            }
+            if (mv > 4.0 * p->max_move && lmtry < 5)
+                continue;
+            slope = 0.0;
+            for (size_t k = 0; k < n; k++)
+                slope += grad[k] * dir[k];
+            alpha = cap;
+            for (int ls = 0; ls < 20 && slope < 0.0; ls++) {
+                for (size_t k = 0; k < n; k++)
+                    yt[k] = y[k] + alpha * dir[k];
+                ft = al_eval(s, yt, NULL, 0);
+                if (s->dmin > GUARD_DIST && ft <= f + 1e-4 * alpha * slope) {
+                    ok = 1;
+                    break;
+                }
+                alpha *= 0.5;
+            }
+        }
+        st->t_search += now_s() - ts;
+        st->iters++;
+        inner++;
+        if (p->progress) {
+            tr_newton_progress pr = {.iter = it, .outer = st->outer, .length = s->length, .viol = s->viol,
+                                     .stat = stat, .mu = s->mu * s->l0min, .lm = lm, .step = ok ? alpha : 0.0,
+                                     .struts = s->nsp, .active = s->active, .seconds = now_s() - t0};
+            p->progress(p->user, &pr);
+        }
+        /* next time, start from a tenth of the shift that worked */
+        lm *= 0.1;
+        if (!ok) {
+            /* no descent along the Newton direction (rounding at the
+             * bottom): the inner problem is as solved as it gets */
+            inner = p->max_inner;
+            continue;
+        }
+        memcpy(y, yt, n * sizeof *y);
+        /* the strut list is good while no vertex has moved skin / 4 */
+        double m = 0.0;
+        for (size_t i = 0; i < nv; i++)
+            m = fmax(m, v3_dist2(y + 3 * i, s->w.x + 3 * i));
+        if (sqrt(m) > fmin(0.25 * p->skin, 0.5 * s->l0min)) {
+            double tr = now_s();
+            if ((rc = rebuild(s, y, err)))
+                goto done;
+            st->rebuilds++;
+            st->t_rebuild += now_s() - tr;
+        }
+    }
+done:
+    free(grad);
+    free(dir);
+    free(yt);
+    return rc;
+}
+
+int tr_newton(tr_curve *cv, const tr_newton_params *prm, tr_newton_stats *st, tr_error *err)
+{
+    tr_newton_params defp;
+    if (!prm) {
+        tr_newton_params_default(&defp);
+        prm = &defp;
+    }
+    memset(st, 0, sizeof *st);
+    double t0 = now_s();
+    if (cv->ncst > 0) {
+        st->skipped = 1;
+        return TR_OK;
+    }
+    if (!(prm->max_move > 0 && prm->max_move <= prm->skin / 8) || prm->max_iter < 1 || prm->max_inner < 1)
+        return tr_fail(err, TR_EINVAL, "newton: need 0 < max_move <= skin / 8 and at least one iteration");
+    tr_thickness th0;
+    int rc = tr_thickness_measure(cv, NULL, &th0, NULL, err);
+    if (rc)
+        return rc;
+    if (!(th0.thickness > 0) || !isfinite(th0.thickness))
+        return tr_fail(err, TR_EGEOMETRY, "newton: the curve has no finite positive thickness");
+    st->ropelength_before = st->ropelength_after = th0.ropelength;
+    solver s;
+    memset(&s, 0, sizeof s);
+    s.p = prm;
+    double *y = NULL;
+    if ((rc = solver_init(&s, cv, 1.0 / th0.thickness, err)))
+        goto done;
+    y = malloc(s.n * sizeof *y);
+    if (!y) {
+        rc = tr_fail(err, TR_ENOMEM, "out of memory (Newton solver)");
+        goto done;
+    }
+    memcpy(y, s.w.x, 3 * s.nv * sizeof *y);
+    for (int k = 0; k < s.nc; k++)
+        y[3 * s.nv + (size_t)k] = s.l0[k];
+    double tr = now_s();
+    if ((rc = rebuild(&s, y, err)))
+        goto done;
+    st->t_rebuild += now_s() - tr;
+    if ((rc = minimise(&s, y, st, t0, err)))
+        goto done;
+    /* the oracle decides: rescale to thickness 1, keep if shorter */
+    memcpy(s.w.x, y, 3 * s.nv * sizeof *y);
+    tr_thickness th;
+    if ((rc = tr_thickness_measure(&s.w, NULL, &th, NULL, err)))
+        goto done;
+    if (!(th.thickness > 0) || !isfinite(th.thickness)) {
+        st->why_rejected = "the result has no finite positive thickness";
+        goto done;
+    }
+    for (size_t i = 0; i < 3 * s.nv; i++)
+        s.w.x[i] /= th.thickness;
+    if ((rc = tr_thickness_measure(&s.w, NULL, &th, NULL, err)))
+        goto done;
+    if (!(th.ropelength < th0.ropelength) || !(th.thickness >= 1.0 - 1e-12)) {
+        st->why_rejected = "the result is not shorter";
+        goto done;
+    }
+    memcpy(cv->x, s.w.x, 3 * s.nv * sizeof *y);
+    st->accepted = 1;
+    st->ropelength_after = th.ropelength;
+done:
+    st->seconds = now_s() - t0;
+    free(y);
+    solver_free(&s);
+    return rc;
+}

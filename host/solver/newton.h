@@ -1,0 +1,123 @@
+/* The second-order solver for the fine levels: Newton's method on an
+ * augmented Lagrangian of "minimise length at thickness 1", with the sparse
+ * Hessian factored by CHOLMOD.
+ *
+ * Problem (rope radius 1), variables the vertices x and one edge length l_k
+ * per component k:
+ *   minimise   sum_k n_k l_k                      (n_k edges of component k)
+ *   edges      h_a = |x_{a+1} - x_a| - l_k = 0     every edge a of component k
+ *   MinRad     g_i = (c(l_k) - |x_{i+1} - 2 x_i + x_{i-1}|^2) / (4 l0_k^2) >= 0
+ *              at every vertex with two edges; c(l) = 4 l^4 / (4 + l^2), so
+ *              with equal edges g_i >= 0 is exactly Rawdon's MinRad >= 1
+ *              (|x_{i+1} - 2x_i + x_{i-1}| = 2 l sin(theta/2) and
+ *              MinRad = l / (2 tan(theta/2))); l0_k is the start edge, so
+ *              every row's gradient is O(1);
+ *   struts     d(a, b) - 2 >= 0 for every listed edge pair, d the exact
+ *              segment distance (strut_hessian.h: closest points recomputed
+ *              at every evaluation, so the rope cannot slip between frozen
+ *              sample points); the list holds every pair beyond the
+ *              exclusion gap ceil(pi / l) within 2 + skin (neighbour_search.h),
+ *              rebuilt before any vertex has moved skin / 4 since.
+ *
+ * Method (Nocedal & Wright 17.4, Powell-Hestenes-Rockafellar): for fixed
+ * multipliers lambda and penalty mu the augmented Lagrangian
+ *   L_A = f - sum lambda_e h + mu/2 sum h^2 + sum_ineq psi(g, lambda, mu),
+ *   psi = -lambda g + mu/2 g^2 if lambda - mu g > 0, else -lambda^2 / (2 mu),
+ * is minimised by Newton steps: the Hessian
+ *   sum over rows with pi = lambda - mu c active of  mu grad c grad c^T - pi hess c
+ * is sparse (the chain's 3x3 blocks, a 12 x 12 block per active strut, one
+ * dense row per component for l_k) and factored by CHOLMOD (LL^T; when it is
+ * not positive definite a multiple of I is added, Levenberg-Marquardt), the
+ * step is capped so no vertex moves more than max_move, and an Armijo line
+ * search on L_A accepts it. A direction that is no descent (the factor of a
+ * nearly singular matrix is inaccurate) or that would move a vertex more
+ * than 4 max_move (a soft mode nothing holds yet: the whole rope shrinking
+ * before any contact is active) is computed again with a 100 times larger
+ * shift. When the inner gradient is small (or after max_inner steps) the
+ * multipliers are updated, lambda <- pi, and mu grows tenfold if the
+ * violation did not fall by 4. It stops converged (violation and
+ * unbalanced force below their tolerances) or settled (feasible, and the
+ * length unchanged to 1e-12 over three updates: where many struts press on
+ * one edge the discrete multipliers are far from unique and the unbalanced
+ * force stalls while the length has stopped moving).
+ *
+ * Why it converges: each inner solve is a descent method with Newton steps
+ * on a function that is C^1 with a piecewise smooth gradient (semismooth),
+ * so it converges, and near a minimiser satisfying second-order sufficiency
+ * the Hessian with mu large enough is positive definite and the steps are
+ * full: quadratic inner convergence. The multiplier iteration converges
+ * linearly with a rate that falls like 1/mu, and it needs no linear
+ * independence of the active rows: a tight knot has many more touching
+ * strut pairs than its vertices can independently feel, which stalls
+ * methods that need LICQ (interior point without care, plain SQP).
+ * Tension makes the chain's Hessian positive (-lambda_e hess|e| with the
+ * tension lambda_e ~ -1 is +(I - u u^T)/|e|), curvature rows add positive
+ * terms; only the strut rows' -pi hess d is negative, and it is O(edge)
+ * against the tension's O(1/edge), so the Levenberg term is rarely needed
+ * except along the rigid motions (translations and rotations leave every
+ * term unchanged, so the gradient has no part along them).
+ *
+ * Never a different knot: as the polish stage (polish.h) argues: each step
+ * moves a vertex at most max_move <= skin / 8, the list is rebuilt before
+ * any vertex has moved skin / 4 since its build (a pair left out was
+ * >= 2 + skin apart and is still >= 2), and a step after which a listed
+ * pair is closer than 1 is cut back.
+ *
+ * The result is accepted if the thickness oracle (thickness.h) says it is
+ * shorter, after rescaling it to thickness exactly 1. Curves with vertex
+ * constraints (clasp ends on planes) are not handled here (skipped = 1). */
+#ifndef TR_NEWTON_H
+#define TR_NEWTON_H
+
+#include <signal.h>
+#include <stddef.h>
+
+#include "curve/curve.h"
+#include "util/error.h"
+
+typedef struct tr_newton_progress {
+    int iter, outer;
+    double length;    /* sum of the edges */
+    double viol;      /* worst relative violation (edge / l, MinRad, strut (2 - d) / 2) */
+    double stat;      /* |grad L_A|_inf / l0: unbalanced force relative to the tension */
+    double mu, lm;    /* penalty (times l0), Levenberg shift used (0 if none) */
+    double step;      /* accepted step fraction */
+    size_t struts, active; /* listed pairs, active strut rows */
+    double seconds;
+} tr_newton_progress;
+
+typedef struct tr_newton_params {
+    double time_limit; /* seconds (0: none) */
+    int max_iter;      /* Newton steps */
+    int max_inner;     /* Newton steps between multiplier updates */
+    double skin;       /* strut list cutoff 2 + skin */
+    double max_move;   /* per-vertex cap on one step (<= skin / 8) */
+    double mu0;        /* first penalty, in units of 1 / l0 */
+    double mu_max;     /* largest penalty, likewise */
+    double viol_tol;   /* converged: worst relative violation below this ... */
+    double stat_tol;   /* ... and relative unbalanced force below this */
+    volatile sig_atomic_t *stop; /* raised by a signal handler: stop as at the time limit */
+    void (*progress)(void *user, const tr_newton_progress *p); /* every step (may be NULL) */
+    void *user;
+} tr_newton_params;
+
+void tr_newton_params_default(tr_newton_params *p);
+
+typedef struct tr_newton_stats {
+    int skipped;  /* constrained vertices: not handled */
+    int accepted; /* the curve was replaced */
+    int converged;
+    int settled;  /* stopped: feasible and the length unchanged (1e-12) over three updates */
+    int iters, outer, factorizations, rebuilds;
+    double ropelength_before, ropelength_after;
+    double max_viol, stat;
+    size_t struts, active;
+    /* where the time went */
+    double t_eval, t_factor, t_solve, t_search, t_rebuild, seconds;
+    const char *why_rejected; /* static text */
+} tr_newton_stats;
+
+/* Tightens c in place (only if accepted; the result is at thickness 1). */
+int tr_newton(tr_curve *c, const tr_newton_params *p, tr_newton_stats *st, tr_error *err);
+
+#endif
