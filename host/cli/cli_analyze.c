@@ -143,6 +143,14 @@ static int analyse_component(const tr_curve *c, int k, const char *in, const cli
         status = rc == TR_ENOMEM ? 1 : 2;
         goto fail;
     }
+    if (!o->scale && tr_curve_scale_exponent(&r->one)) {
+        /* the oracle measures such a curve in a rescaled frame (curve.h),
+         * the analysis would lose its squared distances */
+        fprintf(stderr, "tightrope analyze: %s: component %d has thickness %.3g, too far from 1 to analyse "
+                        "in its own units; drop --no-scale\n", in, k, r->th.thickness);
+        status = 2;
+        goto fail;
+    }
     if (o->scale) {
         if (!(r->th.thickness > 0) || !isfinite(r->th.thickness)) {
             fprintf(stderr, "tightrope analyze: %s: component %d has no finite thickness\n", in, k);

@@ -296,12 +296,21 @@ int tr_cmd_tighten(int argc, char **argv)
          * (a tight knot from another code at thickness 0.99995, a file in
          * its own units) to the rope's radius 1. Constraint planes sit at
          * fixed places, so a constrained start is not scaled. */
+        /* The oracle looks at the start first: a curve through itself has
+         * no thickness at all, and one at a scale like 1e+-300 would lose
+         * the engine's squared distances to under- or overflow (the oracle
+         * measures it in a rescaled frame, curve.h). */
+        tr_thickness t0;
+        if (rc == TR_OK && (rc = tr_thickness_measure(&c, NULL, &t0, NULL, &err)))
+            tr_fail_wrap(&err, rc, "%s", in);
+        if (rc == TR_OK && !scale && tr_curve_scale_exponent(&c))
+            rc = tr_fail(&err, TR_EGEOMETRY,
+                         "%s has thickness %.3g, too far from 1 to tighten in its own units (squared "
+                         "distances would %s); --scale scales a start to thickness 1",
+                         in, t0.thickness, tr_curve_scale_exponent(&c) > 0 ? "overflow" : "underflow");
         if (rc == TR_OK && scale) {
-            tr_thickness t0;
             if (c.ncst > 0)
                 rc = tr_fail(&err, TR_EINVAL, "--scale: %s has constraints, whose planes would move", in);
-            else
-                rc = tr_thickness_measure(&c, NULL, &t0, NULL, &err);
             if (rc == TR_OK && !(t0.thickness > 0 && isfinite(t0.thickness)))
                 rc = tr_fail(&err, TR_EGEOMETRY, "--scale: %s has thickness %g; no scale makes it a rope", in,
                              t0.thickness);

@@ -1,0 +1,77 @@
+#!/usr/bin/env bash
+# Hostile-user checks of the command line (issue 22): inputs that are accepted
+# but wrong, outputs that would destroy inputs, messages that point elsewhere.
+# Usage: hostile_cli.sh CASE TIGHTROPE WORK_DIR. Exit 0 pass, 1 fail, 77 skipped.
+# Expected numbers are closed forms (a regular n-gon: ropelength 2n tan(pi/n),
+# length 2nR sin(pi/n)) or facts about the files (inode, mode), never our own
+# earlier output.
+set -u
+case_=$1 tr=$2 work=$3
+rm -rf "$work" && mkdir -p "$work" && cd "$work" || exit 1
+fail() { echo "FAIL: $*"; exit 1; }
+# run CMD...: stdout to out, stderr to err, status in rc
+run() { "$@" >out 2>err; rc=$?; }
+# refused STATUS WHAT-TO-GREP CMD...: exits STATUS with one line on stderr matching the pattern
+refused() {
+  local want=$1 pat=$2; shift 2
+  run "$@"
+  [ "$rc" = "$want" ] || fail "$*: exit $rc, want $want: $(cat err)"
+  [ "$(wc -l <err)" = 1 ] || fail "$*: want one line on stderr, got: $(cat err)"
+  grep -Eq -- "$pat" err || fail "$*: message does not match '$pat': $(cat err)"
+}
+# rel GOT WANT TOL: |got/want - 1| <= tol
+rel() { awk -v g="$1" -v w="$2" -v t="$3" 'BEGIN { r = (g - w) / w; if (r < 0) r = -r; exit !(r <= t && g == g) }'; }
+# json_get KEY FILE: the first number of "KEY": in a one-line JSON object
+json_get() { sed -n "s/.*\"$1\": \([-+0-9.eE]*\).*/\1/p" "$2" | head -1; }
+# scaled FACTOR IN OUT: a VECT file with every vertex multiplied by FACTOR
+scaled() {
+  awk -v f="$1" '/^#/ || NR <= 5 || NF != 3 { print; next } { printf "%.17g %.17g %.17g\n", $1 * f, $2 * f, $3 * f }' "$2" >"$3"
+}
+
+case $case_ in
+scale)
+  # A regular 101-gon of circumradius 5, times 1e-300 and 1e300: ropelength
+  # 2n tan(pi/n) whatever the scale, length 2nR sin(pi/n) in the file's units.
+  "$tr" make circle --radius 5 --n 101 -o c.vect >/dev/null || fail "make"
+  want=$(awk 'BEGIN { n = 101; pi = atan2(0, -1); printf "%.17g", 2 * n * sin(pi / n) / cos(pi / n) }')
+  for f in 1e-300 1e300; do
+    scaled $f c.vect s$f.vect
+    run "$tr" measure --json --kkt s$f.vect
+    [ "$rc" = 0 ] || fail "measure x$f: exit $rc: $(cat err)"
+    rl=$(json_get ropelength out) len=$(json_get length out) res=$(json_get residual out)
+    rel "$rl" "$want" 1e-12 || fail "x$f: ropelength $rl, want $want"
+    rel "$len" "$(awk -v f=$f 'BEGIN { n = 101; pi = atan2(0, -1); printf "%.17g", 2 * n * 5 * sin(pi / n) * f }')" 1e-12 ||
+      fail "x$f: length $len"
+    awk -v r="$res" 'BEGIN { exit !(r < 1e-10) }' || fail "x$f: KKT residual $res (a regular polygon is critical)"
+    # tighten refuses it in its own units, naming --scale, and tightens it with --scale
+    refused 2 "s$f.vect has thickness [0-9.e+-]+, too far from 1.*--scale" "$tr" tighten s$f.vect -o t.vect --device reference
+    [ -e t.vect ] && fail "x$f: refused, yet t.vect written"
+    run "$tr" tighten --scale s$f.vect -o t$f.vect --device reference --steps 1 --quiet
+    [ "$rc" = 0 ] || fail "tighten --scale x$f: exit $rc: $(cat err)"
+    run "$tr" measure --json t$f.vect
+    th=$(json_get thickness out)
+    rel "$th" 1 1e-9 || fail "tighten --scale x$f: thickness $th, want 1"
+  done
+  # analyze scales to thickness 1 itself; --no-scale at 1e-300 is refused
+  run "$tr" analyze s1e-300.vect --out a
+  [ "$rc" = 0 ] || fail "analyze x1e-300: exit $rc: $(cat err)"
+  grep -q "^  thickness 1, ropelength ${want:0:6}" out || fail "analyze x1e-300: $(head -3 out)"
+  refused 2 "thickness [0-9.]+e-300, too far from 1.*drop --no-scale" "$tr" analyze s1e-300.vect --out b --no-scale
+  [ -e b ] && fail "analyze --no-scale refused, yet b written"
+  ;;
+crossing)
+  # A figure eight through the origin (vertex 0 and, to rounding, vertex 32)
+  # and one whose two strands meet at an exactly shared point: no thickness.
+  awk 'BEGIN { pi = atan2(0, -1); for (i = 0; i < 64; i++) { t = 2 * pi * i / 64
+       printf "%.17g %.17g 0\n", 3 * sin(t), 3 * sin(t) * cos(t) } }' >eight.txt
+  awk 'NR == 33 { print "0 0 0"; next } { print }' eight.txt >exact.txt
+  for f in eight.txt exact.txt; do
+    for cmd in "measure" "measure --kkt" "tighten -o o.vect --device reference" "tighten --scale -o o.vect --device reference" "analyze --out a"; do
+      refused 2 "$f: .*passes through itself: the edge from vertex [0-9]+ to [0-9]+ of component 0 meets" "$tr" $cmd $f
+    done
+    [ -e o.vect ] || [ -e a ] && fail "$f: refused, yet an output was written"
+  done
+  ;;
+*) fail "unknown case $case_" ;;
+esac
+exit 0
