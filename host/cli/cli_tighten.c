@@ -113,15 +113,9 @@ static void json_str(const char *key, const char *v, int comma)
     printf("%s\n", comma ? "," : "");
 }
 
-/* Whether a and b name the same file: the same inode where both exist,
- * else the same path. */
-static int same_file(const char *a, const char *b)
-{
-    struct stat sa, sb;
-    if (stat(a, &sa) == 0 && stat(b, &sb) == 0)
-        return sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
-    return !strcmp(a, b);
-}
+/* Whether a and b name the same file: the same inode where both exist
+ * (text_file.h), else the same path. */
+static int same_file(const char *a, const char *b) { return tr_same_file(a, b) || !strcmp(a, b); }
 
 static int check_outputs(tr_engine *e, const char *out, const char *ckpt, tr_error *err)
 {
@@ -250,6 +244,13 @@ int tr_cmd_tighten(int argc, char **argv)
     }
     /* the checkpoint is rewritten during the run: over the input it would
      * destroy the start, over the output the output would replace it */
+    /* the output is written over whatever it names: never over an input */
+    const char *src = in ? in : resume;
+    if (same_file(out, src)) {
+        fprintf(stderr, "tightrope tighten: the output %s is the %s %s; write the result elsewhere\n", out,
+                in ? "input" : "checkpoint to resume", src);
+        return 2;
+    }
     if (ckpt && (same_file(ckpt, out) || (in && same_file(ckpt, in)))) {
         fprintf(stderr, "tightrope tighten: --checkpoint %s is the %s file\n", ckpt,
                 same_file(ckpt, out) ? "output" : "input");

@@ -72,6 +72,52 @@ crossing)
     [ -e o.vect ] || [ -e a ] && fail "$f: refused, yet an output was written"
   done
   ;;
+same_file)
+  # An output that is one of the inputs, by identity: refused before anything
+  # is written, and the input is left as it was.
+  "$tr" make circle --radius 5 --n 101 -o k.vect >/dev/null || fail "make"
+  cp k.vect orig.vect
+  ln k.vect hard.vect
+  ln -s k.vect sym.vect
+  mkdir d && ln -s ../k.vect d/up.vect
+  for o in k.vect ./k.vect hard.vect sym.vect d/up.vect "$work/k.vect"; do
+    refused 2 "--struts $o is the input k.vect" "$tr" measure k.vect --struts "$o"
+    refused 2 "--kkt-forces $o is the input k.vect" "$tr" measure k.vect --kkt-forces "$o"
+    refused 2 "the output $o is the input k.vect" "$tr" tighten k.vect -o "$o" --device reference
+  done
+  refused 2 "--struts and --kkt-forces are both s.txt" "$tr" measure k.vect --struts s.txt --kkt-forces s.txt
+  cmp -s k.vect orig.vect || fail "k.vect changed"
+  [ -L sym.vect ] && [ -L d/up.vect ] || fail "a link was replaced"
+  [ -e s.txt ] && fail "s.txt written"
+  ;;
+overwrite)
+  # Overwriting keeps the output's mode, writes through a symbolic link to
+  # its target (also a target that does not exist yet), takes a legal name
+  # of 250 characters, and leaves no temporary behind.
+  "$tr" make circle --radius 5 --n 101 -o k.vect >/dev/null || fail "make"
+  echo old >s600.txt && chmod 600 s600.txt
+  echo old >s640.txt && chmod 640 s640.txt
+  echo old >real.txt && ln -s real.txt link.txt
+  mkdir sub && ln -s sub/new.txt dangling.txt
+  for o in s600.txt s640.txt link.txt dangling.txt; do
+    run "$tr" measure k.vect --struts $o
+    [ "$rc" = 0 ] || fail "--struts $o: exit $rc: $(cat err)"
+  done
+  [ "$(stat -c %a s600.txt)" = 600 ] || fail "s600.txt now $(stat -c %a s600.txt)"
+  [ "$(stat -c %a s640.txt)" = 640 ] || fail "s640.txt now $(stat -c %a s640.txt)"
+  [ -L link.txt ] || fail "link.txt replaced by a plain file"
+  [ "$(head -1 real.txt)" = "STRUTS " ] || fail "real.txt not written: $(head -1 real.txt)"
+  [ -L dangling.txt ] && [ "$(head -1 sub/new.txt)" = "STRUTS " ] || fail "dangling.txt: its target not written"
+  # the longest name this file system takes (NAME_MAX, 255 on Linux) less 5
+  long=$(printf "%0$(( $(getconf NAME_MAX .) - 5 ))d" 0 | tr 0 a).vect
+  [ ${#long} -gt 200 ] || fail "name of ${#long}"
+  run "$tr" make circle -o "$long"
+  [ "$rc" = 0 ] && [ -s "$long" ] || fail "make -o (${#long} characters): exit $rc: $(cat err)"
+  run "$tr" measure "$long" --struts "${long%.vect}.txt"
+  [ "$rc" = 0 ] || fail "--struts (${#long} characters): exit $rc: $(cat err)"
+  leftover=$(ls -A . sub | grep -E '^\.tr\.|\.tmp')
+  [ -z "$leftover" ] || fail "temporaries left: $leftover"
+  ;;
 *) fail "unknown case $case_" ;;
 esac
 exit 0
