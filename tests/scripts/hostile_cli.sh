@@ -7,6 +7,7 @@
 # earlier output.
 set -u
 case_=$1 tr=$2 work=$3
+here=$(cd "$(dirname "$0")" && pwd)
 rm -rf "$work" && mkdir -p "$work" && cd "$work" || exit 1
 fail() { echo "FAIL: $*"; exit 1; }
 # run CMD...: stdout to out, stderr to err, status in rc
@@ -22,7 +23,7 @@ refused() {
 # rel GOT WANT TOL: |got/want - 1| <= tol
 rel() { awk -v g="$1" -v w="$2" -v t="$3" 'BEGIN { r = (g - w) / w; if (r < 0) r = -r; exit !(r <= t && g == g) }'; }
 # json_get KEY FILE: the first number of "KEY": in a one-line JSON object
-json_get() { sed -n "s/.*\"$1\": \([-+0-9.eE]*\).*/\1/p" "$2" | head -1; }
+json_get() { grep -o "\"$1\": [-+0-9.eE]*" "$2" | head -1 | sed 's/.*: //'; }
 # scaled FACTOR IN OUT: a VECT file with every vertex multiplied by FACTOR
 scaled() {
   awk -v f="$1" '/^#/ || NR <= 5 || NF != 3 { print; next } { printf "%.17g %.17g %.17g\n", $1 * f, $2 * f, $3 * f }' "$2" >"$3"
@@ -117,6 +118,17 @@ overwrite)
   [ "$rc" = 0 ] || fail "--struts (${#long} characters): exit $rc: $(cat err)"
   leftover=$(ls -A . sub | grep -E '^\.tr\.|\.tmp')
   [ -z "$leftover" ] || fail "temporaries left: $leftover"
+  ;;
+vect_line)
+  # A number missing from, or added to, line 8 of a VECT file (tests/bad,
+  # one vertex to a line) is reported at line 8, not where the count ends.
+  bad=$here/../bad
+  refused 2 "vect_missing_number.vect:8: 2 numbers on the line of vertex 2" "$tr" measure "$bad/vect_missing_number.vect"
+  refused 2 "vect_extra_number.vect:8: more than 3 numbers on the line of vertex 2" "$tr" measure "$bad/vect_extra_number.vect"
+  # vertices several to a line throughout are still read (VECT is a stream)
+  printf 'VECT\n1 4 0\n-4\n0\n0 0 0 4 0 0\n4 4 0 0 4 0\n' >square.vect
+  run "$tr" measure --json square.vect
+  [ "$rc" = 0 ] && [ "$(json_get length out)" = 16 ] || fail "square, two vertices to a line: $(cat out err)"
   ;;
 *) fail "unknown case $case_" ;;
 esac
