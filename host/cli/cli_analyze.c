@@ -296,10 +296,12 @@ int tr_cmd_analyze(int argc, char **argv)
             return 0;
         } else if (!strcmp(a, "--plots")) {
             o.plots = 1;
-        } else if (!strcmp(a, "--paper")) {
-            o.paper = 1;
-        } else if (!strcmp(a, "--no-paper")) {
-            o.paper = 0;
+        } else if (!strcmp(a, "--paper") || !strcmp(a, "--no-paper")) {
+            if (o.paper >= 0 && o.paper != (a[2] == 'p')) {
+                fprintf(stderr, "tightrope analyze: --paper and --no-paper contradict each other\n");
+                return 2;
+            }
+            o.paper = a[2] == 'p';
         } else if (!strcmp(a, "--no-scale")) {
             o.scale = 0;
         } else if (takes_value(a) && !v) {

@@ -117,10 +117,17 @@ static void json_str(const char *key, const char *v, int comma)
  * (text_file.h), else the same path. */
 static int same_file(const char *a, const char *b) { return tr_same_file(a, b) || !strcmp(a, b); }
 
-static int check_outputs(tr_engine *e, const char *out, const char *ckpt, tr_error *err)
+/* What the run needs of its start and its outputs, checked before it
+ * starts: --refine-to refines, it never coarsens (any component above it
+ * is an error), and the output's format and both paths. */
+static int check_outputs(tr_engine *e, size_t refine_to, const char *out, const char *ckpt, tr_error *err)
 {
     tr_curve c = {0};
     int rc = tr_engine_get_curve(e, &c, err);
+    for (int k = 0; rc == TR_OK && refine_to > 0 && k < c.ncomp; k++)
+        if (tr_comp_nv(&c, k) > refine_to)
+            rc = tr_fail(err, TR_EINVAL, "--refine-to %zu is below the %zu vertices of component %d of the start; "
+                         "it refines, it does not coarsen (--n resamples a start)", refine_to, tr_comp_nv(&c, k), k);
     if (rc == TR_OK)
         rc = tr_curve_check_output(out, TR_FORMAT_AUTO, &c, err);
     tr_curve_free(&c);
@@ -151,6 +158,12 @@ int tr_cmd_tighten(int argc, char **argv)
     static const char *valued[] = {"-o", "--output", "--n", "--refine-to", "--target", "--residual",
                                    "--steps", "--time-limit", "--checkpoint", "--checkpoint-every",
                                    "--resume", "--device", "--device-from"};
+    /* what a bad value of each should have been, in the order of valued */
+    static const char *wants[] = {"", "", "an integer >= 4, vertices per component",
+                                  "an integer >= 4, vertices per component", "a number > 0", "a number >= 0",
+                                  "an integer >= 1", "a number > 0 (seconds)", "", "a number > 0 (seconds)", "",
+                                  "", "an integer >= 0"};
+    unsigned char given[sizeof valued / sizeof valued[0]] = {0};
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
         if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
@@ -166,6 +179,10 @@ int tr_cmd_tighten(int argc, char **argv)
             continue;
         }
         if (!strcmp(a, "--kkt") || !strcmp(a, "--no-kkt")) {
+            if (kkt >= 0 && kkt != (a[2] == 'k')) {
+                fprintf(stderr, "tightrope tighten: --kkt and --no-kkt contradict each other\n");
+                return 2;
+            }
             kkt = a[2] == 'k';
             continue;
         }
@@ -179,7 +196,16 @@ int tr_cmd_tighten(int argc, char **argv)
         }
         int takes = 0;
         for (size_t k = 0; k < sizeof valued / sizeof valued[0]; k++)
-            takes |= !strcmp(a, valued[k]);
+            if (!strcmp(a, valued[k])) {
+                takes = 1;
+                /* -o and --output are one option */
+                size_t slot = k == 1 ? 0 : k;
+                if (given[slot]) {
+                    fprintf(stderr, "tightrope tighten: %s given twice (which one?)\n", a);
+                    return 2;
+                }
+                given[slot] = 1;
+            }
         if (takes) {
             if (i + 1 >= argc) {
                 fprintf(stderr, "tightrope tighten: %s needs a value\n", a);
@@ -214,7 +240,10 @@ int tr_cmd_tighten(int argc, char **argv)
             else
                 device = v;
             if (bad) {
-                fprintf(stderr, "tightrope tighten: bad %s '%s'\n", a, v);
+                size_t k = 0;
+                while (strcmp(a, valued[k]))
+                    k++;
+                fprintf(stderr, "tightrope tighten: bad %s '%s' (%s)\n", a, v, wants[k]);
                 return 2;
             }
             continue;
@@ -330,7 +359,7 @@ int tr_cmd_tighten(int argc, char **argv)
     }
     /* A run of hours must not end in "cannot write": the output's format
      * and both paths are checked before it starts. */
-    rc = check_outputs(e, out, ckpt, &err);
+    rc = check_outputs(e, (size_t)refine_to, out, ckpt, &err);
     if (rc) {
         fprintf(stderr, "tightrope tighten: %s\n", err.msg);
         tr_engine_destroy(e);

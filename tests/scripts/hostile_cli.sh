@@ -130,6 +130,34 @@ vect_line)
   run "$tr" measure --json square.vect
   [ "$rc" = 0 ] && [ "$(json_get length out)" = 16 ] || fail "square, two vertices to a line: $(cat out err)"
   ;;
+make_refuse)
+  # make writes no start that tighten refuses: a circle of radius 0.5 (MinRad
+  # R cos(pi/n) < 1/2), of 3 vertices (edges 2R sin(pi/3) = 5.2 > 1), of
+  # radius 2 and 12 vertices (edges 4 sin(pi/12) = 1.035 > 1); radius 2 with
+  # 13 vertices (edges 0.964) is written and tighten takes it.
+  refused 2 "radius 0.5, 64 vertices: tighten would refuse it: .*MinRad 0.499" "$tr" make circle --radius 0.5 -o a.vect
+  refused 2 "3 vertices: tighten would refuse it: .*edges of length 5.2" "$tr" make circle --n 3 -o b.vect
+  refused 2 "12 vertices: tighten would refuse it: .*edges of length 1.04" "$tr" make circle --radius 2 --n 12 -o c.vect
+  [ -e a.vect ] || [ -e b.vect ] || [ -e c.vect ] && fail "a refused start was written"
+  run "$tr" make circle --radius 2 --n 13 -o d.vect
+  [ "$rc" = 0 ] || fail "radius 2, 13 vertices: exit $rc: $(cat err)"
+  run "$tr" tighten d.vect -o e.vect --device reference --steps 1 --quiet
+  [ "$rc" = 0 ] || fail "tighten of make's circle: exit $rc: $(cat err)"
+  ;;
+args)
+  # Options: a bad count states the valid range, contradicting or repeated
+  # options are an error, --refine-to below the start's N is an error.
+  "$tr" make circle -o k.vect >/dev/null || fail "make"
+  refused 2 "bad --n '3' \\(an integer >= 4, vertices per component\\)" "$tr" tighten k.vect -o o.vect --n 3
+  refused 2 "bad --n '2' \\(a vertex count, an integer from 3 to" "$tr" make circle --n 2 -o o.vect
+  refused 2 "--kkt and --no-kkt contradict" "$tr" tighten k.vect -o o.vect --kkt --no-kkt
+  refused 2 "--kkt and --no-kkt contradict" "$tr" tighten k.vect -o o.vect --no-kkt --kkt
+  refused 2 "-o given twice" "$tr" tighten k.vect -o o.vect -o p.vect
+  refused 2 "--paper and --no-paper contradict" "$tr" analyze k.vect --out a --paper --no-paper
+  refused 2 "--refine-to 32 is below the 64 vertices of component 0" "$tr" tighten k.vect -o o.vect --refine-to 32 --device reference
+  refused 2 "bad --radius '0x10'" "$tr" make circle --radius 0x10 -o o.vect
+  [ -e o.vect ] || [ -e p.vect ] || [ -e a ] && fail "an output was written"
+  ;;
 *) fail "unknown case $case_" ;;
 esac
 exit 0
