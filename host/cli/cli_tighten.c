@@ -330,6 +330,19 @@ int tr_cmd_tighten(int argc, char **argv)
          * no thickness at all, and one at a scale like 1e+-300 would lose
          * the engine's squared distances to under- or overflow (the oracle
          * measures it in a rescaled frame, curve.h). */
+        /* An open rope with a free end shortens by pulling that end
+         * through: it comes out untied. Its ends must be held. */
+        for (int k = 0; rc == TR_OK && k < c.ncomp; k++) {
+            size_t ends[2] = {c.start[k], c.start[k + 1] - 1};
+            for (int q = 0; rc == TR_OK && !c.closed[k] && q < 2; q++)
+                if (!c.vcst || c.vcst[ends[q]] < 0)
+                    rc = tr_fail(&err, TR_EGEOMETRY,
+                                 "%s: component %d is open and its %s end (vertex %zu) is free: tightening would "
+                                 "pull it through and untie the rope; hold both ends with a constraint (a "
+                                 "'# Constraint 1 Plane 0 0 1 6' comment and '# Cst: 1' after the end vertex, "
+                                 "as tightrope make clasp writes)",
+                                 in, k, q ? "last" : "first", ends[q] - c.start[k]);
+        }
         tr_thickness t0;
         if (rc == TR_OK && (rc = tr_thickness_measure(&c, NULL, &t0, NULL, &err)))
             tr_fail_wrap(&err, rc, "%s", in);

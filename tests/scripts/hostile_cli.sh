@@ -158,6 +158,22 @@ args)
   refused 2 "bad --radius '0x10'" "$tr" make circle --radius 0x10 -o o.vect
   [ -e o.vect ] || [ -e p.vect ] || [ -e a ] && fail "an output was written"
   ;;
+open_ends)
+  # The clasp with its constraint comments is taken; the same ropes without
+  # them (free ends), or with one end held, are refused naming the comments.
+  "$tr" make clasp --n 60 -o clasp.vect >/dev/null || fail "make clasp"
+  sed -e '/^# Constraint/d' -e 's/ *# Cst: [0-9]*//' clasp.vect >free.vect
+  awk '/# Cst: 2/ && !done { sub(/ *# Cst: 2/, ""); done = 1 } { print }' clasp.vect >half.vect
+  grep -c 'Cst:' half.vect | grep -qx 3 || fail "half.vect: $(grep -c 'Cst:' half.vect) held ends, want 3"
+  run "$tr" measure free.vect
+  [ "$rc" = 0 ] || fail "free.vect is a valid file: $(cat err)"
+  refused 2 "free.vect: component 0 is open and its first end \\(vertex 0\\) is free.*# Constraint.*# Cst:" \
+    "$tr" tighten free.vect -o o.vect --device reference
+  refused 2 "half.vect: component 1 is open and its (first|last) end .* is free" "$tr" tighten half.vect -o o.vect --device reference
+  [ -e o.vect ] && fail "refused, yet o.vect written"
+  run "$tr" tighten clasp.vect -o o.vect --device reference --steps 1 --quiet
+  [ "$rc" = 0 ] || fail "the held clasp: exit $rc: $(cat err)"
+  ;;
 *) fail "unknown case $case_" ;;
 esac
 exit 0
