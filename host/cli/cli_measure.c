@@ -245,7 +245,7 @@ int tr_cmd_measure(int argc, char **argv)
         int rc = tr_curve_read(files[nread], TR_FORMAT_AUTO, &curves[nread], &err);
         if (rc) {
             fprintf(stderr, "tightrope measure: %s\n", err.msg);
-            status = 2;
+            status = rc == TR_ENOMEM ? 1 : 2; /* cli.h: out of memory is 1 */
             break;
         }
     }

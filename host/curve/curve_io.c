@@ -788,7 +788,7 @@ int tr_curve_read(const char *path, tr_format fmt, tr_curve *out, tr_error *err)
     memset(out, 0, sizeof *out);
     char *buf;
     size_t n;
-    int rc = tr_read_file(path, &buf, &n, err);
+    int rc = tr_read_text_file(path, &buf, &n, err);
     if (rc)
         return rc;
     if (fmt == TR_FORMAT_AUTO)

@@ -13,7 +13,12 @@
 #include <time.h>
 #include <unistd.h>
 
-int tr_read_file(const char *path, char **text, size_t *len, tr_error *err)
+/* Reads path whole. What is allocated is bounded by what the file holds:
+ * a regular file's size up front (grown only if it grows meanwhile), and
+ * for a device or a pipe, which has no size, chunks as they come; with
+ * text_only the read stops at the first NUL byte (a text file has none),
+ * so /dev/zero costs one chunk, not memory until it runs out. */
+static int read_all(const char *path, int text_only, char **text, size_t *len, tr_error *err)
 {
     *text = NULL;
     if (len)
@@ -24,25 +29,41 @@ int tr_read_file(const char *path, char **text, size_t *len, tr_error *err)
     /* fopen succeeds on a directory; the read would fail with EISDIR, but
      * say so plainly before that */
     struct stat st;
-    if (fstat(fileno(f), &st) == 0 && S_ISDIR(st.st_mode)) {
+    int have_st = fstat(fileno(f), &st) == 0;
+    if (have_st && S_ISDIR(st.st_mode)) {
         fclose(f);
         return tr_fail(err, TR_EIO, "cannot read %s: %s", path, strerror(EISDIR));
     }
+    size_t want = 1 << 16;
+    if (have_st && S_ISREG(st.st_mode) && st.st_size >= 0 && (uintmax_t)st.st_size < SIZE_MAX - 2)
+        want = (size_t)st.st_size + 2; /* +1 for the NUL, +1 to see the end */
     char *buf = NULL;
-    size_t n = 0, cap = 0;
+    size_t n = 0, cap = 0, lines = 1;
     for (;;) {
-        if (cap - n < 65536) {
-            size_t ncap = cap ? 2 * cap : 1 << 16;
-            char *g = realloc(buf, ncap);
+        if (cap - n < 2) {
+            size_t ncap = cap ? (cap > SIZE_MAX / 2 ? SIZE_MAX : 2 * cap) : want;
+            char *g = ncap > cap ? realloc(buf, ncap) : NULL;
             if (!g) {
                 free(buf);
                 fclose(f);
-                return tr_fail(err, TR_ENOMEM, "out of memory reading %s", path);
+                return tr_fail(err, TR_ENOMEM, "out of memory reading %s (%zu bytes read)", path, n);
             }
             buf = g;
             cap = ncap;
         }
         size_t r = fread(buf + n, 1, cap - n - 1, f);
+        if (text_only) {
+            const char *z = memchr(buf + n, '\0', r);
+            for (const char *p = buf + n; p < (z ? z : buf + n + r); p++)
+                lines += *p == '\n';
+            if (z) {
+                size_t at = n + (size_t)(z - (buf + n));
+                free(buf);
+                fclose(f);
+                return tr_fail(err, TR_EPARSE, "%.200s:%zu: a NUL byte at offset %zu: not a text file", path,
+                               lines, at);
+            }
+        }
         n += r;
         if (r == 0)
             break;
@@ -58,6 +79,16 @@ int tr_read_file(const char *path, char **text, size_t *len, tr_error *err)
     if (len)
         *len = n;
     return TR_OK;
+}
+
+int tr_read_file(const char *path, char **text, size_t *len, tr_error *err)
+{
+    return read_all(path, 0, text, len, err);
+}
+
+int tr_read_text_file(const char *path, char **text, size_t *len, tr_error *err)
+{
+    return read_all(path, 1, text, len, err);
 }
 
 int tr_same_file(const char *a, const char *b)

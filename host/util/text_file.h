@@ -14,6 +14,12 @@
  * a missing file or a read error is TR_EIO with the system's reason. */
 int tr_read_file(const char *path, char **text, size_t *len, tr_error *err);
 
+/* As tr_read_file, for a text file: a NUL byte ends the read at once with
+ * TR_EPARSE "FILE:LINE: a NUL byte ...", so reading /dev/zero or a binary
+ * file allocates no more than one chunk. Either reader allocates what the
+ * file holds (a regular file's size), not more; out of memory is TR_ENOMEM. */
+int tr_read_text_file(const char *path, char **text, size_t *len, tr_error *err);
+
 /* Writes `len` bytes to a temporary file beside `path` (same directory,
  * a short hidden name ".tr.XXXXXX", so any legal name of path works),
  * fsyncs it and renames it over `path`: readers see the old file or the

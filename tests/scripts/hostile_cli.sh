@@ -174,6 +174,15 @@ open_ends)
   run "$tr" tighten clasp.vect -o o.vect --device reference --steps 1 --quiet
   [ "$rc" = 0 ] || fail "the held clasp: exit $rc: $(cat err)"
   ;;
+dev_zero)
+  # Reading allocates what the file holds: /dev/zero (endless NUL bytes) is
+  # refused at its first byte under a 1 GB address-space limit (it used to
+  # take 4.2 GB first); endless text runs out of memory, which is exit 1.
+  # (A sanitizer build reserves more address space than any such limit.)
+  bash -c 'ulimit -v 1000000 && exec "$0" --help' "$tr" >/dev/null 2>&1 || { echo "skipped: cannot run under ulimit -v"; exit 77; }
+  refused 2 "/dev/zero:1: a NUL byte at offset 0: not a text file" bash -c 'ulimit -v 1000000 && exec "$0" measure /dev/zero' "$tr"
+  refused 1 "out of memory reading /dev/stdin" bash -c 'yes "0 0 0" | (ulimit -v 300000 && exec "$0" measure /dev/stdin)' "$tr"
+  ;;
 *) fail "unknown case $case_" ;;
 esac
 exit 0
