@@ -183,6 +183,27 @@ dev_zero)
   refused 2 "/dev/zero:1: a NUL byte at offset 0: not a text file" bash -c 'ulimit -v 1000000 && exec "$0" measure /dev/zero' "$tr"
   refused 1 "out of memory reading /dev/stdin" bash -c 'yes "0 0 0" | (ulimit -v 300000 && exec "$0" measure /dev/stdin)' "$tr"
   ;;
+devices)
+  # A device whose driver cannot build the kernels (here: a syntax error in
+  # tension.cl through TIGHTROPE_KERNEL_DIR) is not usable: 'devices' says
+  # why, '--device opencl' fails with the reason and 'auto' falls back to
+  # the reference naming it.
+  "$tr" devices --json >dev.json 2>/dev/null || fail "devices: exit $?"
+  grep -q '"usable": true, "reason": null}' dev.json && grep -q '"id": "[0-9]*:[0-9]*"' dev.json ||
+    { echo "skipped: no usable opencl device here"; exit 77; }
+  cp -r "$here/../../kernels" k && echo 'this is not opencl c;' >>k/tension.cl
+  export TIGHTROPE_KERNEL_DIR=$work/k
+  "$tr" devices >list 2>/dev/null || fail "devices with broken kernels: exit $?"
+  grep -q 'UNUSABLE: the kernels do not build' list || fail "devices: $(cat list)"
+  "$tr" devices --json >dev2.json 2>/dev/null
+  [ "$(grep -o '"usable": true' dev2.json | wc -l)" = 1 ] || fail "an opencl device still usable: $(cat dev2.json)"
+  "$tr" make circle -o c.vect >/dev/null
+  run "$tr" tighten c.vect -o o.vect --device opencl --steps 1 --quiet
+  [ "$rc" = 1 ] && grep -q 'no usable opencl device (the kernels do not build' err || fail "--device opencl: exit $rc: $(cat err)"
+  [ -e o.vect ] && fail "--device opencl failed, yet o.vect written"
+  run "$tr" tighten c.vect -o o.vect --device auto --steps 1 --quiet
+  [ "$rc" = 0 ] && grep -q 'warning: using the serial reference.*the kernels do not build' err || fail "--device auto: exit $rc: $(cat err)"
+  ;;
 *) fail "unknown case $case_" ;;
 esac
 exit 0
