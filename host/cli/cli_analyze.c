@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include "analysis/analysis_plots.h"
 #include "analysis/analysis_report.h"
@@ -250,6 +251,22 @@ static int write_component(comp_result *r, const char *in, const char *dir, cons
     if (rc != TR_OK) { /* an output the user can fix */
         fprintf(stderr, "tightrope analyze: writing %s: %s\n", dir, err.msg);
         return 2;
+    }
+    /* Files of ours an earlier analyze left in dir that this one does not
+     * write (sigma.csv after a knot without contacts, plots after a run
+     * without --plots) would read as this run's: they go. Only these
+     * names, which analyze writes, are removed; anything else stays. */
+    static const char *const sigma_files[] = {"sigma.csv", "fixed_points.csv", "contact_map.png", "sigma9.png"};
+    static const char *const plot_files[] = {"curvature_torsion.png", "plateau_zoom.png", "accumulated_torsion.png",
+                                             "contact_map.png", "sigma9.png", "plots.gp", "gnuplot.log"};
+    for (size_t i = 0; i < 4 + 7; i++) {
+        const char *name = i < 4 ? sigma_files[i] : plot_files[i - 4];
+        if (i < 4 ? an->have_sigma : o->plots)
+            continue;
+        char path[4096];
+        if (snprintf(path, sizeof path, "%s/%s", dir, name) < (int)sizeof path && unlink(path) != 0 &&
+            errno != ENOENT)
+            fprintf(stderr, "tightrope analyze: warning: cannot remove the stale %s: %s\n", path, strerror(errno));
     }
     if (o->plots) {
         rc = tr_analysis_plots(dir, an, &err);

@@ -204,6 +204,22 @@ devices)
   run "$tr" tighten c.vect -o o.vect --device auto --steps 1 --quiet
   [ "$rc" = 0 ] && grep -q 'warning: using the serial reference.*the kernels do not build' err || fail "--device auto: exit $rc: $(cat err)"
   ;;
+analyze_stale)
+  # analyze into a folder holding an earlier run: the tight trefoil has
+  # contacts (sigma.csv, fixed_points.csv), a circle has none; after the
+  # circle those files are gone, and a file of the user's stays.
+  knot=$here/../../../shared/data/tightknot/3_1.vect
+  [ -f "$knot" ] || { echo "skipped, no reference data: $knot"; exit 77; }
+  run "$tr" analyze "$knot" --out a
+  [ "$rc" = 0 ] && [ -s a/sigma.csv ] && [ -s a/fixed_points.csv ] || fail "trefoil: exit $rc, $(ls a)"
+  echo mine >a/notes.txt
+  "$tr" make circle -o c.vect >/dev/null
+  run "$tr" analyze c.vect --out a
+  [ "$rc" = 0 ] || fail "circle: exit $rc: $(cat err)"
+  [ -e a/sigma.csv ] || [ -e a/fixed_points.csv ] && fail "stale files left: $(ls a)"
+  [ "$(cat a/notes.txt)" = mine ] || fail "notes.txt removed"
+  grep -q '"file": ".*c.vect"' a/summary.json || grep -q 'c.vect' a/summary.json || fail "summary.json not the circle's"
+  ;;
 *) fail "unknown case $case_" ;;
 esac
 exit 0
