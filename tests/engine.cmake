@@ -25,8 +25,8 @@ tr_engine_test(tighten_missing_file 2 DIR ${_eng_dir}/missing ONLY ""
   CMD ${_tr} tighten ${_eng_dir}/missing/none.vect -o ${_eng_dir}/missing/x.vect)
 tr_engine_test(tighten_overlapping_start 2 DIR ${_eng_dir}/overlap ONLY ""
   CMD ${_tr} tighten ${CMAKE_CURRENT_SOURCE_DIR}/data/engine_overlap.tsv -o ${_eng_dir}/overlap/x.vect)
-tr_engine_test(tighten_too_coarse 2 DIR ${_eng_dir}/coarse ONLY "c.vect"
-  CMD sh -c "'${_tr}' make circle --radius 3 --n 12 -o '${_eng_dir}/coarse/c.vect' && exec '${_tr}' tighten '${_eng_dir}/coarse/c.vect' -o '${_eng_dir}/coarse/x.vect'")
+tr_engine_test(tighten_too_coarse 2 DIR ${_eng_dir}/coarse ONLY ""
+  CMD ${_tr} tighten ${CMAKE_CURRENT_SOURCE_DIR}/data/circle_r3_n12.txt -o ${_eng_dir}/coarse/x.vect)
 tr_engine_test(tighten_bad_device 2 DIR ${_eng_dir}/dev ONLY "s.vect"
   CMD sh -c "'${_tr}' make torus 2 3 --n 72 -o '${_eng_dir}/dev/s.vect' && exec '${_tr}' tighten '${_eng_dir}/dev/s.vect' -o '${_eng_dir}/dev/x.vect' --device no-such-device-xyz")
 # --device opencl where no OpenCL platform is installed (ocl-icd reads its
@@ -64,9 +64,9 @@ tr_engine_test(tighten_upsample 0 DIR ${_eng_dir}/up ONLY "s.vect;t.vect" OUT ${
 # --scale: a regular 64-gon of circumradius 1/2 (thickness = Rawdon's MinRad
 # r cos(pi/n) < 1, refused as it is) scaled to thickness 1 has ropelength
 # 2n tan(pi/n) = 6.28824 (a circle cannot get shorter)
-tr_engine_test(tighten_scale 0 DIR ${_eng_dir}/scale ONLY "c.vect;t.vect" OUT ${_eng_dir}/scale/t.vect
+tr_engine_test(tighten_scale 0 DIR ${_eng_dir}/scale ONLY "t.vect" OUT ${_eng_dir}/scale/t.vect
   MATCH "\n# N 64\n# length 6[.]2882[34][0-9]*\n"
-  CMD sh -c "'${_tr}' make circle --radius 0.5 --n 64 -o '${_eng_dir}/scale/c.vect' && exec '${_tr}' tighten '${_eng_dir}/scale/c.vect' -o '${_eng_dir}/scale/t.vect' --scale --steps 1 --quiet --no-kkt --device reference")
+  CMD ${_tr} tighten ${CMAKE_CURRENT_SOURCE_DIR}/data/circle_r0.5_n64.txt -o ${_eng_dir}/scale/t.vect --scale --steps 1 --quiet --no-kkt --device reference)
 tr_engine_test(tighten_scale_constrained 2 DIR ${_eng_dir}/scalec ONLY "c.vect"
   ERRMATCH "--scale: .* has constraints"
   CMD sh -c "'${_tr}' make clasp -o '${_eng_dir}/scalec/c.vect' && exec '${_tr}' tighten '${_eng_dir}/scalec/c.vect' -o '${_eng_dir}/scalec/t.vect' --scale")

@@ -19,7 +19,7 @@ tr_io_test(make_hopf_tsv 0 DIR ${_io_dir}/hopf ONLY hopf.tsv OUT ${_io_dir}/hopf
   CMD ${_tr} make hopf --n 40 -o ${_io_dir}/hopf/hopf.tsv)
 tr_io_test(make_circle_txt 0 DIR ${_io_dir}/circle ONLY c.txt OUT ${_io_dir}/circle/c.txt
   MATCH "^# circle of radius 2,[^\n]*\n[^\n]*\n[^\n]*\n2\t0\t0\n"
-  CMD ${_tr} make circle --radius 2 --n 12 -o ${_io_dir}/circle/c.txt)
+  CMD ${_tr} make circle --radius 2 --n 13 -o ${_io_dir}/circle/c.txt)
 tr_io_test(make_clasp_vect 0 DIR ${_io_dir}/clasp ONLY clasp.vect OUT ${_io_dir}/clasp/clasp.vect
   MATCH "\n2 120 0 [^\n]*\n60 60 [^\n]*\n0 0 [^\n]*\n# Constraint 1 Plane 0 0 1 6\n# Constraint 2 Plane 0 0 1 -6\n"
   CMD ${_tr} make clasp --n 60 --height 6 -o ${_io_dir}/clasp/clasp.vect)

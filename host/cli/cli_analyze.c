@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include "analysis/analysis_plots.h"
 #include "analysis/analysis_report.h"
@@ -143,6 +144,14 @@ static int analyse_component(const tr_curve *c, int k, const char *in, const cli
         status = rc == TR_ENOMEM ? 1 : 2;
         goto fail;
     }
+    if (!o->scale && tr_curve_scale_exponent(&r->one)) {
+        /* the oracle measures such a curve in a rescaled frame (curve.h),
+         * the analysis would lose its squared distances */
+        fprintf(stderr, "tightrope analyze: %s: component %d has thickness %.3g, too far from 1 to analyse "
+                        "in its own units; drop --no-scale\n", in, k, r->th.thickness);
+        status = 2;
+        goto fail;
+    }
     if (o->scale) {
         if (!(r->th.thickness > 0) || !isfinite(r->th.thickness)) {
             fprintf(stderr, "tightrope analyze: %s: component %d has no finite thickness\n", in, k);
@@ -243,6 +252,22 @@ static int write_component(comp_result *r, const char *in, const char *dir, cons
         fprintf(stderr, "tightrope analyze: writing %s: %s\n", dir, err.msg);
         return 2;
     }
+    /* Files of ours an earlier analyze left in dir that this one does not
+     * write (sigma.csv after a knot without contacts, plots after a run
+     * without --plots) would read as this run's: they go. Only these
+     * names, which analyze writes, are removed; anything else stays. */
+    static const char *const sigma_files[] = {"sigma.csv", "fixed_points.csv", "contact_map.png", "sigma9.png"};
+    static const char *const plot_files[] = {"curvature_torsion.png", "plateau_zoom.png", "accumulated_torsion.png",
+                                             "contact_map.png", "sigma9.png", "plots.gp", "gnuplot.log"};
+    for (size_t i = 0; i < 4 + 7; i++) {
+        const char *name = i < 4 ? sigma_files[i] : plot_files[i - 4];
+        if (i < 4 ? an->have_sigma : o->plots)
+            continue;
+        char path[4096];
+        if (snprintf(path, sizeof path, "%s/%s", dir, name) < (int)sizeof path && unlink(path) != 0 &&
+            errno != ENOENT)
+            fprintf(stderr, "tightrope analyze: warning: cannot remove the stale %s: %s\n", path, strerror(errno));
+    }
     if (o->plots) {
         rc = tr_analysis_plots(dir, an, &err);
         if (rc == TR_EUNSUPPORTED) {
@@ -288,10 +313,12 @@ int tr_cmd_analyze(int argc, char **argv)
             return 0;
         } else if (!strcmp(a, "--plots")) {
             o.plots = 1;
-        } else if (!strcmp(a, "--paper")) {
-            o.paper = 1;
-        } else if (!strcmp(a, "--no-paper")) {
-            o.paper = 0;
+        } else if (!strcmp(a, "--paper") || !strcmp(a, "--no-paper")) {
+            if (o.paper >= 0 && o.paper != (a[2] == 'p')) {
+                fprintf(stderr, "tightrope analyze: --paper and --no-paper contradict each other\n");
+                return 2;
+            }
+            o.paper = a[2] == 'p';
         } else if (!strcmp(a, "--no-scale")) {
             o.scale = 0;
         } else if (takes_value(a) && !v) {

@@ -4,9 +4,12 @@
 #include <errno.h>
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
 
 int tr_arg_double(const char *s, double lo, double hi, double *out)
 {
+    if (strpbrk(s, "xX")) /* strtod's hexadecimal ("0x10") */
+        return -1;
     char *end;
     errno = 0;
     double v = strtod(s, &end);

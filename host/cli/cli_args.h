@@ -1,6 +1,6 @@
 /* Numbers given on the command line. A value is accepted only when the whole
- * token is a number, finite, and inside [lo, hi]: strtod alone takes "",
- * "3x" (as 3), "nan" and "1e400" (as inf) without complaint. */
+ * token is a decimal number, finite, and inside [lo, hi]: strtod alone takes
+ * "", "3x" (as 3), "nan", "1e400" (as inf) and "0x10" without complaint. */
 #ifndef TIGHTROPE_CLI_ARGS_H
 #define TIGHTROPE_CLI_ARGS_H
 

@@ -11,6 +11,7 @@
 #include "cli/cli_args.h"
 #include "curve/curve_io.h"
 #include "curve/generate.h"
+#include "engine/engine.h"
 
 static void usage(FILE *out)
 {
@@ -64,8 +65,8 @@ int tr_cmd_make(int argc, char **argv)
             if (!strcmp(a, "-o") || !strcmp(a, "--output")) {
                 outpath = v;
             } else if (!strcmp(a, "--n") || !strcmp(a, "-n")) {
-                if (tr_arg_size(v, 1, (size_t)1 << 40, &n)) {
-                    fprintf(stderr, "tightrope make: bad --n '%s' (a vertex count)\n", v);
+                if (tr_arg_size(v, 3, (size_t)1 << 40, &n)) {
+                    fprintf(stderr, "tightrope make: bad --n '%s' (a vertex count, an integer from 3 to 2^40)\n", v);
                     return 2;
                 }
                 have_n = 1;
@@ -161,6 +162,18 @@ int tr_cmd_make(int argc, char **argv)
     if (rc) {
         fprintf(stderr, "tightrope make: %s\n", err.msg);
         return 2;
+    }
+    /* A start that tighten would refuse is not written: the engine's own
+     * checks (edges short enough, no overlap, MinRad) on the reference. */
+    tr_engine_params prm;
+    tr_engine_params_default(&prm);
+    tr_engine *e = NULL;
+    rc = tr_engine_create(&e, &c, "reference", &prm, &err);
+    tr_engine_destroy(e);
+    if (rc) {
+        tr_curve_free(&c);
+        fprintf(stderr, "tightrope make: %s: tighten would refuse it: %s\n", comment, err.msg);
+        return rc == TR_ENOMEM ? 1 : 2;
     }
     char comments[1024];
     double length = tr_curve_length(&c);

@@ -211,6 +211,27 @@ int tr_cmd_measure(int argc, char **argv)
         return 2;
     }
 
+    /* An output over an input (by identity: ./k.vect, a hard or a symbolic
+     * link count too) would destroy what is measured; two outputs over each
+     * other would keep one. */
+    const char *outs[2] = {struts_path, forces_path}, *optname[2] = {"--struts", "--kkt-forces"};
+    for (int o = 0; o < 2; o++) {
+        if (!outs[o])
+            continue;
+        for (int f = 0; f < nfiles; f++)
+            if (tr_same_file(outs[o], files[f]) || !strcmp(outs[o], files[f])) {
+                fprintf(stderr, "tightrope measure: %s %s is the input %s; write it elsewhere\n", optname[o],
+                        outs[o], files[f]);
+                free(files);
+                return 2;
+            }
+    }
+    if (struts_path && forces_path && (tr_same_file(struts_path, forces_path) || !strcmp(struts_path, forces_path))) {
+        fprintf(stderr, "tightrope measure: --struts and --kkt-forces are both %s\n", struts_path);
+        free(files);
+        return 2;
+    }
+
     /* Read everything first: a bad file stops the run before any output. */
     tr_curve *curves = calloc((size_t)nfiles, sizeof *curves);
     if (!curves) {
@@ -224,7 +245,7 @@ int tr_cmd_measure(int argc, char **argv)
         int rc = tr_curve_read(files[nread], TR_FORMAT_AUTO, &curves[nread], &err);
         if (rc) {
             fprintf(stderr, "tightrope measure: %s\n", err.msg);
-            status = 2;
+            status = rc == TR_ENOMEM ? 1 : 2; /* cli.h: out of memory is 1 */
             break;
         }
     }

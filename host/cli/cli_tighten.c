@@ -117,20 +117,21 @@ static void json_str(const char *key, const char *v, int comma)
     printf("%s\n", comma ? "," : "");
 }
 
-/* Whether a and b name the same file: the same inode where both exist,
- * else the same path. */
-static int same_file(const char *a, const char *b)
-{
-    struct stat sa, sb;
-    if (stat(a, &sa) == 0 && stat(b, &sb) == 0)
-        return sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
-    return !strcmp(a, b);
-}
+/* Whether a and b name the same file: the same inode where both exist
+ * (text_file.h), else the same path. */
+static int same_file(const char *a, const char *b) { return tr_same_file(a, b) || !strcmp(a, b); }
 
-static int check_outputs(tr_engine *e, const char *out, const char *ckpt, tr_error *err)
+/* What the run needs of its start and its outputs, checked before it
+ * starts: --refine-to refines, it never coarsens (any component above it
+ * is an error), and the output's format and both paths. */
+static int check_outputs(tr_engine *e, size_t refine_to, const char *out, const char *ckpt, tr_error *err)
 {
     tr_curve c = {0};
     int rc = tr_engine_get_curve(e, &c, err);
+    for (int k = 0; rc == TR_OK && refine_to > 0 && k < c.ncomp; k++)
+        if (tr_comp_nv(&c, k) > refine_to)
+            rc = tr_fail(err, TR_EINVAL, "--refine-to %zu is below the %zu vertices of component %d of the start; "
+                         "it refines, it does not coarsen (--n resamples a start)", refine_to, tr_comp_nv(&c, k), k);
     if (rc == TR_OK)
         rc = tr_curve_check_output(out, TR_FORMAT_AUTO, &c, err);
     tr_curve_free(&c);
@@ -161,6 +162,12 @@ int tr_cmd_tighten(int argc, char **argv)
     static const char *valued[] = {"-o", "--output", "--n", "--refine-to", "--target", "--residual",
                                    "--steps", "--time-limit", "--checkpoint", "--checkpoint-every",
                                    "--resume", "--device", "--device-from"};
+    /* what a bad value of each should have been, in the order of valued */
+    static const char *wants[] = {"", "", "an integer >= 4, vertices per component",
+                                  "an integer >= 4, vertices per component", "a number > 0", "a number >= 0",
+                                  "an integer >= 1", "a number > 0 (seconds)", "", "a number > 0 (seconds)", "",
+                                  "", "an integer >= 0"};
+    unsigned char given[sizeof valued / sizeof valued[0]] = {0};
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
         if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
@@ -180,6 +187,10 @@ int tr_cmd_tighten(int argc, char **argv)
             continue;
         }
         if (!strcmp(a, "--kkt") || !strcmp(a, "--no-kkt")) {
+            if (kkt >= 0 && kkt != (a[2] == 'k')) {
+                fprintf(stderr, "tightrope tighten: --kkt and --no-kkt contradict each other\n");
+                return 2;
+            }
             kkt = a[2] == 'k';
             continue;
         }
@@ -193,7 +204,16 @@ int tr_cmd_tighten(int argc, char **argv)
         }
         int takes = 0;
         for (size_t k = 0; k < sizeof valued / sizeof valued[0]; k++)
-            takes |= !strcmp(a, valued[k]);
+            if (!strcmp(a, valued[k])) {
+                takes = 1;
+                /* -o and --output are one option */
+                size_t slot = k == 1 ? 0 : k;
+                if (given[slot]) {
+                    fprintf(stderr, "tightrope tighten: %s given twice (which one?)\n", a);
+                    return 2;
+                }
+                given[slot] = 1;
+            }
         if (takes) {
             if (i + 1 >= argc) {
                 fprintf(stderr, "tightrope tighten: %s needs a value\n", a);
@@ -228,7 +248,10 @@ int tr_cmd_tighten(int argc, char **argv)
             else
                 device = v;
             if (bad) {
-                fprintf(stderr, "tightrope tighten: bad %s '%s'\n", a, v);
+                size_t k = 0;
+                while (strcmp(a, valued[k]))
+                    k++;
+                fprintf(stderr, "tightrope tighten: bad %s '%s' (%s)\n", a, v, wants[k]);
                 return 2;
             }
             continue;
@@ -258,6 +281,13 @@ int tr_cmd_tighten(int argc, char **argv)
     }
     /* the checkpoint is rewritten during the run: over the input it would
      * destroy the start, over the output the output would replace it */
+    /* the output is written over whatever it names: never over an input */
+    const char *src = in ? in : resume;
+    if (same_file(out, src)) {
+        fprintf(stderr, "tightrope tighten: the output %s is the %s %s; write the result elsewhere\n", out,
+                in ? "input" : "checkpoint to resume", src);
+        return 2;
+    }
     if (ckpt && (same_file(ckpt, out) || (in && same_file(ckpt, in)))) {
         fprintf(stderr, "tightrope tighten: --checkpoint %s is the %s file\n", ckpt,
                 same_file(ckpt, out) ? "output" : "input");
@@ -305,12 +335,34 @@ int tr_cmd_tighten(int argc, char **argv)
          * (a tight knot from another code at thickness 0.99995, a file in
          * its own units) to the rope's radius 1. Constraint planes sit at
          * fixed places, so a constrained start is not scaled. */
+        /* The oracle looks at the start first: a curve through itself has
+         * no thickness at all, and one at a scale like 1e+-300 would lose
+         * the engine's squared distances to under- or overflow (the oracle
+         * measures it in a rescaled frame, curve.h). */
+        /* An open rope with a free end shortens by pulling that end
+         * through: it comes out untied. Its ends must be held. */
+        for (int k = 0; rc == TR_OK && k < c.ncomp; k++) {
+            size_t ends[2] = {c.start[k], c.start[k + 1] - 1};
+            for (int q = 0; rc == TR_OK && !c.closed[k] && q < 2; q++)
+                if (!c.vcst || c.vcst[ends[q]] < 0)
+                    rc = tr_fail(&err, TR_EGEOMETRY,
+                                 "%s: component %d is open and its %s end (vertex %zu) is free: tightening would "
+                                 "pull it through and untie the rope; hold both ends with a constraint (a "
+                                 "'# Constraint 1 Plane 0 0 1 6' comment and '# Cst: 1' after the end vertex, "
+                                 "as tightrope make clasp writes)",
+                                 in, k, q ? "last" : "first", ends[q] - c.start[k]);
+        }
+        tr_thickness t0;
+        if (rc == TR_OK && (rc = tr_thickness_measure(&c, NULL, &t0, NULL, &err)))
+            tr_fail_wrap(&err, rc, "%s", in);
+        if (rc == TR_OK && !scale && tr_curve_scale_exponent(&c))
+            rc = tr_fail(&err, TR_EGEOMETRY,
+                         "%s has thickness %.3g, too far from 1 to tighten in its own units (squared "
+                         "distances would %s); --scale scales a start to thickness 1",
+                         in, t0.thickness, tr_curve_scale_exponent(&c) > 0 ? "overflow" : "underflow");
         if (rc == TR_OK && scale) {
-            tr_thickness t0;
             if (c.ncst > 0)
                 rc = tr_fail(&err, TR_EINVAL, "--scale: %s has constraints, whose planes would move", in);
-            else
-                rc = tr_thickness_measure(&c, NULL, &t0, NULL, &err);
             if (rc == TR_OK && !(t0.thickness > 0 && isfinite(t0.thickness)))
                 rc = tr_fail(&err, TR_EGEOMETRY, "--scale: %s has thickness %g; no scale makes it a rope", in,
                              t0.thickness);
@@ -329,7 +381,7 @@ int tr_cmd_tighten(int argc, char **argv)
     }
     /* A run of hours must not end in "cannot write": the output's format
      * and both paths are checked before it starts. */
-    rc = check_outputs(e, out, ckpt, &err);
+    rc = check_outputs(e, (size_t)refine_to, out, ckpt, &err);
     if (rc) {
         fprintf(stderr, "tightrope tighten: %s\n", err.msg);
         tr_engine_destroy(e);

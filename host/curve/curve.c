@@ -176,3 +176,30 @@ double tr_curve_length(const tr_curve *c)
         sum += tr_comp_length(c, k);
     return sum;
 }
+
+int tr_curve_scale_exponent(const tr_curve *c)
+{
+    double m = 0.0;
+    for (size_t i = 0; i < 3 * c->nv; i++)
+        m = fmax(m, fabs(c->x[i]));
+    for (int q = 0; q < c->ncst; q++)
+        m = fmax(m, fmax(fabs(c->cst[q].d), fmax(fabs(c->cst[q].p[0]), fmax(fabs(c->cst[q].p[1]), fabs(c->cst[q].p[2])))));
+    if (!(m > 0.0) || !isfinite(m))
+        return 0;
+    int e;
+    (void)frexp(m, &e); /* m = f 2^e, f in [0.5, 1) */
+    if (e > -TR_CURVE_SAFE_EXP && e <= TR_CURVE_SAFE_EXP)
+        return 0;
+    return e;
+}
+
+void tr_curve_scale_pow2(tr_curve *c, int e)
+{
+    for (size_t i = 0; i < 3 * c->nv; i++)
+        c->x[i] = ldexp(c->x[i], e);
+    for (int q = 0; q < c->ncst; q++) {
+        for (int a = 0; a < 3; a++)
+            c->cst[q].p[a] = ldexp(c->cst[q].p[a], e);
+        c->cst[q].d = ldexp(c->cst[q].d, e);
+    }
+}

@@ -73,4 +73,17 @@ double tr_constraint_violation(const tr_constraint *k, const double *x);
 double tr_curve_length(const tr_curve *c);
 double tr_comp_length(const tr_curve *c, int k);
 
+/* Ropelength is scale free, but squares of coordinates near 1e+-300 over- or
+ * underflow. tr_curve_scale_exponent gives the e for which the coordinates
+ * times 2^-e have their largest magnitude in [0.5, 1), or 0 when they are
+ * already within [2^-TR_CURVE_SAFE_EXP, 2^TR_CURVE_SAFE_EXP] (where squares
+ * and fourth powers of differences stay normal numbers) or all zero.
+ * tr_curve_scale_pow2 multiplies coordinates and constraints by 2^e, which
+ * is exact while nothing leaves the normal range: measuring in that frame
+ * and multiplying lengths back by 2^-e gives the same numbers as exact
+ * arithmetic in the original one. */
+#define TR_CURVE_SAFE_EXP 128
+int tr_curve_scale_exponent(const tr_curve *c);
+void tr_curve_scale_pow2(tr_curve *c, int e);
+
 #endif

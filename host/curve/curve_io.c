@@ -86,7 +86,9 @@ static const char *quote(char *buf, size_t bufn, const char *p, size_t n)
     return buf;
 }
 
-/* Parses a whole token as a finite double: 0 ok, 1 not a number, 2 not finite. */
+/* Parses a whole token as a finite decimal double: 0 ok, 1 not a number,
+ * 2 not finite. strtod also reads hexadecimal ("0x1p3"), which no curve
+ * file writes: a token with an x in it is not a number here. */
 static int token_double(const char *p, size_t n, double *out)
 {
     char buf[128];
@@ -94,7 +96,7 @@ static int token_double(const char *p, size_t n, double *out)
         return 1;
     memcpy(buf, p, n);
     buf[n] = '\0';
-    if (memchr(buf, '\0', n))
+    if (memchr(buf, '\0', n) || strpbrk(buf, "xX"))
         return 1;
     char *end;
     errno = 0;
@@ -515,14 +517,34 @@ static int parse_vect(const char *name, const char *text, size_t len, tr_curve *
     }
     long *pending = NULL; /* where a "# Cst:" comment goes: the last vertex read */
     size_t *pending_line = NULL;
+    /* VECT is a stream of numbers, so a number missing from (or added to)
+     * one line shifts every later one and the count only fails at the end.
+     * When the first two vertices stand one to a line, as plCurve and every
+     * writer we know put them, every vertex must: the line that breaks the
+     * layout is the one reported. */
+    int one_per_line = 0;
     for (size_t i = 0; i < out->nv; i++) {
+        size_t cl[3];
         for (int a = 0; a < 3; a++) {
-            size_t line;
-            if ((rc = vect_double(&st, "vertex", i, &out->x[3 * i + a], &line, a == 0 ? pending : NULL,
+            if ((rc = vect_double(&st, "vertex", i, &out->x[3 * i + a], &cl[a], a == 0 ? pending : NULL,
                                   pending_line)))
                 goto done;
             if (a == 0)
-                vline[i] = line;
+                vline[i] = cl[0];
+        }
+        int own_line = cl[1] == cl[0] && cl[2] == cl[0] && (i == 0 || cl[0] > vline[i - 1]);
+        if (i == 1)
+            one_per_line = own_line && cl[0] > vline[0];
+        if (i == 0 && !own_line)
+            one_per_line = 0;
+        if (i >= 2 && one_per_line && !own_line) {
+            if (cl[0] == vline[i - 1])
+                rc = parse_fail(err, name, cl[0], "more than 3 numbers on the line of vertex %zu (the vertices "
+                                "stand one to a line)", i - 1);
+            else
+                rc = parse_fail(err, name, cl[0], "%d number%s on the line of vertex %zu, which needs 3 (the "
+                                "vertices stand one to a line)", cl[1] == cl[0] ? 2 : 1, cl[1] == cl[0] ? "s" : "", i);
+            goto done;
         }
         pending = &vfid[i];
         pending_line = &cline[i];
@@ -766,7 +788,7 @@ int tr_curve_read(const char *path, tr_format fmt, tr_curve *out, tr_error *err)
     memset(out, 0, sizeof *out);
     char *buf;
     size_t n;
-    int rc = tr_read_file(path, &buf, &n, err);
+    int rc = tr_read_text_file(path, &buf, &n, err);
     if (rc)
         return rc;
     if (fmt == TR_FORMAT_AUTO)

@@ -410,13 +410,10 @@ static void sys_free(sys *s, work *k)
     free(k->ucol);
 }
 
-int tr_kkt_certify(const tr_curve *c, const tr_kkt_params *prm, tr_kkt *out, tr_error *err)
-{
-    return tr_kkt_certify_forces(c, prm, out, NULL, NULL, err);
-}
 
-int tr_kkt_certify_forces(const tr_curve *c, const tr_kkt_params *prm, tr_kkt *out, double *tension,
-                          double *unresolved, tr_error *err)
+/* tr_kkt_certify_forces in the curve's own frame. */
+static int certify_frame(const tr_curve *c, const tr_kkt_params *prm, tr_kkt *out, double *tension,
+                         double *unresolved, tr_error *err)
 {
     tr_kkt_params dp;
     if (!prm) {
@@ -611,4 +608,37 @@ done:
     free(y);
     sys_free(&s, &k);
     return rc;
+}
+
+/* A curve far from unit scale is certified in a frame scaled by a power of
+ * two (curve.h): the residual, the tension (a gradient of length) and the
+ * multipliers do not change with scale; the radius is scaled back. */
+int tr_kkt_certify_forces(const tr_curve *c, const tr_kkt_params *prm, tr_kkt *out, double *tension,
+                          double *unresolved, tr_error *err)
+{
+    int e = tr_curve_scale_exponent(c);
+    if (e == 0)
+        return certify_frame(c, prm, out, tension, unresolved, err);
+    memset(out, 0, sizeof *out);
+    tr_kkt_params sp;
+    if (prm)
+        sp = *prm;
+    else
+        tr_kkt_params_default(&sp);
+    if (sp.radius > 0.0)
+        sp.radius = ldexp(sp.radius, -e);
+    tr_curve s;
+    int rc = tr_curve_copy(&s, c, err);
+    if (rc)
+        return rc;
+    tr_curve_scale_pow2(&s, -e);
+    rc = certify_frame(&s, &sp, out, tension, unresolved, err);
+    tr_curve_free(&s);
+    out->radius = ldexp(out->radius, e);
+    return rc;
+}
+
+int tr_kkt_certify(const tr_curve *c, const tr_kkt_params *prm, tr_kkt *out, tr_error *err)
+{
+    return tr_kkt_certify_forces(c, prm, out, NULL, NULL, err);
 }

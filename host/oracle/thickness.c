@@ -365,7 +365,55 @@ static void component_lengths(const tr_curve *c, int k, comp_lengths *out)
     }
 }
 
-int tr_thickness_measure(const tr_curve *c, const tr_thickness_opts *opts, tr_thickness *out,
+/* Two non-neighbouring edges that meet, to rounding: the curve passes
+ * through itself. The doubly-critical test of a strut misses such a pair
+ * when the crossing is at or next to a vertex (the connector of a crossing
+ * has no direction), and thickness = min(MinRad, dcsd/2) holds only for a
+ * curve that does not meet itself, so this is looked for on its own. */
+typedef struct crossing_search {
+    const tr_nsearch *ns;
+    double tol;
+    size_t ei, ej;
+} crossing_search;
+
+static int crossing_candidate(void *ctx, size_t ei, size_t ej, double *cutoff)
+{
+    crossing_search *X = ctx;
+    const double *x = X->ns->c->x;
+    (void)cutoff;
+    double s, t;
+    double d = tr_segment_closest(x + 3 * X->ns->ea[ei], x + 3 * X->ns->eb[ei], x + 3 * X->ns->ea[ej],
+                                  x + 3 * X->ns->eb[ej], &s, &t);
+    if (!(d <= X->tol))
+        return 0;
+    X->ei = ei;
+    X->ej = ej;
+    return 1; /* found: stops the search */
+}
+
+static int find_crossing(const tr_nsearch *ns, tr_error *err)
+{
+    const tr_curve *c = ns->c;
+    double m = 0.0;
+    for (size_t i = 0; i < 3 * c->nv; i++)
+        m = fmax(m, fabs(c->x[i]));
+    crossing_search X = {.ns = ns, .tol = 16 * DBL_EPSILON * m};
+    double cutoff = X.tol;
+    int rc = tr_nsearch_pairs(ns, &cutoff, 2, 0, crossing_candidate, &X);
+    if (rc == 0)
+        return TR_OK;
+    if (rc != 1)
+        return tr_fail(err, TR_ENOMEM, "out of memory looking for self-crossings");
+    int ki = ns->ecomp[X.ei], kj = ns->ecomp[X.ej];
+    size_t s0 = c->start[ki], t0 = c->start[kj];
+    return tr_fail(err, TR_EGEOMETRY,
+                   "the curve passes through itself: the edge from vertex %zu to %zu of component %d meets "
+                   "the edge from vertex %zu to %zu of component %d, so no rope of any thickness follows it",
+                   ns->ea[X.ej] - t0, ns->eb[X.ej] - t0, kj, ns->ea[X.ei] - s0, ns->eb[X.ei] - s0, ki);
+}
+
+/* tr_thickness_measure in the curve's own frame. */
+static int measure_frame(const tr_curve *c, const tr_thickness_opts *opts, tr_thickness *out,
                          tr_strut_list *struts, tr_error *err)
 {
     memset(out, 0, sizeof *out);
@@ -413,6 +461,10 @@ int tr_thickness_measure(const tr_curve *c, const tr_thickness_opts *opts, tr_th
     int rc = tr_nsearch_build(&ns, c, err);
     if (rc)
         return rc;
+    if ((rc = find_crossing(&ns, err))) {
+        tr_nsearch_free(&ns);
+        return rc;
+    }
     strut_search S = {.ns = &ns, .rel_tol = rel_tol, .best = INFINITY, .list = struts};
     if (struts)
         struts->n = 0;
@@ -449,6 +501,34 @@ int tr_thickness_measure(const tr_curve *c, const tr_thickness_opts *opts, tr_th
     out->thickness = fmin(out->minrad, 0.5 * out->dcsd);
     out->ropelength = out->length / out->thickness;
     return TR_OK;
+}
+
+/* A curve far from unit scale (coordinates near 1e+-300, where squared
+ * distances over- or underflow) is measured in a frame scaled by a power of
+ * two, exactly, and its lengths scaled back (curve.h). */
+int tr_thickness_measure(const tr_curve *c, const tr_thickness_opts *opts, tr_thickness *out,
+                         tr_strut_list *struts, tr_error *err)
+{
+    int e = c && c->x ? tr_curve_scale_exponent(c) : 0;
+    if (e == 0)
+        return measure_frame(c, opts, out, struts, err);
+    memset(out, 0, sizeof *out);
+    tr_curve s;
+    int rc = tr_curve_copy(&s, c, err);
+    if (rc)
+        return rc;
+    tr_curve_scale_pow2(&s, -e);
+    rc = measure_frame(&s, opts, out, struts, err);
+    tr_curve_free(&s);
+    if (rc)
+        return rc;
+    double *len[] = {&out->length, &out->minrad, &out->dcsd, &out->thickness, &out->shortest.dist,
+                     &out->L_p, &out->L_c, &out->L_a};
+    for (size_t i = 0; i < sizeof len / sizeof *len; i++)
+        *len[i] = ldexp(*len[i], e);
+    for (size_t i = 0; struts && i < struts->n; i++)
+        struts->s[i].dist = ldexp(struts->s[i].dist, e);
+    return TR_OK; /* ropelength, a ratio, is the frame's */
 }
 
 int tr_thickness_measure_component(const tr_curve *c, int k, tr_thickness *out, tr_error *err)

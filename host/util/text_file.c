@@ -2,6 +2,8 @@
 
 #include <errno.h>
 #include <fcntl.h>
+#include <limits.h>
+#include <signal.h>
 #include <stdarg.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -11,7 +13,12 @@
 #include <time.h>
 #include <unistd.h>
 
-int tr_read_file(const char *path, char **text, size_t *len, tr_error *err)
+/* Reads path whole. What is allocated is bounded by what the file holds:
+ * a regular file's size up front (grown only if it grows meanwhile), and
+ * for a device or a pipe, which has no size, chunks as they come; with
+ * text_only the read stops at the first NUL byte (a text file has none),
+ * so /dev/zero costs one chunk, not memory until it runs out. */
+static int read_all(const char *path, int text_only, char **text, size_t *len, tr_error *err)
 {
     *text = NULL;
     if (len)
@@ -22,25 +29,41 @@ int tr_read_file(const char *path, char **text, size_t *len, tr_error *err)
     /* fopen succeeds on a directory; the read would fail with EISDIR, but
      * say so plainly before that */
     struct stat st;
-    if (fstat(fileno(f), &st) == 0 && S_ISDIR(st.st_mode)) {
+    int have_st = fstat(fileno(f), &st) == 0;
+    if (have_st && S_ISDIR(st.st_mode)) {
         fclose(f);
         return tr_fail(err, TR_EIO, "cannot read %s: %s", path, strerror(EISDIR));
     }
+    size_t want = 1 << 16;
+    if (have_st && S_ISREG(st.st_mode) && st.st_size >= 0 && (uintmax_t)st.st_size < SIZE_MAX - 2)
+        want = (size_t)st.st_size + 2; /* +1 for the NUL, +1 to see the end */
     char *buf = NULL;
-    size_t n = 0, cap = 0;
+    size_t n = 0, cap = 0, lines = 1;
     for (;;) {
-        if (cap - n < 65536) {
-            size_t ncap = cap ? 2 * cap : 1 << 16;
-            char *g = realloc(buf, ncap);
+        if (cap - n < 2) {
+            size_t ncap = cap ? (cap > SIZE_MAX / 2 ? SIZE_MAX : 2 * cap) : want;
+            char *g = ncap > cap ? realloc(buf, ncap) : NULL;
             if (!g) {
                 free(buf);
                 fclose(f);
-                return tr_fail(err, TR_ENOMEM, "out of memory reading %s", path);
+                return tr_fail(err, TR_ENOMEM, "out of memory reading %s (%zu bytes read)", path, n);
             }
             buf = g;
             cap = ncap;
         }
         size_t r = fread(buf + n, 1, cap - n - 1, f);
+        if (text_only) {
+            const char *z = memchr(buf + n, '\0', r);
+            for (const char *p = buf + n; p < (z ? z : buf + n + r); p++)
+                lines += *p == '\n';
+            if (z) {
+                size_t at = n + (size_t)(z - (buf + n));
+                free(buf);
+                fclose(f);
+                return tr_fail(err, TR_EPARSE, "%.200s:%zu: a NUL byte at offset %zu: not a text file", path,
+                               lines, at);
+            }
+        }
         n += r;
         if (r == 0)
             break;
@@ -58,17 +81,102 @@ int tr_read_file(const char *path, char **text, size_t *len, tr_error *err)
     return TR_OK;
 }
 
-/* Temporary name beside the target (same file system, so rename is atomic),
- * created with O_EXCL; the suffix mixes the pid and the clock, and a clash
- * just tries the next one. */
-static int open_temp(const char *path, char *tmp, size_t tmpn)
+int tr_read_file(const char *path, char **text, size_t *len, tr_error *err)
 {
+    return read_all(path, 0, text, len, err);
+}
+
+int tr_read_text_file(const char *path, char **text, size_t *len, tr_error *err)
+{
+    return read_all(path, 1, text, len, err);
+}
+
+int tr_same_file(const char *a, const char *b)
+{
+    struct stat sa, sb;
+    return stat(a, &sa) == 0 && stat(b, &sb) == 0 && sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
+}
+
+/* The file a write to path lands in: path itself, or, if path is a symbolic
+ * link, what it points to (followed as open() would, also when the final
+ * target does not exist yet), so that the rename replaces the target and
+ * leaves the link. Returns 0, or -1 with errno (ELOOP, ENAMETOOLONG). */
+static int resolve_target(const char *path, char *out, size_t outn)
+{
+    char cur[PATH_MAX];
+    if (strlen(path) >= sizeof cur) {
+        errno = ENAMETOOLONG;
+        return -1;
+    }
+    strcpy(cur, path);
+    for (int hops = 0;; hops++) {
+        struct stat st;
+        if (lstat(cur, &st) != 0 || !S_ISLNK(st.st_mode))
+            break;
+        if (hops >= 40) {
+            errno = ELOOP;
+            return -1;
+        }
+        char link[PATH_MAX];
+        ssize_t n = readlink(cur, link, sizeof link - 1);
+        if (n < 0)
+            return -1;
+        link[n] = '\0';
+        char next[PATH_MAX];
+        const char *slash = strrchr(cur, '/');
+        int m;
+        if (link[0] == '/' || !slash)
+            m = snprintf(next, sizeof next, "%s", link);
+        else /* relative to the link's own directory */
+            m = snprintf(next, sizeof next, "%.*s/%s", (int)(slash - cur), cur, link);
+        if (m < 0 || (size_t)m >= sizeof next) {
+            errno = ENAMETOOLONG;
+            return -1;
+        }
+        strcpy(cur, next);
+    }
+    if (strlen(cur) >= outn) {
+        errno = ENAMETOOLONG;
+        return -1;
+    }
+    strcpy(out, cur);
+    return 0;
+}
+
+/* The directory part of path ("." if none), into dir. */
+static int dir_of(const char *path, char *dir, size_t dirn)
+{
+    const char *slash = strrchr(path, '/');
+    size_t n = slash ? (size_t)(slash - path) : 1;
+    if (slash && n == 0)
+        n = 1; /* "/name": the root */
+    if (n >= dirn) {
+        errno = ENAMETOOLONG;
+        return -1;
+    }
+    memcpy(dir, slash ? path : ".", n);
+    dir[n] = '\0';
+    return 0;
+}
+
+/* A new temporary file in directory dir, created with O_EXCL: a short
+ * hidden name, ".tr.XXXXXX" (6 characters from the pid and the clock; a
+ * clash tries the next), so that it fits wherever the target's name fits,
+ * is on the same file system (rename is atomic) and is recognisable. */
+static int open_temp(const char *dir, char *tmp, size_t tmpn)
+{
+    static const char digits[] = "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789";
     struct timespec ts;
     clock_gettime(CLOCK_REALTIME, &ts);
     uint64_t salt = ((uint64_t)getpid() << 32) ^ (uint64_t)ts.tv_nsec ^ ((uint64_t)ts.tv_sec << 20);
     for (int attempt = 0; attempt < 100; attempt++) {
         salt = salt * 6364136223846793005ULL + 1442695040888963407ULL;
-        int m = snprintf(tmp, tmpn, "%s.tmp%06x", path, (unsigned)(salt >> 40));
+        char suffix[7];
+        uint64_t v = salt >> 16;
+        for (int i = 0; i < 6; i++, v /= 62)
+            suffix[i] = digits[v % 62];
+        suffix[6] = '\0';
+        int m = snprintf(tmp, tmpn, "%s/.tr.%s", dir, suffix);
         if (m < 0 || (size_t)m >= tmpn) {
             errno = ENAMETOOLONG;
             return -1;
@@ -85,8 +193,10 @@ int tr_check_writable(const char *path, tr_error *err)
     struct stat st;
     if (stat(path, &st) == 0 && S_ISDIR(st.st_mode))
         return tr_fail(err, TR_EIO, "cannot write %s: %s", path, strerror(EISDIR));
-    char tmp[4096];
-    int fd = open_temp(path, tmp, sizeof tmp);
+    char target[PATH_MAX], dir[PATH_MAX], tmp[PATH_MAX + 16];
+    int fd = -1;
+    if (resolve_target(path, target, sizeof target) == 0 && dir_of(target, dir, sizeof dir) == 0)
+        fd = open_temp(dir, tmp, sizeof tmp);
     if (fd < 0)
         return tr_fail(err, TR_EIO, "cannot write %s: %s", path, strerror(errno));
     close(fd);
@@ -94,66 +204,90 @@ int tr_check_writable(const char *path, tr_error *err)
     return TR_OK;
 }
 
+/* Writes all of text to fd, fsyncs and closes it (also on failure);
+ * 0 or the errno, *what naming the step that failed. */
+static int fill_temp(int fd, const char *text, size_t len, const char **what)
+{
+    int e = 0;
+    *what = "write";
+    for (size_t done = 0; done < len && !e;) {
+        ssize_t w = write(fd, text + done, len - done);
+        if (w >= 0)
+            done += (size_t)w;
+        else if (errno != EINTR)
+            e = errno;
+    }
+    if (!e && fsync(fd) != 0)
+        e = errno, *what = "sync";
+    if (close(fd) != 0 && !e)
+        e = errno, *what = "write";
+    return e;
+}
+
+/* Signals that would end the process between creating the temporary and
+ * renaming it are held back for that moment, so an interrupt or a kill(1)
+ * never leaves a temporary behind: only SIGKILL or a crash can, and then
+ * what remains is a hidden .tr.XXXXXX beside the target (the target itself
+ * is the old file or the new one, never a part). */
+static void hold_signals(sigset_t *old)
+{
+    sigset_t set;
+    sigemptyset(&set);
+    sigaddset(&set, SIGINT);
+    sigaddset(&set, SIGTERM);
+    sigaddset(&set, SIGHUP);
+    sigaddset(&set, SIGQUIT);
+    sigaddset(&set, SIGPIPE);
+    sigprocmask(SIG_BLOCK, &set, old);
+}
+
 int tr_write_file_atomic(const char *path, const char *text, size_t len, tr_error *err)
 {
-    char tmp[4096];
-    int fd = open_temp(path, tmp, sizeof tmp);
-    if (fd < 0)
+    /* Through a symbolic link the link stays and its target is replaced. */
+    char target[PATH_MAX], dir[PATH_MAX], tmp[PATH_MAX + 16];
+    if (resolve_target(path, target, sizeof target) != 0 || dir_of(target, dir, sizeof dir) != 0)
         return tr_fail(err, TR_EIO, "cannot write %s: %s", path, strerror(errno));
-    size_t done = 0;
-    while (done < len) {
-        ssize_t w = write(fd, text + done, len - done);
-        if (w < 0) {
-            if (errno == EINTR)
-                continue;
-            int e = errno;
-            close(fd);
-            unlink(tmp);
-            return tr_fail(err, TR_EIO, "cannot write %s: %s", path, strerror(e));
-        }
-        done += (size_t)w;
+    sigset_t old;
+    hold_signals(&old);
+    int rc = TR_OK;
+    int fd = open_temp(dir, tmp, sizeof tmp);
+    if (fd < 0) {
+        rc = tr_fail(err, TR_EIO, "cannot write %s: %s", path, strerror(errno));
+        goto out;
     }
-    if (fsync(fd) != 0) {
+    /* An existing file keeps its permissions (a new one gets 0666 less
+     * the umask, from open). */
+    struct stat st;
+    if (stat(target, &st) == 0 && S_ISREG(st.st_mode) && fchmod(fd, st.st_mode & 07777) != 0) {
         int e = errno;
         close(fd);
         unlink(tmp);
-        return tr_fail(err, TR_EIO, "cannot sync %s: %s", path, strerror(e));
+        rc = tr_fail(err, TR_EIO, "cannot keep the mode of %s: %s", path, strerror(e));
+        goto out;
     }
-    if (close(fd) != 0) {
-        int e = errno;
+    const char *what;
+    int e = fill_temp(fd, text, len, &what);
+    if (e) {
         unlink(tmp);
-        return tr_fail(err, TR_EIO, "cannot write %s: %s", path, strerror(e));
+        rc = tr_fail(err, TR_EIO, "cannot %s %s: %s", what, path, strerror(e));
+        goto out;
     }
-    if (rename(tmp, path) != 0) {
-        int e = errno;
+    if (rename(tmp, target) != 0) {
+        e = errno;
         unlink(tmp);
-        return tr_fail(err, TR_EIO, "cannot replace %s: %s", path, strerror(e));
+        rc = tr_fail(err, TR_EIO, "cannot replace %s: %s", path, strerror(e));
+        goto out;
     }
     /* Make the rename itself durable; a failure here loses nothing that is
      * already visible, so it is not an error. */
-    char dir[4096];
-    const char *slash = strrchr(path, '/');
-    if (slash) {
-        size_t n = (size_t)(slash - path);
-        if (n == 0)
-            n = 1;
-        if (n < sizeof dir) {
-            memcpy(dir, path, n);
-            dir[n] = '\0';
-        } else {
-            dir[0] = '\0';
-        }
-    } else {
-        strcpy(dir, ".");
+    int dfd = open(dir, O_RDONLY);
+    if (dfd >= 0) {
+        (void)fsync(dfd);
+        close(dfd);
     }
-    if (dir[0]) {
-        int dfd = open(dir, O_RDONLY);
-        if (dfd >= 0) {
-            (void)fsync(dfd);
-            close(dfd);
-        }
-    }
-    return TR_OK;
+out:
+    sigprocmask(SIG_SETMASK, &old, NULL);
+    return rc;
 }
 
 void tr_text_printf(tr_text *t, const char *fmt, ...)

@@ -14,15 +14,31 @@
  * a missing file or a read error is TR_EIO with the system's reason. */
 int tr_read_file(const char *path, char **text, size_t *len, tr_error *err);
 
-/* Writes `len` bytes to a temporary file beside `path` (same file system),
+/* As tr_read_file, for a text file: a NUL byte ends the read at once with
+ * TR_EPARSE "FILE:LINE: a NUL byte ...", so reading /dev/zero or a binary
+ * file allocates no more than one chunk. Either reader allocates what the
+ * file holds (a regular file's size), not more; out of memory is TR_ENOMEM. */
+int tr_read_text_file(const char *path, char **text, size_t *len, tr_error *err);
+
+/* Writes `len` bytes to a temporary file beside `path` (same directory,
+ * a short hidden name ".tr.XXXXXX", so any legal name of path works),
  * fsyncs it and renames it over `path`: readers see the old file or the
- * whole new one, never a part. */
+ * whole new one, never a part. An existing file keeps its mode; a symbolic
+ * link stays a link and its target is replaced. Interrupting signals are
+ * held back while the temporary exists, so only SIGKILL or a crash leaves
+ * one behind. */
 int tr_write_file_atomic(const char *path, const char *text, size_t len, tr_error *err);
 
 /* What tr_write_file_atomic needs, checked before a long computation whose
  * result it will write: the temporary beside `path` can be created (and is
  * removed again) and `path` is not a directory. TR_EIO with the reason. */
 int tr_check_writable(const char *path, tr_error *err);
+
+/* Whether a and b are one file (same device and inode: ./k.vect, a hard
+ * link and a symbolic link to k.vect are all k.vect). 0 when either does
+ * not exist. Commands use it to refuse an output that is one of their
+ * inputs. */
+int tr_same_file(const char *a, const char *b);
 
 /* A growing string. Zero-initialise; tr_text_printf appends; an
  * allocation or format failure sets `oom` and later calls do nothing, so

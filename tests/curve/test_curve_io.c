@@ -305,6 +305,8 @@ static void test_bad_corpus(void)
         {"repeats_first.tsv", 5},    {"unknown_constraint.vect", 5}, {"undefined_constraint.vect", 8},
         {"constraint_numbers.vect", 5}, {"trailing.vect", 8},        {"truncated.vect", 7},
         {"fields.tsv", 2},           {"fields.txt", 2},              {"binary.vect", 6},
+        {"vect_missing_number.vect", 8}, {"vect_extra_number.vect", 8}, {"hex.tsv", 1},
+        {"hex.vect", 6},
     };
     int seen = 0;
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {

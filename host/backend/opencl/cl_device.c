@@ -1,4 +1,5 @@
 #include "backend/opencl/cl_device.h"
+#include "backend/opencl/cl_reduce.h"
 
 #include <ctype.h>
 #include <stdio.h>
@@ -101,6 +102,27 @@ static void describe_device(tr_cl_device_info *d)
     d->score = device_score(d);
 }
 
+/* A device whose driver cannot build our kernels is not usable, however
+ * it describes itself: they are built once here (the driver caches the
+ * binary, PoCL in POCL_CACHE_DIR, so the backend's own build is cheap). */
+static void check_kernels(tr_cl_device_info *d)
+{
+    tr_cl_ctx ctx;
+    tr_error why;
+    cl_program prog = NULL;
+    int rc = tr_cl_ctx_open(&ctx, d, 0, &why);
+    if (rc == TR_OK) {
+        rc = tr_cl_build_all(&ctx, &prog, &why);
+        if (prog)
+            clReleaseProgram(prog);
+        tr_cl_ctx_close(&ctx);
+    }
+    if (rc != TR_OK) {
+        d->usable = 0;
+        snprintf(d->reason, sizeof d->reason, "the kernels do not build: %.160s", why.msg);
+    }
+}
+
 int tr_cl_enumerate(tr_cl_device_list *out, tr_error *err)
 {
     int rc = TR_OK;
@@ -163,6 +185,8 @@ int tr_cl_enumerate(tr_cl_device_list *out, tr_error *err)
             snprintf(info->platform_name, sizeof info->platform_name, "%s", pname);
             snprintf(info->platform_vendor, sizeof info->platform_vendor, "%s", pvendor);
             describe_device(info);
+            if (info->usable)
+                check_kernels(info);
         }
     }
     if (out->n == 0)
@@ -271,13 +295,13 @@ int tr_device_select(const char *spec, tr_device_choice *out, tr_error *err)
                      "%.100s), slower than the reference here; --device opencl selects them",
                      l.dev[best].platform, l.dev[best].device, l.dev[best].name);
         } else if (!strcmp(spec, "opencl")) {
-            rc = tr_fail(err, TR_EUNSUPPORTED, "no usable opencl device (%s)",
-                         l.n ? "none has fp64" : l.none_reason);
+            rc = tr_fail(err, TR_EUNSUPPORTED, "no usable opencl device (%.400s)",
+                         l.n ? l.dev[0].reason : l.none_reason);
         } else {
             out->kind = TR_DEVICE_REFERENCE;
             snprintf(out->warning, sizeof out->warning,
                      "using the serial reference: no usable opencl device (%.300s)",
-                     l.n ? "none has double precision" : l.none_reason);
+                     l.n ? l.dev[0].reason : l.none_reason);
         }
         tr_cl_device_list_free(&l);
         return rc;
