@@ -20,6 +20,8 @@ typedef struct tr_arc_profile {
     double *tau;    /* phi_k / h_k, h_k = K_c arclength from the middle of arc k to the middle of arc k+1 */
     double *alpha;  /* accumulated torsion: sum of phi over junctions 0..k */
     double L_c;     /* length of K_c: arcs plus straight gaps */
+    size_t nj;      /* junctions: n when closed, n - 1 on an open rope */
+    int closed;
 } tr_arc_profile;
 
 /* w: closed polygon of n >= 4 vertices; pos[k]: the coordinate of vertex k
@@ -27,6 +29,10 @@ typedef struct tr_arc_profile {
  * polygon's own arclength; L: the period of pos (ignored when pos is NULL). */
 int tr_arc_profile_compute(const double *w, size_t n, const double *pos, double L,
                            tr_arc_profile *out, tr_error *err);
+/* An open rope w of n >= 4 vertices: arcs at the n - 2 interior vertices
+ * (an end vertex has no turning angle), junctions between consecutive arcs
+ * (nj = n - 3); positions are arclength from vertex 0, L the rope's length. */
+int tr_arc_profile_compute_open(const double *w, size_t n, tr_arc_profile *out, tr_error *err);
 void tr_arc_profile_free(tr_arc_profile *p);
 
 #endif
