@@ -14,6 +14,7 @@
 #include "analysis/contacts.h"
 #include "curve/curve_io.h"
 #include "analysis/knot_analysis.h"
+#include "analysis/open_rope.h"
 #include "oracle/thickness.h"
 
 static void usage(FILE *f)
@@ -22,7 +23,8 @@ static void usage(FILE *f)
             "usage: tightrope analyze IN --out DIR [-m M] [--plots] [options]\n"
             "\n"
             "Curvature, torsion, symmetry and contact portrait of each closed component of IN\n"
-            "(REFERENCE.md 3-5). The curve is first scaled to thickness 1 (rope radius 1).\n"
+            "(REFERENCE.md 3-5); curvature and torsion profiles of each open one (a rope: curvature.csv,\n"
+            "torsion.csv, summary.json, report.txt). The curve is first scaled to thickness 1 (rope radius 1).\n"
             "Writes into DIR (DIR/compK/ for a link): curvature.csv, torsion.csv, plateaus.csv,\n"
             "symmetry.csv, contacts.csv, sigma.csv, fixed_points.csv, summary.json, report.txt;\n"
             "with --plots also PNG plots drawn by gnuplot.\n"
@@ -104,9 +106,11 @@ typedef struct cli_opts {
     int plots, paper, scale;
 } cli_opts;
 
-/* One closed component, analysed and not yet written. */
+/* One component, analysed and not yet written. */
 typedef struct comp_result {
     int k;
+    int open;         /* an open rope: rope holds its profiles, an is empty */
+    tr_open_rope rope;
     tr_curve one;     /* the component alone, scaled */
     double scale;
     tr_thickness th;
@@ -116,6 +120,7 @@ typedef struct comp_result {
 static void comp_result_free(comp_result *r)
 {
     tr_analysis_free(&r->an);
+    tr_open_rope_free(&r->rope);
     tr_curve_free(&r->one);
 }
 
@@ -131,7 +136,8 @@ static int analyse_component(const tr_curve *c, int k, const char *in, const cli
     r->k = k;
     r->scale = 1.0;
     size_t nv = tr_comp_nv(c, k);
-    unsigned char closed = 1;
+    unsigned char closed = c->closed[k] ? 1 : 0;
+    r->open = !closed;
     if (tr_curve_alloc(&r->one, 1, &nv, &closed, &err) != TR_OK) {
         fprintf(stderr, "tightrope analyze: %s\n", err.msg);
         return 1;
@@ -165,6 +171,14 @@ static int analyse_component(const tr_curve *c, int k, const char *in, const cli
     tr_thickness_opts to = {.strut_rel_tol = o->strut_tol};
     if ((rc = tr_thickness_measure(&r->one, &to, &r->th, &sl, &err)) != TR_OK) {
         fprintf(stderr, "tightrope analyze: %s: component %d: thickness: %s\n", in, k, err.msg);
+        status = rc == TR_ENOMEM ? 1 : 2;
+        goto fail;
+    }
+    if (r->open) { /* profiles only: no contacts or symmetry on an open rope */
+        tr_strut_list_free(&sl);
+        if ((rc = tr_open_rope_analyze(r->one.x, nv, &r->rope, &err)) == TR_OK)
+            return 0;
+        fprintf(stderr, "tightrope analyze: %s: component %d: %s\n", in, k, err.msg);
         status = rc == TR_ENOMEM ? 1 : 2;
         goto fail;
     }
@@ -206,11 +220,55 @@ fail:
     return status;
 }
 
+/* An open rope's tables, summary and report into dir, which exists; the
+ * closed-knot files an earlier run left there go (only analyze's names).
+ * Returns a process status. */
+static int write_open_rope(comp_result *r, const char *in, const char *dir, const cli_opts *o)
+{
+    tr_error err = {{0}};
+    tr_report_ctx ctx = {in, r->k, r->scale, &r->th, 0};
+    const char *names[] = {"curvature.csv", "torsion.csv", "summary.json", "report.txt"};
+    for (int i = 0; i < 4; i++) {
+        char *t = NULL;
+        int fmt = i == 0   ? tr_open_rope_curvature_csv(&r->rope, &t)
+                  : i == 1 ? tr_open_rope_torsion_csv(&r->rope, &t)
+                  : i == 2 ? tr_open_rope_summary_json(&r->rope, &ctx, &t)
+                           : tr_open_rope_report_text(&r->rope, &ctx, &t);
+        if (fmt == TR_OK && i == 3)
+            fputs(t, stdout);
+        int rc = fmt == TR_OK ? write_text(dir, names[i], t, &err) : TR_ENOMEM;
+        if (rc == TR_ENOMEM) {
+            fprintf(stderr, "tightrope analyze: writing %s: out of memory\n", dir);
+            return 1;
+        }
+        if (rc != TR_OK) {
+            fprintf(stderr, "tightrope analyze: writing %s: %s\n", dir, err.msg);
+            return 2;
+        }
+    }
+    static const char *const stale[] = {"plateaus.csv", "symmetry.csv", "contacts.csv", "sigma.csv",
+                                        "fixed_points.csv", "curvature_torsion.png", "plateau_zoom.png",
+                                        "accumulated_torsion.png", "contact_map.png", "sigma9.png",
+                                        "plots.gp", "gnuplot.log"};
+    for (size_t i = 0; i < sizeof stale / sizeof *stale; i++) {
+        char path[4096];
+        if (snprintf(path, sizeof path, "%s/%s", dir, stale[i]) < (int)sizeof path && unlink(path) != 0 &&
+            errno != ENOENT)
+            fprintf(stderr, "tightrope analyze: warning: cannot remove the stale %s: %s\n", path, strerror(errno));
+    }
+    if (o->plots)
+        fprintf(stderr, "tightrope analyze: %s: component %d is open: no plots for open ropes yet; the CSV files "
+                        "are written\n", in, r->k);
+    return 0;
+}
+
 /* Writes the tables, the summary and (with --plots) the plots of one
  * analysed component into dir, which exists. Returns a process status. */
 static int write_component(comp_result *r, const char *in, const char *dir, const cli_opts *o,
                            int *plots_missing)
 {
+    if (r->open)
+        return write_open_rope(r, in, dir, o);
     tr_error err = {{0}};
     const tr_analysis *an = &r->an;
     tr_report_ctx ctx = {in, r->k, r->scale, &r->th,
@@ -418,12 +476,18 @@ int tr_cmd_analyze(int argc, char **argv)
     /* Everything about the input and the options is checked, and every
      * component analysed, before the output directory is made. */
     size_t m = o.ao.m ? o.ao.m : 10;
-    int nclosed = 0;
+    int nres = c.ncomp; /* every component, closed or open */
     for (int k = 0; k < c.ncomp; k++) {
-        if (!c.closed[k])
-            continue;
-        nclosed++;
         size_t nv = tr_comp_nv(&c, k);
+        if (!c.closed[k]) {
+            if (nv < 4) {
+                fprintf(stderr, "tightrope analyze: component %d of %s is an open rope of %zu vertices; its "
+                                "profiles need at least 4\n", k, in, nv);
+                tr_curve_free(&c);
+                return 2;
+            }
+            continue;
+        }
         if (nv / m < 4) {
             fprintf(stderr, "tightrope analyze: -m %zu leaves fewer than 4 averaged vertices on component %d of %s (%zu vertices)\n",
                     m, k, in, nv);
@@ -437,13 +501,13 @@ int tr_cmd_analyze(int argc, char **argv)
             return 2;
         }
     }
-    if (!nclosed) {
-        fprintf(stderr, "tightrope analyze: %s has no closed component\n", in);
+    if (!nres) {
+        fprintf(stderr, "tightrope analyze: %s has no component\n", in);
         tr_curve_free(&c);
         return 2;
     }
-    comp_result *res = calloc((size_t)nclosed, sizeof *res);
-    int *done = calloc((size_t)nclosed, sizeof *done);
+    comp_result *res = calloc((size_t)nres, sizeof *res);
+    int *done = calloc((size_t)nres, sizeof *done);
     if (!res || !done) {
         fprintf(stderr, "tightrope analyze: out of memory\n");
         free(res), free(done);
@@ -452,10 +516,6 @@ int tr_cmd_analyze(int argc, char **argv)
     }
     int status = 0, ndone = 0, optbad = 0;
     for (int k = 0, q = 0; k < c.ncomp && !optbad; k++) {
-        if (!c.closed[k]) {
-            fprintf(stderr, "tightrope analyze: warning: %s: component %d is open; skipped (the portrait is for closed knots)\n", in, k);
-            continue;
-        }
         int s = analyse_component(&c, k, in, &o, &res[q], &optbad);
         if (s == 0)
             done[q] = 1, ndone++;
@@ -471,7 +531,7 @@ int tr_cmd_analyze(int argc, char **argv)
         status = errno == ENOMEM ? 1 : 2;
         ndone = 0;
     }
-    for (int q = 0; q < nclosed && ndone; q++) {
+    for (int q = 0; q < nres && ndone; q++) {
         if (!done[q])
             continue;
         char dir[4096];
@@ -491,7 +551,7 @@ int tr_cmd_analyze(int argc, char **argv)
         if (s > status)
             status = s;
     }
-    for (int q = 0; q < nclosed; q++)
+    for (int q = 0; q < nres; q++)
         if (done[q])
             comp_result_free(&res[q]);
     free(res), free(done);

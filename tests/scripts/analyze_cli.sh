@@ -171,7 +171,8 @@ nodir)
   need_knot
   # A bad input is found before anything is made: no empty output directory.
   printf 'VECT\n1 3 0\n3\n0\n0 0 0\n1 0 0\n' >"$work/short.vect"
-  printf 'VECT\n1 4 0\n4\n0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n' >"$work/open.vect"
+  # (open ropes are analysed since issue 23; one of 3 vertices is too short for a profile)
+  printf 'VECT\n1 3 0\n3\n0\n0 0 0\n1 0 0\n1 1 0\n' >"$work/open.vect"
   for f in "$work/no_such.vect" "$work/short.vect" "$work/open.vect"; do
     "$tr" analyze "$f" --out "$work/o" >/dev/null 2>"$work/err"; rc=$?
     [ $rc = 2 ] || fail "$f: exit $rc: $(cat "$work/err")"
