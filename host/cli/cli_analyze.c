@@ -15,6 +15,7 @@
 #include "curve/curve_io.h"
 #include "analysis/knot_analysis.h"
 #include "analysis/open_rope.h"
+#include "analysis/tube_mesh.h"
 #include "oracle/thickness.h"
 
 static void usage(FILE *f)
@@ -46,6 +47,9 @@ static void usage(FILE *f)
             "  --paper / --no-paper  set the paper's trefoil values beside ours (default: when the\n"
             "                     knot is D3 with ropelength within 2%% of 32.743)\n"
             "  --no-scale         analyse the coordinates as given\n"
+            "  --mesh FILE.ply    also write the rope as a closed triangulated tube of radius 1 around\n"
+            "                     every component (open ropes capped), ASCII PLY for ParaView or Blender\n"
+            "  --mesh-sides K     vertices per ring of the tube, 3 to 1024 (default 16)\n"
             "\n"
             "Exit status: 0 written; 2 bad input, option or unwritable output (nothing is written\n"
             "for a bad input or option); 1 out of memory or gnuplot failed.\n");
@@ -104,6 +108,8 @@ typedef struct cli_opts {
     double jump_at[64];
     double strut_tol;
     int plots, paper, scale;
+    const char *mesh;  /* --mesh FILE or NULL */
+    size_t mesh_sides;
 } cli_opts;
 
 /* One component, analysed and not yet written. */
@@ -342,12 +348,37 @@ static int write_component(comp_result *r, const char *in, const char *dir, cons
     return 0;
 }
 
+/* The tube of radius 1 around every analysed component (scaled as they
+ * were analysed), one PLY file written atomically. Returns a process status. */
+static int write_mesh(const comp_result *res, int nres, const char *in, const cli_opts *o)
+{
+    tr_error err = {{0}};
+    tr_tube_mesh m = {0};
+    size_t K = o->mesh_sides ? o->mesh_sides : 16;
+    int rc = TR_OK;
+    for (int q = 0; q < nres && rc == TR_OK; q++)
+        if ((rc = tr_tube_mesh_add(&m, res[q].one.x, res[q].one.nv, !res[q].open, 1.0, K, &err)) != TR_OK)
+            fprintf(stderr, "tightrope analyze: --mesh %s: component %d of %s: %s\n", o->mesh, res[q].k, in, err.msg);
+    char comment[512], *text = NULL;
+    snprintf(comment, sizeof comment, "tube of radius 1 around %.400s (%s), made by tightrope analyze", in,
+             o->scale ? "scaled to thickness 1" : "as given");
+    if (rc == TR_OK && (rc = tr_tube_mesh_ply(&m, comment, &text)) != TR_OK)
+        fprintf(stderr, "tightrope analyze: --mesh %s: out of memory\n", o->mesh);
+    if (rc == TR_OK && (rc = tr_write_file_atomic(o->mesh, text, strlen(text), &err)) != TR_OK)
+        fprintf(stderr, "tightrope analyze: --mesh %s: %s\n", o->mesh, err.msg);
+    if (rc == TR_OK)
+        printf("mesh: %s (%zu vertices, %zu triangles)\n", o->mesh, m.nv, m.nf);
+    free(text);
+    tr_tube_mesh_free(&m);
+    return rc == TR_OK ? 0 : rc == TR_ENOMEM ? 1 : 2;
+}
+
 /* Options followed by a value. */
 static int takes_value(const char *a)
 {
     static const char *const names[] = {"--out",      "-o",          "-m",          "--plateau-eps",
                                         "--plateau-min", "--jump-window", "--jump-at", "--sym-tol",
-                                        "--strut-tol", "--contact-bin", "--power"};
+                                        "--strut-tol", "--contact-bin", "--power", "--mesh", "--mesh-sides"};
     for (size_t i = 0; i < sizeof names / sizeof *names; i++)
         if (!strcmp(a, names[i]))
             return 1;
@@ -394,7 +425,19 @@ int tr_cmd_analyze(int argc, char **argv)
                 return 2;
             }
             i++;
-        } else if (!strcmp(a, "--power")) {
+        } else if (!strcmp(a, "--mesh")) {
+            if (!*v) {
+                fprintf(stderr, "tightrope analyze: --mesh needs a file name\n");
+                return 2;
+            }
+            o.mesh = v, i++;
+        } else if (!strcmp(a, "--mesh-sides")) {
+            if (tr_arg_size(v, 3, TR_TUBE_SIDES_MAX, &o.mesh_sides)) {
+                fprintf(stderr, "tightrope analyze: --mesh-sides needs an integer from 3 to %d, got '%s'\n",
+                        TR_TUBE_SIDES_MAX, v);
+                return 2;
+            }
+            i++;
             if (tr_arg_int(v, 1, TR_CONTACT_POWER_MAX, &o.ao.power)) {
                 fprintf(stderr, "tightrope analyze: --power needs an integer from 1 to %d, got '%s'\n",
                         TR_CONTACT_POWER_MAX, v);
@@ -466,7 +509,19 @@ int tr_cmd_analyze(int argc, char **argv)
         fprintf(stderr, "tightrope analyze: no output directory (--out DIR)\n");
         return 2;
     }
+    if (o.mesh_sides && !o.mesh) {
+        fprintf(stderr, "tightrope analyze: --mesh-sides needs --mesh FILE\n");
+        return 2;
+    }
     tr_error err = {{0}};
+    if (o.mesh && tr_same_file(o.mesh, in)) {
+        fprintf(stderr, "tightrope analyze: --mesh %s is the input file\n", o.mesh);
+        return 2;
+    }
+    if (o.mesh && tr_check_writable(o.mesh, &err) != TR_OK) {
+        fprintf(stderr, "tightrope analyze: --mesh: %s\n", err.msg);
+        return 2;
+    }
     tr_curve c;
     int rc = tr_curve_read(in, TR_FORMAT_AUTO, &c, &err);
     if (rc != TR_OK) {
@@ -551,6 +606,11 @@ int tr_cmd_analyze(int argc, char **argv)
         if (s > status)
             status = s;
     }
+    if (o.mesh && status == 0 && ndone == nres)
+        status = write_mesh(res, nres, in, &o);
+    else if (o.mesh && ndone)
+        fprintf(stderr, "tightrope analyze: no mesh written to %s: not every component of %s was analysed\n",
+                o.mesh, in);
     for (int q = 0; q < nres; q++)
         if (done[q])
             comp_result_free(&res[q]);

@@ -61,6 +61,40 @@ short)
   [ "$(wc -l <"$work/stderr")" = 1 ] && grep -q short.vect "$work/stderr" || fail "message: $(cat "$work/stderr")"
   [ -e "$work/out" ] && fail "output written"
   ;;
+mesh)
+  # --mesh: a regular 100-gon of radius 4 (as given): every ring vertex at
+  # distance 1 from the circle (the bisector planes contain the axis), every
+  # edge in exactly two triangles, the header's counts those of the body
+  awk 'BEGIN { pi = atan2(0, -1); printf "VECT\n1 100 0\n-100\n0\n"
+    for (i = 0; i < 100; i++) printf "%.17g %.17g 0\n", 4 * cos(2 * pi * i / 100), 4 * sin(2 * pi * i / 100) }' >"$work/circle.vect"
+  "$tr" analyze "$work/circle.vect" --out "$work/out" --no-scale --mesh "$work/circle.ply" --mesh-sides 12 \
+    >"$work/stdout" 2>"$work/stderr" || fail "exit $?: $(cat "$work/stderr")"
+  grep -q "^mesh: $work/circle.ply (1200 vertices, 2400 triangles)" "$work/stdout" || fail "stdout: $(cat "$work/stdout")"
+  ls "$work"/.*.tmp* "$work"/*.tmp* >/dev/null 2>&1 && fail "temporary left behind"
+  awk -v R=4 '
+    NR == 1 && $0 != "ply" { print "not PLY"; bad = 1; exit }
+    /^element vertex / { nv = $3 } /^element face / { nf = $3 }
+    !body { if ($0 == "end_header") body = 1; next }
+    vi < nv { d = sqrt((sqrt($1 * $1 + $2 * $2) - R) ^ 2 + $3 * $3) - 1; if (d < 0) d = -d; if (d > dmax) dmax = d; vi++; next }
+    { if ($1 != 3) { print "not a triangle: " $0; bad = 1 }
+      for (k = 2; k <= 4; k++) { a = $k; b = $(k == 4 ? 2 : k + 1); e[a < b ? a " " b : b " " a]++ }
+      fi++ }
+    END { if (bad) exit 1
+      if (vi != nv || fi != nf || nv != 1200 || nf != 2400) { print "counts " vi " " nv " " fi " " nf; exit 1 }
+      if (dmax > 1e-9) { print "distance off by " dmax; exit 1 }
+      for (k in e) if (e[k] != 2) { print "edge " k " in " e[k] " triangles"; exit 1 } }' "$work/circle.ply" ||
+    fail "circle.ply"
+  # the clasp's two ropes, capped: (100 x 16 + 2) vertices each
+  "$tr" make clasp -o "$work/clasp.vect" >/dev/null || fail "make clasp"
+  "$tr" analyze "$work/clasp.vect" --out "$work/clasp" --mesh "$work/clasp.ply" >"$work/stdout" 2>"$work/stderr" ||
+    fail "clasp: exit $?: $(cat "$work/stderr")"
+  grep -q '^element vertex 3204$' "$work/clasp.ply" && grep -q '^element face 6400$' "$work/clasp.ply" || fail "clasp.ply counts"
+  # refused in one line naming the file, nothing written
+  "$tr" analyze "$work/circle.vect" --out "$work/o2" --mesh "$work/no/such/dir/x.ply" 2>"$work/stderr"
+  [ $? = 2 ] || fail "unwritable mesh: exit status"
+  [ "$(wc -l <"$work/stderr")" = 1 ] && grep -q "no/such/dir/x.ply" "$work/stderr" || fail "message: $(cat "$work/stderr")"
+  [ -e "$work/o2" ] && fail "output written for an unwritable mesh"
+  ;;
 *) fail "unknown case $case_" ;;
 esac
 exit 0
