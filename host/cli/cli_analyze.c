@@ -438,6 +438,7 @@ int tr_cmd_analyze(int argc, char **argv)
                 return 2;
             }
             i++;
+        } else if (!strcmp(a, "--power")) {
             if (tr_arg_int(v, 1, TR_CONTACT_POWER_MAX, &o.ao.power)) {
                 fprintf(stderr, "tightrope analyze: --power needs an integer from 1 to %d, got '%s'\n",
                         TR_CONTACT_POWER_MAX, v);
