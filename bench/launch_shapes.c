@@ -13,6 +13,7 @@
 #include "backend/opencl/cl_device.h"
 #include "backend/opencl/cl_error.h"
 #include "backend/opencl/cl_reduce.h"
+#include "layout.h"
 
 static double now(void)
 {
@@ -69,11 +70,11 @@ int main(int argc, char **argv)
         char zero = 0;
         TR_CL_CHECK(clEnqueueFillBuffer(ctx.queue, v[i], &zero, 1, 0, bytes[i], 0, NULL, NULL));
     }
-    /* sc[SC_PQ] (slot 2) and sc[SC_RZ] (slot 15) 1: alpha = 0 / 1, beta = 0 / 1 */
+    /* sc[SC_PQ] and sc[SC_RZ] (kernels/layout.h) 1: alpha = 0 / 1, beta = 0 / 1 */
     double one = 1.0;
-    TR_CL_CHECK(clEnqueueWriteBuffer(ctx.queue, v[3], CL_TRUE, 2 * sizeof(double), sizeof one, &one, 0,
+    TR_CL_CHECK(clEnqueueWriteBuffer(ctx.queue, v[3], CL_TRUE, SC_PQ * sizeof(double), sizeof one, &one, 0,
                                      NULL, NULL));
-    TR_CL_CHECK(clEnqueueWriteBuffer(ctx.queue, v[3], CL_TRUE, 15 * sizeof(double), sizeof one, &one, 0,
+    TR_CL_CHECK(clEnqueueWriteBuffer(ctx.queue, v[3], CL_TRUE, SC_RZ * sizeof(double), sizeof one, &one, 0,
                                      NULL, NULL));
     TR_CL_ARGS(k, 0, TR_CL_A(v[0]), TR_CL_A(v[1]), TR_CL_A(v[2]), TR_CL_A(v[3]), TR_CL_A(n));
     printf("%s, cg_p over %d entries, ms per launch (200 launches)\n", ch.cl.name, n);

@@ -54,7 +54,7 @@
  *       gb = 0 and the row is inactive: a straight vertex is far from the bound).
  *   strut row p (every candidate pair p = (a, b), a < b, in list order):
  *       d, s, t = tr_segment_distance(x[a], x[next a], x[b], x[next b])
- *       (host/geometry/segdist.h, the exact algorithm), n = (P(s) - Q(t)) / d
+ *       (kernels/segment_distance.h, the exact algorithm), n = (P(s) - Q(t)) / d
  *       C = d - strut_dist
  *       dC/dx[a] = (1-s) n, dC/dx[next a] = s n,
  *       dC/dx[b] = -(1-t) n, dC/dx[next b] = -t n
@@ -72,7 +72,7 @@
  *       not excluded(a, b)  and  d = tr_segment_distance(x[a], x[next a],
  *       x[b], x[next b], &s, &t) < cutoff  and, when 0 < tilt < 1,
  *       tr_segment_nearly_normal(the same four points, s, t, d, tilt)
- *   (host/geometry/segdist.h: the connector within tilt of both edges' normal
+ *   (kernels/segment_distance.h: the connector within tilt of both edges' normal
  *   planes), sorted by (a, b) ascending. Why the tilt: at large N every
  *   vertex has ~cutoff/ebar partners on each strand it runs beside, so the
  *   plain cutoff list grows like N^2 (REFERENCE.md 7.4); the struts that

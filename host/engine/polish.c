@@ -8,7 +8,7 @@
 
 #include "util/lbfgs.h"
 #include "geometry/neighbour_search.h"
-#include "geometry/segdist.h"
+#include "segment_distance.h"
 #include "oracle/thickness.h"
 #include "geometry/turning.h"
 #include "util/vec3.h"

@@ -7,7 +7,7 @@
 
 #include "geometry/neighbour_search.h"
 #include "oracle/rowchol.h"
-#include "geometry/segdist.h"
+#include "segment_distance.h"
 #include "oracle/thickness.h"
 #include "geometry/turning.h"
 #include "util/vec3.h"

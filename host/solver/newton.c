@@ -12,7 +12,7 @@
 #include <time.h>
 
 #include "geometry/neighbour_search.h"
-#include "geometry/segdist.h"
+#include "segment_distance.h"
 #include "solver/strut_hessian.h"
 #include "oracle/thickness.h"
 #include "util/vec3.h"

@@ -5,7 +5,7 @@
 #include <math.h>
 #include <string.h>
 
-#include "geometry/segdist.h"
+#include "segment_distance.h"
 
 /* Interior test for a closest-point parameter: away from the clamp by more
  * than rounding. */

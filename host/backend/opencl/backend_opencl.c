@@ -14,6 +14,7 @@
 #include "backend/opencl/cl_tree.h"
 #include "backend/opencl/cl_reduce.h"
 #include "backend/opencl/cl_topology.h"
+#include "layout.h"
 #include "util/vec3.h"
 
 /* Kernels this file launches itself (the reduction and tree modules hold their own). */
@@ -34,19 +35,6 @@
 #define NAME(k) #k,
 enum { KERNELS(ENUM) K_COUNT };
 static const char *const kernel_names[K_COUNT] = {KERNELS(NAME)};
-
-/* Slots of the scalar buffer (see kernels/correct.cl for 0..14). */
-enum {
-    SC_RR = 0, SC_PQ = 2, SC_RR1 = 4, SC_DONE = 6, SC_ITERS = 7, SC_TOL2 = 8, SC_VIOL = 9,
-    SC_MAXDX = 11, SC_NACT = 14, SC_RZ = 15,
-    SC_F2 = 16, SC_PRED = 17, SC_MOVE = 18, /* minmax: 18 min, 19 max */
-    SC_SMOOTH2 = 28, SC_FREE2 = 29, SC_LISTED = 30,
-    SC_DEV = 20,                            /* 20, 21 */
-    SC_STRUT = 22,                          /* 22, 23 */
-    SC_MINRAD = 24,                         /* 24, 25 */
-    SC_DISP = 26,                           /* 26, 27 */
-    SC_COMP = 32,                           /* ncomp lengths from here */
-};
 
 typedef struct cl_state {
     tr_cl_ctx ctx;
@@ -201,7 +189,7 @@ static int run_groups(cl_state *s, int id, size_t groups, tr_error *err, ...)
     va_start(ap, err);
     int rc = set_args(s, id, ap, err);
     va_end(ap);
-    size_t l = groups ? TR_CL_LOCAL : 1, g = groups ? groups * TR_CL_LOCAL : 1;
+    size_t l = groups ? TR_LOCAL_SIZE : 1, g = groups ? groups * TR_LOCAL_SIZE : 1;
     return rc != TR_OK ? rc : enqueue(s, id, g, l, err);
 }
 
@@ -1097,7 +1085,7 @@ static int open_on(const tr_device_choice *dev, const tr_curve *c, int profiling
     eb = malloc(nc * d);
     /* one record per constraint of the curve (at least one: no empty buffers) */
     size_t ncst = c->vcst && c->ncst > 0 ? (size_t)c->ncst : 0, nrec = ncst > 0 ? ncst : 1;
-    cst = calloc(8 * nrec, d);
+    cst = calloc(TR_CST_STRIDE * nrec, d);
     cidx = malloc(nv * sizeof *cidx);
     if (!s->h_start || !s->h_ne || !x || !eb || !cst || !cidx) {
         rc = tr_fail(err, TR_ENOMEM, "out of memory opening the opencl backend");
@@ -1111,11 +1099,13 @@ static int open_on(const tr_device_choice *dev, const tr_curve *c, int profiling
     memcpy(x, c->x, 3 * nv * d);
     for (size_t k = 0; k < ncst; k++) {
         const tr_constraint *kc = &c->cst[k];
-        double *r = cst + 8 * k;
-        memcpy(r, kc->u, 3 * d);
-        memcpy(r + 3, kc->p, 3 * d);
-        r[6] = kc->d;
-        r[7] = kc->kind == TR_CST_PLANE ? 1 : kc->kind == TR_CST_LINE ? 2 : 3;
+        double *r = cst + TR_CST_STRIDE * k;
+        memcpy(r + TR_CST_U, kc->u, 3 * d);
+        memcpy(r + TR_CST_P, kc->p, 3 * d);
+        r[TR_CST_D] = kc->d;
+        r[TR_CST_KIND] = kc->kind == TR_CST_PLANE  ? TR_CST_REC_PLANE
+                         : kc->kind == TR_CST_LINE ? TR_CST_REC_LINE
+                                                   : TR_CST_REC_FIXED;
     }
     for (size_t i = 0; i < nv; i++) {
         int ci = ncst > 0 ? c->vcst[i] : -1;
@@ -1132,7 +1122,7 @@ static int open_on(const tr_device_choice *dev, const tr_curve *c, int profiling
     TR_TRY(buffer(s, &s->ne, nc * sizeof(int), err));
     TR_TRY(buffer(s, &s->gap, nc * sizeof(int), err));
     TR_TRY(buffer(s, &s->cidx, nv * sizeof(int), err));
-    TR_TRY(buffer(s, &s->cst, 8 * nrec * d, err));
+    TR_TRY(buffer(s, &s->cst, TR_CST_STRIDE * nrec * d, err));
     TR_TRY(buffer(s, &s->x, 3 * nv * d, err));
     TR_TRY(buffer(s, &s->xs, 3 * nv * d, err));
     TR_TRY(buffer(s, &s->ebar, nc * d, err));
@@ -1156,7 +1146,7 @@ static int open_on(const tr_device_choice *dev, const tr_curve *c, int profiling
         size_t maxnv = 1;
         for (size_t k = 0; k < nc; k++)
             maxnv = c->start[k + 1] - c->start[k] > maxnv ? c->start[k + 1] - c->start[k] : maxnv;
-        size_t g = (maxnv + 16 * TR_CL_LOCAL - 1) / (16 * TR_CL_LOCAL);
+        size_t g = (maxnv + 16 * TR_LOCAL_SIZE - 1) / (16 * TR_LOCAL_SIZE);
         s->ebar_groups = (int)(g < 256 ? g : 256);
         if (s->ctx.block_items) /* one partial per component and jt_vertex item */
             s->ebar_groups = (int)tr_cl_items_global(&s->ctx, nv);
@@ -1204,7 +1194,7 @@ static int open_on(const tr_device_choice *dev, const tr_curve *c, int profiling
     double zeros = 0.0;
     TR_CL_CHECK(clEnqueueFillBuffer(q, s->po, &zeros, sizeof zeros, 0, nv * d, 0, NULL, NULL));
     TR_CL_CHECK(clEnqueueWriteBuffer(q, s->cidx, CL_TRUE, 0, nv * sizeof(int), cidx, 0, NULL, NULL));
-    TR_CL_CHECK(clEnqueueWriteBuffer(q, s->cst, CL_TRUE, 0, 8 * nrec * d, cst, 0, NULL, NULL));
+    TR_CL_CHECK(clEnqueueWriteBuffer(q, s->cst, CL_TRUE, 0, TR_CST_STRIDE * nrec * d, cst, 0, NULL, NULL));
     double zero[SC_COMP] = {0};
     TR_CL_CHECK(clEnqueueWriteBuffer(q, s->sc, CL_TRUE, 0, sizeof zero, zero, 0, NULL, NULL));
     TR_TRY(cl_upload(s, x, eb, err));

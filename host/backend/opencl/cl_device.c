@@ -92,9 +92,9 @@ static void describe_device(tr_cl_device_info *d)
         snprintf(d->reason, sizeof d->reason, "device reports itself unavailable");
     else if (!compiler)
         snprintf(d->reason, sizeof d->reason, "no opencl c compiler for this device");
-    else if (d->max_work_group < TR_CL_LOCAL)
+    else if (d->max_work_group < TR_LOCAL_SIZE)
         snprintf(d->reason, sizeof d->reason, "work-group limit %zu below the %d the kernels use",
-                 d->max_work_group, TR_CL_LOCAL);
+                 d->max_work_group, TR_LOCAL_SIZE);
     else {
         d->usable = 1;
         d->reason[0] = '\0';
@@ -433,7 +433,7 @@ int tr_cl_launch_items(const tr_cl_ctx *ctx, cl_kernel k, size_t n, tr_error *er
 {
     /* blocks: always one item per group, since PoCL compiles a kernel again
      * for every local size it meets */
-    return tr_cl_launch(ctx, k, tr_cl_items_global(ctx, n), ctx->block_items ? 1 : TR_CL_LOCAL, err);
+    return tr_cl_launch(ctx, k, tr_cl_items_global(ctx, n), ctx->block_items ? 1 : TR_LOCAL_SIZE, err);
 }
 
 /* One-line error text: the build log's line breaks become " | ". */
@@ -464,14 +464,17 @@ int tr_cl_build(const tr_cl_ctx *ctx, const char *const *files, int nfiles, cons
     cl_int e = CL_SUCCESS;
     cl_program prog = NULL;
     char *log = NULL;
-    char **src = calloc((size_t)nfiles + 1, sizeof *src);
+    static const char *const preamble[TR_CL_PREAMBLE_COUNT] = TR_CL_PREAMBLE;
+    const int np = TR_CL_PREAMBLE_COUNT;
+    char **src = calloc((size_t)(nfiles + np), sizeof *src);
     *out = NULL;
     if (!src)
         return tr_fail(err, TR_ENOMEM, "out of memory loading kernels");
-    TR_TRY(tr_kernel_source_load("common.clh", &src[0], err));
+    for (int i = 0; i < np; i++)
+        TR_TRY(tr_kernel_source_load(preamble[i], &src[i], err));
     for (int i = 0; i < nfiles; i++)
-        TR_TRY(tr_kernel_source_load(files[i], &src[i + 1], err));
-    TR_CL_CHECK((prog = clCreateProgramWithSource(ctx->context, (cl_uint)nfiles + 1,
+        TR_TRY(tr_kernel_source_load(files[i], &src[np + i], err));
+    TR_CL_CHECK((prog = clCreateProgramWithSource(ctx->context, (cl_uint)(nfiles + np),
                                                   (const char **)src, NULL, &e),
                  e));
     if (!options)
@@ -510,7 +513,7 @@ cleanup:
     if (prog)
         clReleaseProgram(prog);
     free(log);
-    for (int i = 0; i <= nfiles; i++)
+    for (int i = 0; i < nfiles + np; i++)
         free(src[i]);
     free(src);
     return rc;

@@ -9,7 +9,7 @@
 
 #include "backend/backend.h"
 #include "geometry/neighbour_search.h"
-#include "geometry/segdist.h"
+#include "segment_distance.h"
 #include "util/vec3.h"
 
 enum { PJ_NONE = 0, PJ_PLANE, PJ_LINE, PJ_FIXED };

@@ -157,27 +157,28 @@ static void test_selection(int have_device)
     }
 }
 
-/* Writes common.clh and one kernel file `name` with text `src` into the
- * build's tests directory, for tr_cl_build under TIGHTROPE_KERNEL_DIR. */
+/* Writes the preamble (TR_CL_PREAMBLE) and one kernel file `name` with text
+ * `src` into the build's tests directory, for tr_cl_build under
+ * TIGHTROPE_KERNEL_DIR. */
 static int write_kernel_dir(const char *name, const char *src, char *dir, size_t dirsize)
 {
     char path[1100];
     snprintf(dir, dirsize, "%s/tests", TR_BINARY_DIR);
-    const char *names[] = {name, "common.clh"};
-    char *text = NULL;
-    tr_error err;
-    if (tr_kernel_source_load("common.clh", &text, &err) != TR_OK)
-        return 0;
-    const char *texts[] = {src, text};
+    static const char *const preamble[TR_CL_PREAMBLE_COUNT] = TR_CL_PREAMBLE;
     int ok = 1;
-    for (int k = 0; k < 2; k++) {
-        snprintf(path, sizeof path, "%s/%s", dir, names[k]);
+    for (int k = 0; k <= TR_CL_PREAMBLE_COUNT; k++) {
+        char *text = NULL;
+        tr_error err;
+        const char *fname = k < TR_CL_PREAMBLE_COUNT ? preamble[k] : name;
+        if (k < TR_CL_PREAMBLE_COUNT && tr_kernel_source_load(fname, &text, &err) != TR_OK)
+            return 0;
+        snprintf(path, sizeof path, "%s/%s", dir, fname);
         FILE *f = fopen(path, "w");
-        ok = ok && f && fputs(texts[k], f) >= 0;
+        ok = ok && f && fputs(text ? text : src, f) >= 0;
         if (f)
             ok = fclose(f) == 0 && ok;
+        free(text);
     }
-    free(text);
     return ok;
 }
 
