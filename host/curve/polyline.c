@@ -2,23 +2,16 @@
 
 #include <stdlib.h>
 
+#include "util/compensated_sum.h"
 #include "util/vec3.h"
 
 void tr_polyline_arclength(const double *x, size_t n, double *s)
 {
-    /* Neumaier summation: for N ~ 2e5 edges of 1.6e-4 the naive sum loses
-     * ~1e-12 of L, the size of the paper's last digit. */
-    double sum = 0.0, comp = 0.0;
+    tr_csum sum = {0.0, 0.0};
     s[0] = 0.0;
     for (size_t i = 0; i < n; i++) {
-        double e = sqrt(v3_dist2(x + 3 * i, x + 3 * ((i + 1) % n)));
-        double t = sum + e;
-        if (fabs(sum) >= fabs(e))
-            comp += (sum - t) + e;
-        else
-            comp += (e - t) + sum;
-        sum = t;
-        s[i + 1] = sum + comp;
+        tr_csum_add(&sum, sqrt(v3_dist2(x + 3 * i, x + 3 * ((i + 1) % n))));
+        s[i + 1] = tr_csum_value(&sum);
     }
 }
 
