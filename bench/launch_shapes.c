@@ -8,19 +8,12 @@
  * launch. The measurement behind the choice of blocks on CPU devices. */
 #include <stdio.h>
 #include <stdlib.h>
-#include <time.h>
 
 #include "backend/opencl/cl_device.h"
 #include "backend/opencl/cl_error.h"
 #include "backend/opencl/cl_reduce.h"
 #include "layout.h"
-
-static double now(void)
-{
-    struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
-}
+#include "util/clock.h"
 
 /* ms per launch of k over global items in groups of local (arguments set). */
 static int time_shape(const tr_cl_ctx *ctx, cl_kernel k, size_t global, size_t local, double *ms,
@@ -30,11 +23,11 @@ static int time_shape(const tr_cl_ctx *ctx, cl_kernel k, size_t global, size_t l
     const int reps = 200;
     TR_TRY(tr_cl_launch(ctx, k, global, local, err)); /* PoCL compiles for a new local size */
     TR_CL_CHECK(clFinish(ctx->queue));
-    double t = now();
+    double t = tr_clock_seconds();
     for (int i = 0; i < reps; i++)
         TR_TRY(tr_cl_launch(ctx, k, global, local, err));
     TR_CL_CHECK(clFinish(ctx->queue));
-    *ms = 1e3 * (now() - t) / reps;
+    *ms = 1e3 * (tr_clock_seconds() - t) / reps;
 cleanup:
     return rc;
 }

@@ -26,7 +26,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 #include "backend/backend.h"
 #include "backend/opencl/backend_opencl.h"
@@ -38,17 +37,11 @@
 #include "engine/refine_lowpass.h"
 #include "curve/generate.h"
 #include "util/json.h"
+#include "util/clock.h"
 
 #define MAX_DEV 8
 #define MAX_N 16
 #define MAX_K TR_CL_PROF_MAX
-
-static double now(void)
-{
-    struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
-}
 
 static int cmp_double(const void *a, const void *b)
 {
@@ -183,11 +176,11 @@ static void bench_one(const char *spec, const tr_curve *c, const bench_ctx *bc, 
         goto fail;
     /* calibrate: one timed step sets the count for about target_s; its save
      * holds the state every later timed step starts from */
-    double t0 = now();
+    double t0 = tr_clock_seconds();
     int cg = 0;
     if ((rc = one_step(&b, bc, h, &cg, &err)))
         goto fail;
-    double t1 = now() - t0;
+    double t1 = tr_clock_seconds() - t0;
     int k = steps > 0 ? steps : (int)fmin(fmax(target_s / fmax(t1, 1e-6), 3.0), 50.0);
     double *ts = malloc((size_t)k * sizeof *ts);
     if (!ts) {
@@ -200,12 +193,12 @@ static void bench_one(const char *spec, const tr_curve *c, const bench_ctx *bc, 
             free(ts);
             goto fail;
         }
-        double a = now();
+        double a = tr_clock_seconds();
         if ((rc = one_step(&b, bc, h, &cg, &err))) {
             free(ts);
             goto fail;
         }
-        ts[i] = now() - a;
+        ts[i] = tr_clock_seconds() - a;
         cgsum += cg;
     }
     qsort(ts, (size_t)k, sizeof *ts, cmp_double);
@@ -217,11 +210,11 @@ static void bench_one(const char *spec, const tr_curve *c, const bench_ctx *bc, 
     int kc = bc->search ? 3 : 0;
     if ((rc = b.ops->restore(b.state, &err)))
         goto fail;
-    double a = now();
+    double a = tr_clock_seconds();
     for (int i = 0; i < kc; i++)
         if ((rc = contacts(&b, bc, &r->pairs, &err)))
             goto fail;
-    r->contacts_s = kc ? (now() - a) / kc : NAN;
+    r->contacts_s = kc ? (tr_clock_seconds() - a) / kc : NAN;
     goto done;
 fail:
     snprintf(r->error, sizeof r->error, "%.290s", err.msg);

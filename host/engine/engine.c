@@ -4,12 +4,12 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 #include "curve/curve_io.h"
 #include "engine/polish.h"
 #include "solver/newton.h"
 #include "engine/refine_lowpass.h"
+#include "util/clock.h"
 #include "util/text_file.h"
 #include "oracle/thickness.h"
 
@@ -48,13 +48,6 @@ struct tr_engine {
     double *polish_x;
     long polish_steps;
 };
-
-static double now_s(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
 
 void tr_engine_params_default(tr_engine_params *p)
 {
@@ -256,7 +249,7 @@ static tr_engine *engine_new(const char *device, const tr_engine_params *p)
         e->prm = *p;
     else
         tr_engine_params_default(&e->prm);
-    e->t0 = now_s();
+    e->t0 = tr_clock_seconds();
     return e;
 }
 
@@ -362,7 +355,7 @@ int tr_engine_step(tr_engine *e, int *accepted, tr_error *err)
 void tr_engine_get_progress(const tr_engine *e, tr_engine_progress *p)
 {
     memset(p, 0, sizeof *p);
-    double t = now_s() - e->t0;
+    double t = tr_clock_seconds() - e->t0;
     p->steps = e->steps;
     p->rejected = e->rejected;
     p->n = e->curve.nv;
@@ -844,15 +837,15 @@ static int level_backend(tr_engine *e, int coarse_ref, tr_error *err)
 int tr_engine_run(tr_engine *e, const tr_engine_limits *lim, tr_stop_reason *why, tr_error *err)
 {
     int rc;
-    double t_last_ckpt = now_s(), t_last_prog = 0.0;
-    double level_t0 = now_s();
+    double t_last_ckpt = tr_clock_seconds(), t_last_prog = 0.0;
+    double level_t0 = tr_clock_seconds();
     /* Without a time limit to share out, a level is polished (and a coarse
      * one refined) once the engine stalls: less than STALL_REL shorter over
      * STALL_STEPS steps. The projection engine crawls long before it jams
      * (the 2 x 100 clasp: 8800 steps, 100 s, where polish then needs 2 s). */
     long stall_step = e->steps;
     double stall_len = INFINITY;
-    double time_left_at_level = lim->time_limit > 0 ? lim->time_limit - (e->elapsed_base + now_s() - e->t0) : 0;
+    double time_left_at_level = lim->time_limit > 0 ? lim->time_limit - (e->elapsed_base + tr_clock_seconds() - e->t0) : 0;
     *why = TR_STOP_NONE;
     rc = level_backend(e, wants_coarse_ref(e, e->curve.nv, is_final_level(lim, e->curve.nv / (size_t)e->curve.ncomp)),
                        err);
@@ -886,7 +879,7 @@ int tr_engine_run(tr_engine *e, const tr_engine_limits *lim, tr_stop_reason *why
         if (final_level && can_polish &&
             (stop == TR_STOP_RESIDUAL || stop == TR_STOP_JAMMED || (stop == TR_STOP_NONE && stalled) ||
              (stop == TR_STOP_NONE && lim->time_limit > 0 &&
-              now_s() - level_t0 >= (1.0 - e->prm.polish_share) * time_left_at_level))) {
+              tr_clock_seconds() - level_t0 >= (1.0 - e->prm.polish_share) * time_left_at_level))) {
             double left = lim->time_limit > 0 ? lim->time_limit - p.elapsed : 0.0;
             if ((rc = run_polish(e, lim->time_limit > 0 ? fmax(left, 1e-3) : 0.0, lim->target, 1,
                                  lim->stop, err)))
@@ -899,7 +892,7 @@ int tr_engine_run(tr_engine *e, const tr_engine_limits *lim, tr_stop_reason *why
              * polish the rest (it usually converges much sooner) */
             int pc = e->prm.polish && e->prm.polish_coarse;
             double coarse_res = lim->coarse_residual > 0 ? lim->coarse_residual : 1e-3;
-            double used = now_s() - level_t0;
+            double used = tr_clock_seconds() - level_t0;
             if (e->jammed || stalled || (e->steps > 0 && e->residual < coarse_res) || (pc && e->polished != 0))
                 level_done = 1;
             if (lim->time_limit > 0 && used > (pc ? 0.25 : 0.5) * time_left_at_level)
@@ -911,9 +904,9 @@ int tr_engine_run(tr_engine *e, const tr_engine_limits *lim, tr_stop_reason *why
                 continue;
             }
         }
-        if (lim->progress && (stop != TR_STOP_NONE || now_s() - t_last_prog >= lim->progress_every)) {
+        if (lim->progress && (stop != TR_STOP_NONE || tr_clock_seconds() - t_last_prog >= lim->progress_every)) {
             lim->progress(&p, lim->user);
-            t_last_prog = now_s();
+            t_last_prog = tr_clock_seconds();
         }
         if (stop != TR_STOP_NONE) {
             *why = stop;
@@ -928,16 +921,16 @@ int tr_engine_run(tr_engine *e, const tr_engine_limits *lim, tr_stop_reason *why
             e->coarse_ref = wants_coarse_ref(e, next * (size_t)e->curve.ncomp, is_final_level(lim, next));
             if ((rc = tr_engine_refine(e, next, err)))
                 return rc;
-            level_t0 = now_s();
+            level_t0 = tr_clock_seconds();
             stall_step = e->steps;
             stall_len = INFINITY;
-            time_left_at_level = lim->time_limit > 0 ? lim->time_limit - (e->elapsed_base + now_s() - e->t0) : 0;
+            time_left_at_level = lim->time_limit > 0 ? lim->time_limit - (e->elapsed_base + tr_clock_seconds() - e->t0) : 0;
             continue;
         }
-        if (lim->checkpoint_path && lim->checkpoint_every > 0 && now_s() - t_last_ckpt >= lim->checkpoint_every) {
+        if (lim->checkpoint_path && lim->checkpoint_every > 0 && tr_clock_seconds() - t_last_ckpt >= lim->checkpoint_every) {
             if ((rc = tr_engine_checkpoint_write(e, lim->checkpoint_path, err)))
                 return rc;
-            t_last_ckpt = now_s();
+            t_last_ckpt = tr_clock_seconds();
         }
         int acc;
         if ((rc = tr_engine_step(e, &acc, err)))

@@ -4,13 +4,13 @@
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 #include "util/lbfgs.h"
 #include "geometry/neighbour_search.h"
 #include "segment_distance.h"
 #include "oracle/thickness.h"
 #include "geometry/turning.h"
+#include "util/clock.h"
 #include "util/vec3.h"
 
 #ifndef M_PI
@@ -42,13 +42,6 @@ void tr_polish_params_default(tr_polish_params *p)
     p->lbfgs_m = 12;
     p->max_restarts = 100;
     p->restart_tol = 1e-9;
-}
-
-static double now_s(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
 typedef struct strut_pair {
@@ -328,7 +321,7 @@ static int on_iter(void *vc, const double *x, double f, const double *g, int it)
         c->need_rebuild = 1;
         return 1;
     }
-    if ((c->deadline > 0 && now_s() > c->deadline) || (c->p->stop && *c->p->stop)) {
+    if ((c->deadline > 0 && tr_clock_seconds() > c->deadline) || (c->p->stop && *c->p->stop)) {
         c->out_of_time = 1;
         return 1;
     }
@@ -384,7 +377,7 @@ static int final_geometry(ctx *c, double *dmin, double *minrad, double *edge_dev
 static int polish_once(tr_curve *cv, const tr_polish_params *prm, tr_polish_stats *st, tr_error *err)
 {
     memset(st, 0, sizeof *st);
-    double t0 = now_s();
+    double t0 = tr_clock_seconds();
     tr_thickness th0;
     int rc = tr_thickness_measure(cv, NULL, &th0, NULL, err);
     if (rc)
@@ -551,7 +544,7 @@ static int polish_once(tr_curve *cv, const tr_polish_params *prm, tr_polish_stat
     st->accepted = 1;
     st->ropelength_after = th.ropelength;
 done:
-    st->seconds = now_s() - t0;
+    st->seconds = tr_clock_seconds() - t0;
     free(x);
     free(best);
     ctx_free(&c);
