@@ -9,13 +9,10 @@
 #include "engine/polish.h"
 #include "solver/newton.h"
 #include "engine/refine_lowpass.h"
+#include "geometry/struts.h"
 #include "util/clock.h"
 #include "util/text_file.h"
 #include "oracle/thickness.h"
-
-#ifndef M_PI
-#define M_PI 3.14159265358979323846
-#endif
 
 struct tr_engine {
     char device[128];
@@ -141,8 +138,7 @@ static int rebuild_contacts(tr_engine *e, int recompute_gap, const tr_measure *n
         return rc;
     if (recompute_gap) {
         for (int k = 0; k < e->curve.ncomp; k++) {
-            double g = ceil(M_PI / e->ebar[k]);
-            e->gap[k] = g < 2.0 ? 2 : (g > 1e9 ? 1000000000 : (int)g);
+            e->gap[k] = tr_exclusion_gap(1.0, e->ebar[k]);
         }
     }
     double emax = 0.0;

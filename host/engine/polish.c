@@ -7,15 +7,12 @@
 
 #include "util/lbfgs.h"
 #include "geometry/neighbour_search.h"
+#include "geometry/struts.h"
 #include "segment_distance.h"
 #include "oracle/thickness.h"
 #include "geometry/turning.h"
 #include "util/clock.h"
 #include "util/vec3.h"
-
-#ifndef M_PI
-#define M_PI 3.14159265358979323846
-#endif
 
 #define NONE SIZE_MAX
 
@@ -96,15 +93,8 @@ static int collect_pair(void *vc, size_t ei, size_t ej, double *cutoff)
     collect *cl = vc;
     ctx *c = cl->c;
     const tr_nsearch *s = &c->ns;
-    int k = s->ecomp[ei];
-    if (k == s->ecomp[ej]) {
-        size_t li = ei - s->estart[k], lj = ej - s->estart[k];
-        size_t g = li > lj ? li - lj : lj - li;
-        if (c->w.closed[k] && c->ne[k] - g < g)
-            g = c->ne[k] - g;
-        if (g < (size_t)c->gap[k])
-            return 0;
-    }
+    if (tr_nsearch_excluded(s, ei, ej, (size_t)c->gap[s->ecomp[ei]]))
+        return 0;
     size_t a = s->ea[ei], b = s->ea[ej];
     double sp, tp;
     const double *x = c->w.x;
@@ -242,14 +232,16 @@ static double eval(void *vc, const double *x, double *g)
         vs = fmax(vs, (2.0 - d) / 2.0);
         if (dphi == 0.0)
             continue;
+        double cn[3], gs[4][3];
+        for (int k = 0; k < 3; k++)
+            cn[k] = (x[3 * a + k] + s * (x[3 * na + k] - x[3 * a + k])) -
+                    (x[3 * b + k] + t * (x[3 * nb + k] - x[3 * b + k]));
+        tr_strut_gradient(cn, s, t, d, dphi, gs);
         for (int k = 0; k < 3; k++) {
-            double P = x[3 * a + k] + s * (x[3 * na + k] - x[3 * a + k]);
-            double Q = x[3 * b + k] + t * (x[3 * nb + k] - x[3 * b + k]);
-            double n = dphi * (P - Q) / d;
-            g[3 * a + k] += (1.0 - s) * n;
-            g[3 * na + k] += s * n;
-            g[3 * b + k] -= (1.0 - t) * n;
-            g[3 * nb + k] -= t * n;
+            g[3 * a + k] += gs[0][k];
+            g[3 * na + k] += gs[1][k];
+            g[3 * b + k] += gs[2][k];
+            g[3 * nb + k] += gs[3][k];
         }
     }
     /* constrained vertices (clasp ends) move only as their constraint
@@ -431,8 +423,7 @@ static int polish_once(tr_curve *cv, const tr_polish_params *prm, tr_polish_stat
         }
         c.ne[k] = tr_comp_ne(&c.w, k);
         double lk = tr_comp_length(&c.w, k);
-        double g = ceil(M_PI / (lk / (double)c.ne[k]));
-        c.gap[k] = g < 2.0 ? 2 : (g > 1e9 ? 1000000000 : (int)g);
+        c.gap[k] = tr_exclusion_gap(1.0, lk / (double)c.ne[k]);
         ltot += lk;
         etot += c.ne[k];
     }
