@@ -1,6 +1,5 @@
 #include "curve/polyline.h"
 
-#include <stdlib.h>
 
 #include "util/compensated_sum.h"
 #include "util/vec3.h"
@@ -33,20 +32,4 @@ void tr_polyline_point_at(const double *x, size_t n, const double *s, double l, 
     const double *a = x + 3 * lo, *b = x + 3 * ((lo + 1) % n);
     for (int d = 0; d < 3; d++)
         p[d] = a[d] + f * (b[d] - a[d]);
-}
-
-int tr_polyline_resample(const double *x, size_t n, size_t m, double l0, double *out,
-                         tr_error *err)
-{
-    if (n < 3 || m < 3)
-        return tr_fail(err, TR_EINVAL, "resampling needs a closed polygon of at least 3 vertices");
-    double *s = malloc((n + 1) * sizeof *s);
-    if (!s)
-        return tr_fail(err, TR_ENOMEM, "out of memory resampling %zu vertices", n);
-    tr_polyline_arclength(x, n, s);
-    double L = s[n];
-    for (size_t j = 0; j < m; j++)
-        tr_polyline_point_at(x, n, s, l0 + (double)j * L / (double)m, out + 3 * j);
-    free(s);
-    return TR_OK;
 }
