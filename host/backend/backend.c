@@ -6,6 +6,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "util/device_spec.h"
+
 typedef struct tr_backend_entry {
     const char *name;
     int (*open)(const char *spec, const tr_curve *c, tr_backend *out, tr_error *err);
@@ -27,8 +29,7 @@ int tr_backend_open(const char *spec, const tr_curve *c, tr_backend *out, tr_err
         spec = getenv("TIGHTROPE_DEVICE");
     if (!spec || !*spec)
         spec = "auto";
-    /* the serial reference's names, as tr_device_select takes them */
-    if (!strcmp(spec, "reference") || !strcmp(spec, "serial") || !strcmp(spec, "cpu-reference"))
+    if (tr_device_spec_is_reference(spec))
         return tr_backend_reference_open("reference", c, out, err);
     if (!strcmp(spec, "auto")) {
         char why[512] = "";

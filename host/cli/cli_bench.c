@@ -38,6 +38,7 @@
 #include "curve/generate.h"
 #include "util/json.h"
 #include "util/clock.h"
+#include "util/device_spec.h"
 
 #define MAX_DEV 8
 #define MAX_N 16
@@ -134,7 +135,7 @@ static void bench_one(const char *spec, const tr_curve *c, const bench_ctx *bc, 
     tr_backend b;
     memset(r, 0, sizeof *r);
     r->n = c->nv;
-    int is_ref = !strcmp(spec, "reference");
+    int is_ref = tr_device_spec_is_reference(spec);
     int rc = is_ref ? tr_backend_open("reference", c, &b, &err)
                     : tr_backend_opencl_open(spec, c, &b, &err);
     if (rc != TR_OK) {
@@ -460,7 +461,7 @@ int tr_cmd_bench(int argc, char **argv)
         double ref_med = 0;
         for (int d = 0; d < ndev; d++) {
             result *r = &res[j * ndev + d];
-            int is_ref = !strcmp(devs[d], "reference");
+            int is_ref = tr_device_spec_is_reference(devs[d]);
             bench_one(devs[d], &c, &bc, steps, target, is_ref || !have_ref ? NULL : ref_x, h, r);
             if (!is_ref && !have_ref) {
                 r->valid = 0;

@@ -14,6 +14,7 @@
 #include "backend/opencl/cl_tree.h"
 #include "backend/opencl/cl_reduce.h"
 #include "backend/opencl/cl_topology.h"
+#include "util/device_spec.h"
 #include "layout.h"
 #include "util/vec3.h"
 
@@ -1218,7 +1219,7 @@ static int open_spec(const char *spec, const tr_curve *c, int profiling, tr_back
 {
     if (!spec || !*spec)
         spec = "auto";
-    if (!strcmp(spec, "reference") || !strcmp(spec, "serial"))
+    if (tr_device_spec_is_reference(spec))
         return tr_fail(err, TR_EUNSUPPORTED, "'%s' is not an opencl device", spec);
     tr_device_choice dev;
     int rc = tr_device_select(spec, &dev, err);

@@ -8,6 +8,7 @@
 
 #include "backend/opencl/cl_error.h"
 #include "backend/opencl/kernel_source.h"
+#include "util/device_spec.h"
 
 static void get_string(cl_device_id d, cl_device_info what, char *buf, size_t n)
 {
@@ -249,7 +250,7 @@ int tr_device_select(const char *spec, tr_device_choice *out, tr_error *err)
     if (!spec || !*spec)
         spec = tr_device_spec_default();
     snprintf(out->spec, sizeof out->spec, "%s", spec);
-    if (!strcmp(spec, "reference") || !strcmp(spec, "serial") || !strcmp(spec, "cpu-reference")) {
+    if (tr_device_spec_is_reference(spec)) {
         out->kind = TR_DEVICE_REFERENCE;
         return TR_OK;
     }
