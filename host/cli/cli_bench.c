@@ -28,8 +28,6 @@
 #include <string.h>
 
 #include "backend/backend.h"
-#include "backend/opencl/backend_opencl.h"
-#include "backend/opencl/cl_device.h"
 #include "cli/cli.h"
 #include "cli/cli_args.h"
 #include "curve/curve_io.h"
@@ -42,7 +40,7 @@
 
 #define MAX_DEV 8
 #define MAX_N 16
-#define MAX_K TR_CL_PROF_MAX
+#define MAX_K TR_BACKEND_PROFILE_MAX
 
 static int cmp_double(const void *a, const void *b)
 {
@@ -135,17 +133,15 @@ static void bench_one(const char *spec, const tr_curve *c, const bench_ctx *bc, 
     tr_backend b;
     memset(r, 0, sizeof *r);
     r->n = c->nv;
-    int is_ref = tr_device_spec_is_reference(spec);
-    int rc = is_ref ? tr_backend_open("reference", c, &b, &err)
-                    : tr_backend_opencl_open(spec, c, &b, &err);
+    int rc = tr_backend_open_device(spec, c, 0, &b, &err);
     if (rc != TR_OK) {
         snprintf(r->device, sizeof r->device, "%s", spec);
         snprintf(r->error, sizeof r->error, "%.290s", err.msg);
         return;
     }
-    const char *tri = tr_backend_opencl_tridiag(&b);
-    snprintf(r->device, sizeof r->device, "%.150s%s%s", b.description, tri ? ", edge block " : "",
-             tri ? tri : "");
+    char how[64];
+    tr_backend_describe(&b, how, sizeof how);
+    snprintf(r->device, sizeof r->device, "%.150s%s%.38s", b.description, how[0] ? ", " : "", how);
     double *x = malloc(3 * c->nv * sizeof *x);
     if (!x) {
         snprintf(r->error, sizeof r->error, "out of memory");
@@ -231,17 +227,17 @@ static void profile_kernels(const char *spec, const tr_curve *c, const bench_ctx
 {
     tr_error err;
     tr_backend b;
-    if (tr_backend_opencl_open_profiled(spec, c, &b, &err) != TR_OK)
+    if (tr_backend_open_device(spec, c, 1, &b, &err) != TR_OK)
         return;
     int ok = contacts(&b, bc, NULL, &err) == TR_OK && one_step(&b, bc, h, NULL, &err) == TR_OK;
     if (ok) {
         tr_kernel_time before[MAX_K];
-        int nb = tr_backend_opencl_kernel_times(&b, before, MAX_K);
+        int nb = tr_backend_profile(&b, before, MAX_K);
         ok = b.ops->restore(b.state, &err) == TR_OK && one_step(&b, bc, h, NULL, &err) == TR_OK &&
              b.ops->restore(b.state, &err) == TR_OK && one_step(&b, bc, h, NULL, &err) == TR_OK &&
              b.ops->restore(b.state, &err) == TR_OK && contacts(&b, bc, NULL, &err) == TR_OK;
         if (ok) {
-            r->nk = tr_backend_opencl_kernel_times(&b, r->k, MAX_K);
+            r->nk = tr_backend_profile(&b, r->k, MAX_K);
             for (int i = 0; i < r->nk; i++)
                 for (int j = 0; j < nb; j++)
                     if (!strcmp(r->k[i].kernel, before[j].kernel)) {
@@ -347,9 +343,8 @@ int tr_cmd_bench(int argc, char **argv)
             }
             /* an unknown or unusable device is refused now, not after the
              * other devices' runs */
-            tr_device_choice dc;
             tr_error derr;
-            int drc = tr_device_select(v, &dc, &derr);
+            int drc = tr_backend_check_spec(v, &derr);
             if (drc != TR_OK) {
                 fprintf(stderr, "tightrope bench: %s\n", derr.msg);
                 return drc == TR_EINVAL ? 2 : 1;
@@ -385,16 +380,16 @@ int tr_cmd_bench(int argc, char **argv)
     char pd[MAX_DEV][16];
     if (ndev == 0) {
         devs[ndev++] = "reference";
-        tr_cl_device_list l;
+        tr_device_list l;
         tr_error err;
-        if (tr_cl_enumerate(&l, &err) == TR_OK) {
+        if (tr_backend_list_devices(&l, &err) == TR_OK) {
             for (int i = 0; i < l.n && ndev < MAX_DEV; i++)
                 if (l.dev[i].usable) {
-                    snprintf(pd[ndev], sizeof pd[ndev], "%d:%d", l.dev[i].platform, l.dev[i].device);
+                    snprintf(pd[ndev], sizeof pd[ndev], "%.15s", l.dev[i].id);
                     devs[ndev] = pd[ndev];
                     ndev++;
                 }
-            tr_cl_device_list_free(&l);
+            tr_backend_device_list_free(&l);
         }
     }
 

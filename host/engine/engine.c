@@ -807,7 +807,7 @@ static int is_final_level(const tr_engine_limits *lim, size_t n_per_comp)
  * chosen device is not the reference already. */
 static int wants_coarse_ref(const tr_engine *e, size_t n, int final_level)
 {
-    int chosen_is_ref = !e->coarse_ref && !strcmp(e->be.ops->name, "reference");
+    int chosen_is_ref = !e->coarse_ref && e->be.ops->serial;
     return !final_level && n < e->prm.device_min_n && !chosen_is_ref;
 }
 

@@ -970,8 +970,12 @@ cleanup:
     return rc;
 }
 
+static void cl_describe(void *sp, char *out, size_t size);
+static int cl_profile(void *sp, tr_kernel_time *out, int max);
+
 static const tr_backend_ops opencl_ops = {
     .name = "opencl",
+    .serial = 0,
     .destroy = cl_destroy,
     .upload = cl_upload,
     .download = cl_download,
@@ -981,6 +985,8 @@ static const tr_backend_ops opencl_ops = {
     .tension_step = cl_tension_step,
     .correct = cl_correct,
     .measure = cl_measure,
+    .describe = cl_describe,
+    .profile = cl_profile,
 };
 
 /* Threshold for the one-work-group PCR: below it a single launch with
@@ -1247,11 +1253,11 @@ int tr_backend_opencl_open_profiled(const char *spec, const tr_curve *c, tr_back
     return open_spec(spec, c, 1, out, err);
 }
 
-int tr_backend_opencl_kernel_times(const tr_backend *b, tr_kernel_time *out, int max)
+_Static_assert(TR_CL_PROF_MAX == TR_BACKEND_PROFILE_MAX, "one profile table size");
+
+static int cl_profile(void *sp, tr_kernel_time *out, int max)
 {
-    if (!b || b->ops != &opencl_ops)
-        return 0;
-    const tr_cl_prof *p = ((const cl_state *)b->state)->ctx.prof;
+    const tr_cl_prof *p = ((const cl_state *)sp)->ctx.prof;
     int n = 0;
     for (int i = 0; p && i < p->count && n < max; i++) {
         snprintf(out[n].kernel, sizeof out[n].kernel, "%s", p->name[i]);
@@ -1262,10 +1268,83 @@ int tr_backend_opencl_kernel_times(const tr_backend *b, tr_kernel_time *out, int
     return n;
 }
 
+static const char *tridiag_name(const cl_state *s)
+{
+    return s->tri_twist ? "twisted" : !s->tri_pcr ? "thomas" : s->tri_group ? "pcr-group" : "pcr-levels";
+}
+
 const char *tr_backend_opencl_tridiag(const tr_backend *b)
 {
     if (!b || b->ops != &opencl_ops)
         return NULL;
-    const cl_state *s = b->state;
-    return s->tri_twist ? "twisted" : !s->tri_pcr ? "thomas" : s->tri_group ? "pcr-group" : "pcr-levels";
+    return tridiag_name(b->state);
+}
+
+static void cl_describe(void *sp, char *out, size_t size)
+{
+    snprintf(out, size, "edge block %s", tridiag_name(sp));
+}
+
+static const char *type_name(cl_device_type t)
+{
+    if (t & CL_DEVICE_TYPE_GPU)
+        return "gpu";
+    if (t & CL_DEVICE_TYPE_ACCELERATOR)
+        return "accelerator";
+    if (t & CL_DEVICE_TYPE_CPU)
+        return "cpu";
+    return "other";
+}
+
+int tr_backend_opencl_list_devices(tr_device_list *out, tr_error *err)
+{
+    tr_cl_device_list l;
+    int rc = tr_cl_enumerate(&l, err);
+    if (rc != TR_OK)
+        return rc;
+    out->n = l.n;
+    snprintf(out->none_reason, sizeof out->none_reason, "%s", l.none_reason);
+    out->dev = l.n ? calloc((size_t)l.n, sizeof *out->dev) : NULL;
+    if (l.n && !out->dev) {
+        tr_cl_device_list_free(&l);
+        return tr_fail(err, TR_ENOMEM, "out of memory listing devices");
+    }
+    for (int i = 0; i < l.n; i++) {
+        const tr_cl_device_info *d = &l.dev[i];
+        tr_device_desc *o = &out->dev[i];
+        snprintf(o->id, sizeof o->id, "%d:%d", d->platform, d->device);
+        snprintf(o->platform, sizeof o->platform, "%s", d->platform_name);
+        snprintf(o->platform_vendor, sizeof o->platform_vendor, "%s", d->platform_vendor);
+        snprintf(o->name, sizeof o->name, "%s", d->name);
+        snprintf(o->vendor, sizeof o->vendor, "%s", d->vendor);
+        snprintf(o->version, sizeof o->version, "%s", d->version);
+        snprintf(o->driver, sizeof o->driver, "%s", d->driver);
+        o->type = type_name(d->type);
+        o->compute_units = d->compute_units;
+        o->clock_mhz = d->clock_mhz;
+        o->global_mem = (unsigned long long)d->global_mem;
+        o->fp64 = d->fp64;
+        o->usable = d->usable;
+        snprintf(o->reason, sizeof o->reason, "%s", d->reason);
+    }
+    tr_cl_device_list_free(&l);
+    snprintf(out->default_spec, sizeof out->default_spec, "%s", tr_device_spec_default());
+    tr_device_choice pick;
+    tr_error perr = {{0}};
+    out->picked = tr_device_select(NULL, &pick, &perr) == TR_OK;
+    if (!out->picked)
+        snprintf(out->pick_error, sizeof out->pick_error, "%s", perr.msg);
+    else if (pick.kind == TR_DEVICE_REFERENCE)
+        snprintf(out->selected, sizeof out->selected, "reference");
+    else
+        snprintf(out->selected, sizeof out->selected, "%d:%d", pick.cl.platform, pick.cl.device);
+    if (out->picked)
+        snprintf(out->warning, sizeof out->warning, "%s", pick.warning);
+    return TR_OK;
+}
+
+int tr_backend_opencl_check_spec(const char *spec, tr_error *err)
+{
+    tr_device_choice dc;
+    return tr_device_select(spec, &dc, err);
 }

@@ -1041,6 +1041,7 @@ static int ref_measure(void *sp, tr_measure *out, double *comp_length, double *c
 
 static const tr_backend_ops reference_ops = {
     .name = "reference",
+    .serial = 1,
     .destroy = ref_destroy,
     .upload = ref_upload,
     .download = ref_download,
