@@ -1332,30 +1332,6 @@ __kernel void release_pulling(__global int *ract, __global const real *y, const 
     }
 }
 
-/* G_i <- P_i G_i (before the tangent projection). */
-__kernel void project_field(__global real *G, __global const int *cidx, __global const real *cst, const int nv)
-{
-    TR_ITEMS(i, nv) {
-        vstore3(tr_project_motion(cidx, cst, i, vload3(i, G)), i, G);
-    }
-}
-
-/* G -= dx (flat), and debar <- -debar (the ebar velocity). */
-__kernel void tangent_finish(__global real *G, __global const real *dx, const int n3)
-{
-    TR_ITEMS(k, n3) {
-        G[k] -= dx[k];
-    }
-}
-
-__kernel void ebar_velocity(__global real *ebar, __global real *debar, const real h,
-                            const int ncomp)
-{
-    TR_ITEMS(k, ncomp) {
-        ebar[k] += h * (-debar[k]);
-    }
-}
-
 /* ---- preconditioner (backend.h correct (c)) ---- */
 
 inline real proj_norm2(__global const int *cidx, __global const real *cst, int v, real3 g, real c)
