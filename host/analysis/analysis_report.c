@@ -1,3 +1,5 @@
+/* This file contains the analysis's text outputs: CSV tables, summary.json and report.txt, built
+ * as strings (analysis_report.h). */
 #include "analysis/analysis_report.h"
 
 #include <math.h>

@@ -1,3 +1,5 @@
+/* This file contains the contacts of a tight knot and its contact functions sigma-(l), sigma+(l)
+ * (contacts.h). */
 #include "analysis/contacts.h"
 
 #include <math.h>

@@ -1,3 +1,5 @@
+/* This file contains curvature and torsion of the inscribed-arc knot on a closed polygon
+ * (curvature_torsion.h). */
 #include "analysis/curvature_torsion.h"
 
 #include <math.h>

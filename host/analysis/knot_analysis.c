@@ -1,3 +1,5 @@
+/* This file contains the whole portrait of one closed component: symmetry, averaged curvature
+ * and torsion, plateaus, jumps, contacts (knot_analysis.h). */
 #include "analysis/knot_analysis.h"
 
 #include <math.h>

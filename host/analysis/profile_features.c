@@ -1,3 +1,5 @@
+/* This file contains the features read off a curvature/torsion profile: kappa = 1 plateaus and
+ * one-sided jump fits (profile_features.h). */
 #include "analysis/profile_features.h"
 
 #include <math.h>

@@ -1,3 +1,5 @@
+/* This file contains the m-averaged knot: block averages of m consecutive vertices at equal
+ * arclength (shape_average.h). */
 #include "analysis/shape_average.h"
 
 #include <stdlib.h>

@@ -1,3 +1,5 @@
+/* This file contains the rotational symmetry of a closed knot: threefold and twofold axes and
+ * the arclength origin (symmetry.h). */
 #include "analysis/symmetry.h"
 
 #include <math.h>

@@ -1,3 +1,5 @@
+/* This file contains the curve container: allocation, copies, constraints, component lengths
+ * (curve.h). */
 #include "curve/curve.h"
 
 #include <math.h>

@@ -1,3 +1,5 @@
+/* This file contains arclength bookkeeping on one closed polygon: cumulative lengths and the
+ * point at an arclength (polyline.h). */
 #include "curve/polyline.h"
 
 

@@ -1,3 +1,5 @@
+/* This file contains the tightening engine: the step, its control, refinement, checkpoints and
+ * the level loop (engine.h). */
 #include "engine/engine.h"
 
 #include <math.h>

@@ -1,3 +1,5 @@
+/* This file contains the polish stage: augmented-Lagrangian / L-BFGS minimisation of a nearly
+ * tight rope on the host (polish.h). */
 #include "engine/polish.h"
 
 #include <math.h>

@@ -1,3 +1,5 @@
+/* This file contains the refinement's resampler: equal arclength, then a Fourier low-pass
+ * (refine_lowpass.h). */
 #include "engine/refine_lowpass.h"
 
 #include <math.h>

@@ -1,3 +1,5 @@
+/* This file contains the KKT certificate: the residual of a curve's tension against struts and
+ * MinRad rows (kkt.h). */
 #include "oracle/kkt.h"
 
 #include <math.h>

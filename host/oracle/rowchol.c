@@ -1,3 +1,5 @@
+/* This file contains the sparse Cholesky solve of (A A^T + U U^T + beta I) z = v that the KKT
+ * certificate needs (rowchol.h). */
 #include "oracle/rowchol.h"
 
 #include <math.h>

@@ -1,3 +1,5 @@
+/* This file contains the device reductions (sum, dot, min/max, count, scan) into the scalar
+ * buffer (cl_reduce.h). */
 #include "backend/opencl/cl_reduce.h"
 
 #include <string.h>
