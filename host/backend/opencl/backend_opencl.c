@@ -30,14 +30,14 @@ static void cl_destroy(void *sp)
     cl_state *s = sp;
     if (!s)
         return;
-    cl_mem *m[] = {&s->start, &s->ne,   &s->cidx, &s->cst,  &s->gap,  &s->x,    &s->xs,   &s->ebar,
-                   &s->ebar_s, &s->debar, &s->F,  &s->G,    &s->H,    &s->dx,   &s->t1,
-                   &s->t2,    &s->t3,   &s->sc,   &s->up,   &s->first, &s->off,
-                   &s->pa,    &s->pb,   &s->part, &s->rzp, &s->rC,   &s->rgrad,
-                   &s->ract,  &s->rs,   &s->rt,   &s->y,    &s->r,    &s->p,
-                   &s->q,     &s->b,    &s->cgq,  &s->cdeb, &s->chg,
-                   &s->pdiag, &s->z,    &s->po,   &s->tw,   &s->closed, &s->tset0,
-                   &s->tp,    &s->tq,   &s->tuu,  &s->ebar_part, &s->curv, &s->tmid,
+    cl_mem *m[] = {&s->start, &s->ne,   &s->cidx, &s->cst,  &s->gap,  &s->x,    &s->x_saved,   &s->ebar,
+                   &s->ebar_saved, &s->debar, &s->force,  &s->field,    &s->field_tmp,    &s->dx,   &s->vterm_a,
+                   &s->vterm_b,    &s->vterm_c,   &s->sc,   &s->upper_count,   &s->upper_first, &s->pair_off,
+                   &s->pair_a,    &s->pair_b,   &s->part, &s->rzp, &s->row_c,   &s->row_grad,
+                   &s->row_active,  &s->row_s,   &s->row_t,   &s->y,    &s->r,    &s->p,
+                   &s->q,     &s->b,    &s->cgq,  &s->cdeb, &s->changed,
+                   &s->pdiag, &s->z,    &s->edge_off,   &s->edge_work,   &s->closed, &s->pcr_set0,
+                   &s->pcr_p,    &s->pcr_q,   &s->pcr_uu,  &s->ebar_part, &s->curv, &s->tmid,
                    &s->tends, &s->aadj, &s->aadjn, &s->act, &s->actc,
                    &s->aaoff, &s->acoef, &s->agrad, &s->sab, &s->sw, &s->dist, &s->nbr, &s->blkf};
     for (size_t i = 0; i < sizeof m / sizeof m[0]; i++)
@@ -198,9 +198,9 @@ static int cl_save(void *sp, tr_error *err)
 {
     cl_state *s = sp;
     int rc = TR_OK;
-    TR_CL_CHECK(clEnqueueCopyBuffer(s->ctx.queue, s->x, s->xs, 0, 0, 3 * (size_t)s->nv * sizeof(double),
+    TR_CL_CHECK(clEnqueueCopyBuffer(s->ctx.queue, s->x, s->x_saved, 0, 0, 3 * (size_t)s->nv * sizeof(double),
                                     0, NULL, NULL));
-    TR_CL_CHECK(clEnqueueCopyBuffer(s->ctx.queue, s->ebar, s->ebar_s, 0, 0,
+    TR_CL_CHECK(clEnqueueCopyBuffer(s->ctx.queue, s->ebar, s->ebar_saved, 0, 0,
                                     (size_t)s->ncomp * sizeof(double), 0, NULL, NULL));
     s->saved = 1;
 cleanup:
@@ -213,9 +213,9 @@ static int cl_restore(void *sp, tr_error *err)
     int rc = TR_OK;
     if (!s->saved)
         return tr_fail(err, TR_EINVAL, "restore without a saved state");
-    TR_CL_CHECK(clEnqueueCopyBuffer(s->ctx.queue, s->xs, s->x, 0, 0, 3 * (size_t)s->nv * sizeof(double),
+    TR_CL_CHECK(clEnqueueCopyBuffer(s->ctx.queue, s->x_saved, s->x, 0, 0, 3 * (size_t)s->nv * sizeof(double),
                                     0, NULL, NULL));
-    TR_CL_CHECK(clEnqueueCopyBuffer(s->ctx.queue, s->ebar_s, s->ebar, 0, 0,
+    TR_CL_CHECK(clEnqueueCopyBuffer(s->ctx.queue, s->ebar_saved, s->ebar, 0, 0,
                                     (size_t)s->ncomp * sizeof(double), 0, NULL, NULL));
 cleanup:
     return rc;
@@ -231,11 +231,11 @@ int clb_ensure_rows(cl_state *s, tr_error *err)
     int cap = need + need / 2 + 64;
     size_t n = (size_t)cap, d = sizeof(double);
     s->rcap = 0; /* until every buffer of the group is there */
-    TR_TRY(clb_buffer(s, &s->rC, n * d, err));
-    TR_TRY(clb_buffer(s, &s->rgrad, 3 * n * d, err));
-    TR_TRY(clb_buffer(s, &s->ract, n * sizeof(int), err));
-    TR_TRY(clb_buffer(s, &s->rs, n * d, err));
-    TR_TRY(clb_buffer(s, &s->rt, n * d, err));
+    TR_TRY(clb_buffer(s, &s->row_c, n * d, err));
+    TR_TRY(clb_buffer(s, &s->row_grad, 3 * n * d, err));
+    TR_TRY(clb_buffer(s, &s->row_active, n * sizeof(int), err));
+    TR_TRY(clb_buffer(s, &s->row_s, n * d, err));
+    TR_TRY(clb_buffer(s, &s->row_t, n * d, err));
     TR_TRY(clb_buffer(s, &s->pdiag, n * d, err));
     TR_TRY(tr_cl_reduce_reserve(&s->red, &s->ctx, n, err));
     s->rcap = cap;
@@ -273,19 +273,19 @@ static int cl_measure(void *sp, tr_measure *out, double *comp_length, double *co
     tr_measure m = {0};
     m.min_strut = INFINITY;
     TR_TRY(clb_run(s, K_measure_edges, (size_t)nv, err, A(s->x), A(s->topo.next), A(s->topo.comp),
-               A(s->ebar), A(nv), A(s->t1), A(s->t2), END));
-    TR_TRY(clb_run_groups(s, K_comp_sum, (size_t)s->ncomp, err, A(s->t1), A(s->start), A(s->sc), A(slot),
+               A(s->ebar), A(nv), A(s->vterm_a), A(s->vterm_b), END));
+    TR_TRY(clb_run_groups(s, K_comp_sum, (size_t)s->ncomp, err, A(s->vterm_a), A(s->start), A(s->sc), A(slot),
                       END));
-    TR_TRY(tr_cl_reduce_minmax(&s->red, &s->ctx, s->t2, nv, s->sc, SC_DEV, err));
+    TR_TRY(tr_cl_reduce_minmax(&s->red, &s->ctx, s->vterm_b, nv, s->sc, SC_DEV, err));
     TR_TRY(clb_run(s, K_measure_minrad, (size_t)nv, err, A(s->x), A(s->topo.next), A(s->topo.prev), A(nv),
-               A(s->t3), END));
-    TR_TRY(tr_cl_reduce_minmax(&s->red, &s->ctx, s->t3, nv, s->sc, SC_MINRAD, err));
+               A(s->vterm_c), END));
+    TR_TRY(tr_cl_reduce_minmax(&s->red, &s->ctx, s->vterm_c, nv, s->sc, SC_MINRAD, err));
     if (np > 0) {
         TR_TRY(clb_closest_pair(s, err));
     }
     if (s->saved) {
-        TR_TRY(clb_run(s, K_measure_disp, (size_t)nv, err, A(s->x), A(s->xs), A(nv), A(s->t1), END));
-        TR_TRY(tr_cl_reduce_minmax(&s->red, &s->ctx, s->t1, nv, s->sc, SC_DISP, err));
+        TR_TRY(clb_run(s, K_measure_disp, (size_t)nv, err, A(s->x), A(s->x_saved), A(nv), A(s->vterm_a), END));
+        TR_TRY(tr_cl_reduce_minmax(&s->red, &s->ctx, s->vterm_a, nv, s->sc, SC_DISP, err));
     }
     cl = malloc((size_t)(SC_COMP + s->ncomp) * sizeof *cl);
     if (!cl) {
@@ -384,10 +384,10 @@ static int tridiag_choose(cl_state *s, const tr_cl_device_info *dev, tr_error *e
                                              CL_KERNEL_WORK_GROUP_SIZE, sizeof wg, &wg, NULL));
         s->tri_group = wg < 1024 ? wg : 1024;
     }
-    TR_TRY(clb_buffer(s, &s->tset0, 4 * nv * d, err));
-    TR_TRY(clb_buffer(s, &s->tp, 4 * nv * d, err));
-    TR_TRY(clb_buffer(s, &s->tq, 4 * nv * d, err));
-    TR_TRY(clb_buffer(s, &s->tuu, nv * d, err));
+    TR_TRY(clb_buffer(s, &s->pcr_set0, 4 * nv * d, err));
+    TR_TRY(clb_buffer(s, &s->pcr_p, 4 * nv * d, err));
+    TR_TRY(clb_buffer(s, &s->pcr_q, 4 * nv * d, err));
+    TR_TRY(clb_buffer(s, &s->pcr_uu, nv * d, err));
 cleanup:
     return rc;
 }
@@ -474,21 +474,21 @@ static int open_on(const tr_device_choice *dev, const tr_curve *c, int profiling
     TR_TRY(clb_buffer(s, &s->cidx, nv * sizeof(int), err));
     TR_TRY(clb_buffer(s, &s->cst, TR_CST_STRIDE * nrec * d, err));
     TR_TRY(clb_buffer(s, &s->x, 3 * nv * d, err));
-    TR_TRY(clb_buffer(s, &s->xs, 3 * nv * d, err));
+    TR_TRY(clb_buffer(s, &s->x_saved, 3 * nv * d, err));
     TR_TRY(clb_buffer(s, &s->ebar, nc * d, err));
-    TR_TRY(clb_buffer(s, &s->ebar_s, nc * d, err));
+    TR_TRY(clb_buffer(s, &s->ebar_saved, nc * d, err));
     TR_TRY(clb_buffer(s, &s->debar, nc * d, err));
     TR_TRY(clb_buffer(s, &s->curv, 2 * nc * d, err));
-    TR_TRY(clb_buffer(s, &s->F, 3 * nv * d, err));
-    TR_TRY(clb_buffer(s, &s->G, 3 * nv * d, err));
-    TR_TRY(clb_buffer(s, &s->H, 3 * nv * d, err));
+    TR_TRY(clb_buffer(s, &s->force, 3 * nv * d, err));
+    TR_TRY(clb_buffer(s, &s->field, 3 * nv * d, err));
+    TR_TRY(clb_buffer(s, &s->field_tmp, 3 * nv * d, err));
     TR_TRY(clb_buffer(s, &s->dx, 3 * nv * d, err));
     TR_TRY(clb_buffer(s, &s->cgq, 3 * nv * d, err));
     TR_TRY(clb_buffer(s, &s->cdeb, nv * d, err));
     TR_TRY(clb_buffer(s, &s->blkf, nv / 4 + 1, err));
-    TR_TRY(clb_buffer(s, &s->chg, sizeof(int), err));
-    TR_TRY(clb_buffer(s, &s->po, nv * d, err));
-    TR_TRY(clb_buffer(s, &s->tw, 4 * nv * d, err));
+    TR_TRY(clb_buffer(s, &s->changed, sizeof(int), err));
+    TR_TRY(clb_buffer(s, &s->edge_off, nv * d, err));
+    TR_TRY(clb_buffer(s, &s->edge_work, 4 * nv * d, err));
     TR_TRY(tridiag_choose(s, &dev->cl, err));
     {
         /* ~16 vertices per work-item and at most 256 groups per component;
@@ -503,13 +503,13 @@ static int open_on(const tr_device_choice *dev, const tr_curve *c, int profiling
         TR_TRY(clb_buffer(s, &s->ebar_part, nc * (size_t)s->ebar_groups * d, err));
     }
     TR_TRY(clb_buffer(s, &s->closed, nc * sizeof(int), err));
-    TR_TRY(clb_buffer(s, &s->t1, nv * d, err));
-    TR_TRY(clb_buffer(s, &s->t2, nv * d, err));
-    TR_TRY(clb_buffer(s, &s->t3, nv * d, err));
+    TR_TRY(clb_buffer(s, &s->vterm_a, nv * d, err));
+    TR_TRY(clb_buffer(s, &s->vterm_b, nv * d, err));
+    TR_TRY(clb_buffer(s, &s->vterm_c, nv * d, err));
     TR_TRY(clb_buffer(s, &s->sc, (SC_COMP + nc) * d, err));
-    TR_TRY(clb_buffer(s, &s->up, nv * sizeof(int), err));
-    TR_TRY(clb_buffer(s, &s->first, nv * sizeof(int), err));
-    TR_TRY(clb_buffer(s, &s->off, (nv + 1) * sizeof(int), err));
+    TR_TRY(clb_buffer(s, &s->upper_count, nv * sizeof(int), err));
+    TR_TRY(clb_buffer(s, &s->upper_first, nv * sizeof(int), err));
+    TR_TRY(clb_buffer(s, &s->pair_off, (nv + 1) * sizeof(int), err));
     s->aacap = 64;
     TR_TRY(clb_buffer(s, &s->aadj, s->aacap * sizeof(int), err));
     TR_TRY(clb_buffer(s, &s->acoef, s->aacap * d, err));
@@ -517,8 +517,8 @@ static int open_on(const tr_device_choice *dev, const tr_curve *c, int profiling
     TR_TRY(clb_buffer(s, &s->aaoff, (nv + 1) * sizeof(int), err));
     TR_TRY(clb_buffer(s, &s->aadjn, nv * sizeof(int), err));
     s->pcap = 64;
-    TR_TRY(clb_buffer(s, &s->pa, (size_t)s->pcap * sizeof(int), err));
-    TR_TRY(clb_buffer(s, &s->pb, (size_t)s->pcap * sizeof(int), err));
+    TR_TRY(clb_buffer(s, &s->pair_a, (size_t)s->pcap * sizeof(int), err));
+    TR_TRY(clb_buffer(s, &s->pair_b, (size_t)s->pcap * sizeof(int), err));
     TR_TRY(clb_buffer(s, &s->act, (size_t)s->pcap * sizeof(int), err));
     TR_TRY(clb_buffer(s, &s->dist, (size_t)s->pcap * sizeof(double), err));
     TR_TRY(clb_buffer(s, &s->nbr, 4 * (size_t)s->pcap * sizeof(int), err));
@@ -542,7 +542,7 @@ static int open_on(const tr_device_choice *dev, const tr_curve *c, int profiling
         TR_CL_CHECK(e);
     }
     double zeros = 0.0;
-    TR_CL_CHECK(clEnqueueFillBuffer(q, s->po, &zeros, sizeof zeros, 0, nv * d, 0, NULL, NULL));
+    TR_CL_CHECK(clEnqueueFillBuffer(q, s->edge_off, &zeros, sizeof zeros, 0, nv * d, 0, NULL, NULL));
     TR_CL_CHECK(clEnqueueWriteBuffer(q, s->cidx, CL_TRUE, 0, nv * sizeof(int), cidx, 0, NULL, NULL));
     TR_CL_CHECK(clEnqueueWriteBuffer(q, s->cst, CL_TRUE, 0, TR_CST_STRIDE * nrec * d, cst, 0, NULL, NULL));
     double zero[SC_COMP] = {0};

@@ -15,7 +15,7 @@ int clb_closest_pair(cl_state *s, tr_error *err)
     int np = s->np;
     size_t g = tr_cl_items_global(&s->ctx, (size_t)np);
     TR_TRY(clb_partials(s, g, err));
-    TR_TRY(clb_run(s, K_pairs_min_dist, (size_t)np, err, A(s->x), A(s->topo.next), A(s->pa), A(s->pb),
+    TR_TRY(clb_run(s, K_pairs_min_dist, (size_t)np, err, A(s->x), A(s->topo.next), A(s->pair_a), A(s->pair_b),
                A(np), A(s->part), END));
     TR_TRY(tr_cl_reduce_minmax(&s->red, &s->ctx, s->part, (int)g, s->sc, SC_STRUT, err));
 cleanup:
@@ -38,13 +38,13 @@ int clb_find_contacts(void *sp, const tr_contact_params *prm, tr_contact_stats *
                              s->gap, gmin, err));
     cl_mem list = s->tree.list, loff = s->tree.loff;
     TR_TRY(clb_run(s, K_pairs_upper, (size_t)nv, err, A(s->tree.count), A(list), A(loff), A(s->topo.next),
-               A(nv), A(s->up), A(s->first), END));
+               A(nv), A(s->upper_count), A(s->upper_first), END));
     /* pair offsets off[0..nv], and the lists' total (2 np when symmetric) */
-    TR_TRY(tr_cl_reduce_scan(&s->red, &s->ctx, s->up, nv, s->off, err));
+    TR_TRY(tr_cl_reduce_scan(&s->red, &s->ctx, s->upper_count, nv, s->pair_off, err));
     TR_TRY(tr_cl_reduce_count(&s->red, &s->ctx, s->tree.count, nv, s->sc, SC_LISTED, err));
     int np = 0;
     double listed = 0.0;
-    TR_CL_CHECK(clEnqueueReadBuffer(s->ctx.queue, s->off, CL_FALSE, (size_t)nv * sizeof(int), sizeof np,
+    TR_CL_CHECK(clEnqueueReadBuffer(s->ctx.queue, s->pair_off, CL_FALSE, (size_t)nv * sizeof(int), sizeof np,
                                     &np, 0, NULL, NULL));
     TR_TRY(clb_read_scalars(s, SC_LISTED, 1, &listed, err));
     /* every pair is in both edges' lists */
@@ -58,19 +58,19 @@ int clb_find_contacts(void *sp, const tr_contact_params *prm, tr_contact_stats *
     if (np > s->pcap) {
         int pc = np + np / 2 + 64;
         s->pcap = 0; /* until every buffer of the group is there */
-        TR_TRY(clb_buffer(s, &s->pa, (size_t)pc * sizeof(int), err));
-        TR_TRY(clb_buffer(s, &s->pb, (size_t)pc * sizeof(int), err));
+        TR_TRY(clb_buffer(s, &s->pair_a, (size_t)pc * sizeof(int), err));
+        TR_TRY(clb_buffer(s, &s->pair_b, (size_t)pc * sizeof(int), err));
         TR_TRY(clb_buffer(s, &s->act, (size_t)pc * sizeof(int), err));
         TR_TRY(clb_buffer(s, &s->dist, (size_t)pc * sizeof(double), err));
         TR_TRY(clb_buffer(s, &s->nbr, 4 * (size_t)pc * sizeof(int), err));
         TR_TRY(clb_buffer(s, &s->actc, ((size_t)pc / TR_ACT_BLOCK + 2) * sizeof(int), err));
         s->pcap = pc;
     }
-    TR_TRY(clb_run(s, K_pairs_write, (size_t)nv, err, A(s->tree.count), A(list), A(loff), A(s->first),
-               A(s->off), A(nv), A(s->pa), A(s->pb), END));
+    TR_TRY(clb_run(s, K_pairs_write, (size_t)nv, err, A(s->tree.count), A(list), A(loff), A(s->upper_first),
+               A(s->pair_off), A(nv), A(s->pair_a), A(s->pair_b), END));
     if (np > 0)
         TR_TRY(clb_run(s, K_pairs_neighbours, (size_t)nv, err, A(list), A(loff), A(s->tree.count),
-                   A(s->first), A(s->off), A(s->topo.next), A(s->topo.prev), A(nv), A(s->nbr), END));
+                   A(s->upper_first), A(s->pair_off), A(s->topo.next), A(s->topo.prev), A(nv), A(s->nbr), END));
     s->np = np;
     TR_TRY(clb_ensure_rows(s, err));
     double mind = INFINITY;

@@ -21,15 +21,15 @@ int clb_eval_rows(cl_state *s, const tr_correct_params *prm, tr_error *err)
     TR_TRY(clb_run(s, K_curv_limits, (size_t)s->ncomp, err, A(s->ebar), A(s->ncomp), A(minrad),
                A(s->curv), END));
     TR_TRY(clb_run(s, K_rows_chain, (size_t)nv, err, A(s->x), A(s->topo.next), A(s->topo.prev),
-               A(s->topo.comp), A(s->ebar), A(s->curv), A(nv), A(ac), A(s->rC), A(s->rgrad),
-               A(s->ract), A(s->part), A(s->cgq), A(s->cdeb), END));
+               A(s->topo.comp), A(s->ebar), A(s->curv), A(nv), A(ac), A(s->row_c), A(s->row_grad),
+               A(s->row_active), A(s->part), A(s->cgq), A(s->cdeb), END));
     if (np > 0)
         TR_TRY(clb_run(s, K_rows_strut, (size_t)np, err, A(s->x), A(s->topo.next), A(s->topo.prev),
-                   A(s->pa), A(s->pb), A(nv), A(np), A(sd), A(as), A(s->rC), A(s->rgrad), A(s->ract),
-                   A(s->rs), A(s->rt), A(s->dist), A(s->part), A(voff), END));
+                   A(s->pair_a), A(s->pair_b), A(nv), A(np), A(sd), A(as), A(s->row_c), A(s->row_grad), A(s->row_active),
+                   A(s->row_s), A(s->row_t), A(s->dist), A(s->part), A(voff), END));
     if (np > 0)
         TR_TRY(clb_run(s, K_rows_strut_min, (size_t)np, err, A(s->x), A(s->topo.next), A(s->topo.prev),
-                   A(s->pa), A(s->pb), A(s->dist), A(s->nbr), A(nv), A(np), A(s->ract), END));
+                   A(s->pair_a), A(s->pair_b), A(s->dist), A(s->nbr), A(nv), A(np), A(s->row_active), END));
     TR_TRY(tr_cl_reduce_minmax(&s->red, &s->ctx, s->part, (int)(gc + gs), s->sc, SC_VIOL, err));
 cleanup:
     return rc;
@@ -41,13 +41,13 @@ int clb_apply_JT(cl_state *s, const tr_correct_params *prm, cl_mem y, tr_error *
     int rc = TR_OK;
     int nv = s->nv;
     double w = prm->ebar_weight;
-    TR_TRY(clb_run(s, K_jt_vertex, (size_t)nv, err, A(y), A(s->rgrad), A(s->cgq), A(s->ract), A(s->topo.next),
+    TR_TRY(clb_run(s, K_jt_vertex, (size_t)nv, err, A(y), A(s->row_grad), A(s->cgq), A(s->row_active), A(s->topo.next),
                A(s->topo.prev), A(s->aadj), A(s->aadjn), A(s->aaoff), A(s->acoef), A(s->agrad), A(s->cidx), A(s->cst),
                A(nv), A(s->dx), A(s->cdeb), A(s->topo.comp), A(s->ncomp), A(s->ebar_part), A(s->blkf),
                END));
     int G = s->ebar_groups;
     if (!s->ctx.block_items) /* on CPU devices jt_vertex's items sum them */
-        TR_TRY(clb_run_groups(s, K_jt_ebar_partial, (size_t)s->ncomp * (size_t)G, err, A(y), A(s->ract),
+        TR_TRY(clb_run_groups(s, K_jt_ebar_partial, (size_t)s->ncomp * (size_t)G, err, A(y), A(s->row_active),
                           A(s->start), A(s->cdeb), A(nv), A(G), A(s->ebar_part), END));
     cl_mem none = NULL;
     int zero = 0;
@@ -64,22 +64,22 @@ static int tridiag_solve(cl_state *s, int sm, cl_mem out, tr_error *err)
 {
     int rc = TR_OK;
     int nv = s->nv;
-    cl_mem uu = sm ? s->tuu : s->pdiag; /* pdiag: any buffer, unread when !sm */
+    cl_mem uu = sm ? s->pcr_uu : s->pdiag; /* pdiag: any buffer, unread when !sm */
     if (s->tri_group) {
-        TR_TRY(clb_run_one_group(s, K_tridiag_group, s->tri_group, err, A(s->tri_levels), A(s->tset0),
-                             A(s->tp), A(s->tq), A(s->pdiag), A(s->po), A(s->topo.comp),
+        TR_TRY(clb_run_one_group(s, K_tridiag_group, s->tri_group, err, A(s->tri_levels), A(s->pcr_set0),
+                             A(s->pcr_p), A(s->pcr_q), A(s->pdiag), A(s->edge_off), A(s->topo.comp),
                              A(s->start), A(s->ne), A(s->closed), A(uu), A(sm), A(nv), A(out),
                              END));
         return TR_OK;
     }
-    cl_mem src = s->tset0, dst = s->tp;
+    cl_mem src = s->pcr_set0, dst = s->pcr_p;
     for (int l = 0, stride = 1; l < s->tri_levels; l++, stride *= 2) {
         TR_TRY(clb_run(s, K_tridiag_level, (size_t)nv, err, A(stride), A(s->topo.comp), A(s->start),
                    A(s->ne), A(nv), A(src), A(dst), END));
         src = dst;
-        dst = dst == s->tp ? s->tq : s->tp;
+        dst = dst == s->pcr_p ? s->pcr_q : s->pcr_p;
     }
-    TR_TRY(clb_run(s, K_tridiag_finish, (size_t)nv, err, A(src), A(s->pdiag), A(s->po), A(s->topo.comp),
+    TR_TRY(clb_run(s, K_tridiag_finish, (size_t)nv, err, A(src), A(s->pdiag), A(s->edge_off), A(s->topo.comp),
                A(s->start), A(s->ne), A(s->closed), A(uu), A(sm), A(nv), A(out), END));
 cleanup:
     return rc;
@@ -92,10 +92,10 @@ static int tridiag_setup(cl_state *s, tr_error *err)
 {
     int rc = TR_OK;
     int nv = s->nv;
-    TR_TRY(clb_run(s, K_tridiag_matrix, (size_t)nv, err, A(s->pdiag), A(s->po), A(s->topo.comp),
-               A(s->start), A(s->ne), A(s->closed), A(nv), A(s->tset0), END));
+    TR_TRY(clb_run(s, K_tridiag_matrix, (size_t)nv, err, A(s->pdiag), A(s->edge_off), A(s->topo.comp),
+               A(s->start), A(s->ne), A(s->closed), A(nv), A(s->pcr_set0), END));
     if (s->any_closed)
-        TR_TRY(tridiag_solve(s, 0, s->tuu, err));
+        TR_TRY(tridiag_solve(s, 0, s->pcr_uu, err));
 cleanup:
     return rc;
 }
@@ -114,28 +114,28 @@ static int precond_apply(cl_state *s, cl_mem r, int diag, int in_loop, int rz_it
     size_t d = sizeof(double);
     if (s->tri_twist) {
         size_t items = 2 * (size_t)s->ncomp;
-        TR_TRY(clb_run_items(s, K_twist_sweep_rows, items, err, A(r), A(s->po), A(s->start), A(s->ne),
-                         A(s->ncomp), A(nv), A(s->tw), A(s->tmid), A(s->tends), A(s->z), END));
-        TR_TRY(clb_run_items(s, K_twist_back_rows, items, err, A(r), A(s->po), A(s->start), A(s->ne),
-                         A(s->ncomp), A(nv), A(s->tw), A(s->tmid), A(s->tends), A(s->z), END));
+        TR_TRY(clb_run_items(s, K_twist_sweep_rows, items, err, A(r), A(s->edge_off), A(s->start), A(s->ne),
+                         A(s->ncomp), A(nv), A(s->edge_work), A(s->tmid), A(s->tends), A(s->z), END));
+        TR_TRY(clb_run_items(s, K_twist_back_rows, items, err, A(r), A(s->edge_off), A(s->start), A(s->ne),
+                         A(s->ncomp), A(nv), A(s->edge_work), A(s->tmid), A(s->tends), A(s->z), END));
         if (s->any_closed || in_loop)
-            TR_TRY(clb_run_items(s, K_twist_ring_fact, (size_t)s->ncomp, err, A(s->pdiag), A(s->po),
-                             A(s->start), A(s->ne), A(s->closed), A(s->ncomp), A(nv), A(s->tw),
+            TR_TRY(clb_run_items(s, K_twist_ring_fact, (size_t)s->ncomp, err, A(s->pdiag), A(s->edge_off),
+                             A(s->start), A(s->ne), A(s->closed), A(s->ncomp), A(nv), A(s->edge_work),
                              A(s->tends), A(s->rzp), A(rz_items), END));
         if (s->any_closed && !in_loop)
             TR_TRY(clb_run(s, K_twist_ring_fix, (size_t)nv, err, A(s->topo.comp), A(s->ncomp), A(nv),
-                       A(s->tw), A(s->tends), A(s->z), END));
+                       A(s->edge_work), A(s->tends), A(s->z), END));
     } else if (s->tri_pcr) {
-        TR_CL_CHECK(clEnqueueCopyBuffer(s->ctx.queue, r, s->tset0, 0, 3 * (size_t)nv * d,
+        TR_CL_CHECK(clEnqueueCopyBuffer(s->ctx.queue, r, s->pcr_set0, 0, 3 * (size_t)nv * d,
                                         (size_t)nv * d, 0, NULL, NULL));
         TR_TRY(tridiag_solve(s, 1, s->z, err));
     } else {
-        TR_TRY(clb_run(s, K_precond_edges, (size_t)s->ncomp, err, A(r), A(s->pdiag), A(s->po),
-                   A(s->start), A(s->ne), A(s->closed), A(s->ncomp), A(nv), A(s->tw), A(s->z),
+        TR_TRY(clb_run(s, K_precond_edges, (size_t)s->ncomp, err, A(r), A(s->pdiag), A(s->edge_off),
+                   A(s->start), A(s->ne), A(s->closed), A(s->ncomp), A(nv), A(s->edge_work), A(s->z),
                    END));
     }
     if (diag)
-        TR_TRY(clb_run(s, K_precond_diag, (size_t)(nl - nv), err, A(r), A(s->pdiag), A(s->ract), A(nv),
+        TR_TRY(clb_run(s, K_precond_diag, (size_t)(nl - nv), err, A(r), A(s->pdiag), A(s->row_active), A(nv),
                    A(s->act), A(nl), A(s->z), END));
 cleanup:
     return rc;
@@ -150,10 +150,10 @@ static int row_list(cl_state *s, tr_error *err)
     int nv = s->nv, np = s->np, bsize = TR_ACT_BLOCK, nb = (np + TR_ACT_BLOCK - 1) / TR_ACT_BLOCK;
     int nact = 0;
     if (np > 0) {
-        TR_TRY(clb_run(s, K_act_count, (size_t)nb, err, A(s->ract), A(nv), A(np), A(bsize), A(nb),
+        TR_TRY(clb_run(s, K_act_count, (size_t)nb, err, A(s->row_active), A(nv), A(np), A(bsize), A(nb),
                    A(s->actc), END));
         TR_TRY(clb_run_groups(s, K_act_scan, 0, err, A(nb), A(s->actc), END));
-        TR_TRY(clb_run(s, K_act_write, (size_t)nb, err, A(s->ract), A(nv), A(np), A(bsize), A(nb),
+        TR_TRY(clb_run(s, K_act_write, (size_t)nb, err, A(s->row_active), A(nv), A(np), A(bsize), A(nb),
                    A(s->actc), A(s->act), END));
         TR_CL_CHECK(clEnqueueReadBuffer(s->ctx.queue, s->actc, CL_TRUE, (size_t)nb * sizeof(int),
                                         sizeof nact, &nact, 0, NULL, NULL));
@@ -189,8 +189,8 @@ int clb_solve_rows(cl_state *s, tr_error *err)
     }
     int na = (int)nact;
     if (na > 0)
-        TR_TRY(clb_run(s, K_act_gather, nact, err, A(s->act), A(s->pa), A(s->pb), A(s->rs), A(s->rt),
-                   A(s->rgrad), A(nv), A(na), A(s->sab), A(s->sw), END));
+        TR_TRY(clb_run(s, K_act_gather, nact, err, A(s->act), A(s->pair_a), A(s->pair_b), A(s->row_s), A(s->row_t),
+                   A(s->row_grad), A(nv), A(na), A(s->sab), A(s->sw), END));
     if (nae > s->aacap) {
         size_t c = nae + nae / 2 + 64;
         s->aacap = 0;
@@ -209,19 +209,19 @@ int clb_solve_rows(cl_state *s, tr_error *err)
         TR_CL_CHECK(clEnqueueFillBuffer(s->ctx.queue, s->aaoff, &izero, sizeof izero, 0,
                                         (size_t)(nv + 1) * sizeof(int), 0, NULL, NULL));
     } else {
-        TR_TRY(clb_run(s, K_adj_active_count, nact, err, A(s->act), A(s->pa), A(s->pb), A(s->topo.next),
+        TR_TRY(clb_run(s, K_adj_active_count, nact, err, A(s->act), A(s->pair_a), A(s->pair_b), A(s->topo.next),
                    A(na), A(s->aadjn), END));
         TR_TRY(tr_cl_reduce_scan(&s->red, &s->ctx, s->aadjn, nv, s->aaoff, err));
         TR_CL_CHECK(clEnqueueFillBuffer(s->ctx.queue, s->aadjn, &izero, sizeof izero, 0,
                                         (size_t)nv * sizeof(int), 0, NULL, NULL));
-        TR_TRY(clb_run(s, K_adj_active_write, nact, err, A(s->act), A(s->pa), A(s->pb), A(s->topo.next),
-                   A(s->rs), A(s->rt), A(s->rgrad), A(nv), A(na), A(s->aaoff), A(s->aadjn),
+        TR_TRY(clb_run(s, K_adj_active_write, nact, err, A(s->act), A(s->pair_a), A(s->pair_b), A(s->topo.next),
+                   A(s->row_s), A(s->row_t), A(s->row_grad), A(nv), A(na), A(s->aaoff), A(s->aadjn),
                    A(s->aadj), A(s->acoef), A(s->agrad), END));
         TR_TRY(clb_run(s, K_adj_active_sort, (size_t)nv, err, A(s->aaoff), A(nv), A(s->aadj), A(s->acoef),
                    A(s->agrad), END));
     }
     if (s->ctx.block_items && nv >= 4)
-        TR_TRY(clb_run(s, K_block_flags, (size_t)(nv / 4), err, A(s->ract), A(s->topo.next),
+        TR_TRY(clb_run(s, K_block_flags, (size_t)(nv / 4), err, A(s->row_active), A(s->topo.next),
                    A(s->topo.prev), A(s->aadjn), A(s->cidx), A(nv), A(s->blkf), END));
 cleanup:
     return rc;
@@ -245,7 +245,7 @@ static int apply_JJT(cl_state *s, const tr_correct_params *prm, tr_error *err)
     int nv = s->nv, nl = s->cg_nl, G = s->ebar_groups;
     int iv = (int)tr_cl_items_global(&s->ctx, (size_t)nv), off = iv + s->ncomp;
     double reg = prm->reg, w = prm->ebar_weight;
-    TR_TRY(clb_run(s, K_jjt_rows, (size_t)nv, err, A(s->p), A(s->rgrad), A(s->cgq), A(s->ract),
+    TR_TRY(clb_run(s, K_jjt_rows, (size_t)nv, err, A(s->p), A(s->row_grad), A(s->cgq), A(s->row_active),
                A(s->topo.next), A(s->topo.prev), A(s->aadj), A(s->aadjn), A(s->aaoff), A(s->acoef),
                A(s->agrad), A(s->cidx), A(s->cst), A(nv), A(s->dx), A(s->cdeb), A(s->topo.comp),
                A(s->ncomp), A(s->ebar_part), A(s->blkf), A(reg), A(s->q), A(s->part), END));
@@ -253,7 +253,7 @@ static int apply_JJT(cl_state *s, const tr_correct_params *prm, tr_error *err)
                       A(s->debar), A(s->part), A(iv), END));
     if (nl > 2 * nv) {
         TR_TRY(clb_run(s, K_j_struts, (size_t)(nl - 2 * nv), err, A(s->dx), A(s->debar), A(s->cdeb),
-                   A(s->rgrad), A(s->cgq), A(s->ract), A(s->topo.next), A(s->topo.prev),
+                   A(s->row_grad), A(s->cgq), A(s->row_active), A(s->topo.next), A(s->topo.prev),
                    A(s->topo.comp), A(s->sab), A(s->sw), A(s->p), A(nv), A(reg), A(s->act), A(nl),
                    A(s->q), A(s->part), A(off), END));
         off += (int)tr_cl_items_global(&s->ctx, (size_t)(nl - 2 * nv));
@@ -279,22 +279,22 @@ int clb_cg_iterate(cl_state *s, const tr_correct_params *prm, int *iters, tr_err
     double reg = prm->reg, w = prm->ebar_weight, tol2 = prm->cg_rtol * prm->cg_rtol, it;
     TR_CL_CHECK(clEnqueueWriteBuffer(s->ctx.queue, s->sc, CL_FALSE, SC_TOL2 * sizeof(double),
                                      sizeof tol2, &tol2, 0, NULL, NULL));
-    TR_TRY(clb_run(s, K_precond_setup, (size_t)nl, err, A(s->rgrad), A(s->cgq), A(s->cdeb), A(s->ract),
-               A(s->topo.next), A(s->topo.prev), A(s->topo.comp), A(s->ne), A(s->pa), A(s->pb),
-               A(s->rs), A(s->rt), A(s->cidx), A(s->cst), A(nv), A(s->act), A(nl), A(w), A(reg), A(s->pdiag),
-               A(s->po), END));
+    TR_TRY(clb_run(s, K_precond_setup, (size_t)nl, err, A(s->row_grad), A(s->cgq), A(s->cdeb), A(s->row_active),
+               A(s->topo.next), A(s->topo.prev), A(s->topo.comp), A(s->ne), A(s->pair_a), A(s->pair_b),
+               A(s->row_s), A(s->row_t), A(s->cidx), A(s->cst), A(nv), A(s->act), A(nl), A(w), A(reg), A(s->pdiag),
+               A(s->edge_off), END));
     if (s->tri_pcr) {
         TR_TRY(tridiag_setup(s, err));
     } else if (s->tri_twist) {
-        TR_TRY(clb_run_items(s, K_twist_factor, 2 * (size_t)s->ncomp, err, A(s->pdiag), A(s->po),
-                         A(s->start), A(s->ne), A(s->closed), A(s->ncomp), A(nv), A(s->tw),
+        TR_TRY(clb_run_items(s, K_twist_factor, 2 * (size_t)s->ncomp, err, A(s->pdiag), A(s->edge_off),
+                         A(s->start), A(s->ne), A(s->closed), A(s->ncomp), A(nv), A(s->edge_work),
                          A(s->tmid), A(s->z), END));
-        TR_TRY(clb_run_items(s, K_twist_factor_mid, (size_t)s->ncomp, err, A(s->pdiag), A(s->po),
-                         A(s->start), A(s->ne), A(s->closed), A(s->ncomp), A(nv), A(s->tw),
+        TR_TRY(clb_run_items(s, K_twist_factor_mid, (size_t)s->ncomp, err, A(s->pdiag), A(s->edge_off),
+                         A(s->start), A(s->ne), A(s->closed), A(s->ncomp), A(nv), A(s->edge_work),
                          A(s->tmid), END));
     } else
-        TR_TRY(clb_run(s, K_precond_edges_factor, (size_t)s->ncomp, err, A(s->pdiag), A(s->po),
-                   A(s->start), A(s->ne), A(s->closed), A(s->ncomp), A(nv), A(s->tw), END));
+        TR_TRY(clb_run(s, K_precond_edges_factor, (size_t)s->ncomp, err, A(s->pdiag), A(s->edge_off),
+                   A(s->start), A(s->ne), A(s->closed), A(s->ncomp), A(nv), A(s->edge_work), END));
     TR_TRY(precond_apply(s, s->r, 1, 0, 0, err));
     TR_TRY(clb_run(s, K_copy_rows, (size_t)nl, err, A(s->z), A(s->p), A(nl), END));
     TR_TRY(tr_cl_reduce_dot(&s->red, &s->ctx, s->r, s->r, nl, s->sc, SC_RR, err));
@@ -314,13 +314,13 @@ int clb_cg_iterate(cl_state *s, const tr_correct_params *prm, int *iters, tr_err
         else {
             TR_TRY(clb_apply_JT(s, prm, s->p, err));
             TR_TRY(clb_run(s, K_j_rows, clb_jrows_units(s, nl), err, A(s->dx), A(s->debar), A(s->cdeb),
-                       A(s->rgrad), A(s->cgq), A(s->ract), A(s->topo.next), A(s->topo.prev),
+                       A(s->row_grad), A(s->cgq), A(s->row_active), A(s->topo.next), A(s->topo.prev),
                        A(s->topo.comp), A(s->sab), A(s->sw), A(s->p), A(nv), A(reg), A(s->act),
                        A(nl), A(s->q), A(s->part), A(s->blkf), END));
             TR_TRY(tr_cl_reduce_sum(&s->red, &s->ctx, s->part, items, s->sc, SC_PQ, err));
         }
         TR_TRY(clb_run(s, K_cg_r, clb_jrows_units(s, nl), err, A(s->r), A(s->q), A(s->sc), A(nl),
-                   A(s->part), A(s->pdiag), A(s->ract), A(nv), A(s->act), A(s->z), A(rzp),
+                   A(s->part), A(s->pdiag), A(s->row_active), A(nv), A(s->act), A(s->z), A(rzp),
                    A(s->debar), A(s->cdeb), A(s->topo.comp), A(s->blkf), END));
         TR_TRY(tr_cl_reduce_sum(&s->red, &s->ctx, s->part, items, s->sc, SC_RR, err));
         TR_TRY(precond_apply(s, s->r, 0, 1, items, err));
@@ -330,7 +330,7 @@ int clb_cg_iterate(cl_state *s, const tr_correct_params *prm, int *iters, tr_err
              * fewer than reduce_dot, twist_ring_fix and cg_p */
             TR_TRY(tr_cl_reduce_sum(&s->red, &s->ctx, s->rzp, items + s->ncomp, s->sc, SC_RR1, err));
             TR_TRY(clb_run(s, K_cg_p_ring, (size_t)nl, err, A(s->y), A(s->p), A(s->z), A(s->sc), A(nl),
-                       A(s->topo.comp), A(s->ncomp), A(nv), A(s->tw), A(s->tends), END));
+                       A(s->topo.comp), A(s->ncomp), A(nv), A(s->edge_work), A(s->tends), END));
         } else {
             TR_TRY(tr_cl_reduce_dot(&s->red, &s->ctx, s->r, s->z, nl, s->sc, SC_RR1, err));
             TR_TRY(clb_run(s, K_cg_p, (size_t)nl, err, A(s->y), A(s->p), A(s->z), A(s->sc), A(nl), END));
@@ -365,17 +365,17 @@ int clb_correct(void *sp, const tr_correct_params *prm, tr_correct_stats *out, t
             break;
         TR_TRY(clb_solve_rows(s, err));
         int nl = s->cg_nl;
-        TR_TRY(clb_run(s, K_cg_init, (size_t)nl, err, A(s->rC), A(s->ract), A(nv), A(s->act), A(nl), A(s->b),
+        TR_TRY(clb_run(s, K_cg_init, (size_t)nl, err, A(s->row_c), A(s->row_active), A(nv), A(s->act), A(nl), A(s->b),
                    A(s->y), A(s->r), A(s->p), END));
         /* active rows: those of the chain counted here, the struts are the list's */
         int nchain = 2 * nv;
-        TR_TRY(tr_cl_reduce_count(&s->red, &s->ctx, s->ract, nchain, s->sc, SC_NACT, err));
+        TR_TRY(tr_cl_reduce_count(&s->red, &s->ctx, s->row_active, nchain, s->sc, SC_NACT, err));
         int iters = 0;
         TR_TRY(clb_cg_iterate(s, prm, &iters, err));
         st.cg_iters += iters;
         TR_TRY(clb_apply_JT(s, prm, s->y, err));
-        TR_TRY(clb_run(s, K_dx_norm, (size_t)nv, err, A(s->dx), A(nv), A(s->t1), END));
-        TR_TRY(tr_cl_reduce_minmax(&s->red, &s->ctx, s->t1, nv, s->sc, SC_MAXDX, err));
+        TR_TRY(clb_run(s, K_dx_norm, (size_t)nv, err, A(s->dx), A(nv), A(s->vterm_a), END));
+        TR_TRY(tr_cl_reduce_minmax(&s->red, &s->ctx, s->vterm_a, nv, s->sc, SC_MAXDX, err));
         TR_TRY(clb_run_groups(s, K_step_scale, 0, err, A(s->sc), A(ms), END));
         TR_TRY(clb_run(s, K_apply_dx, (size_t)nv, err, A(s->x), A(s->dx), A(s->cidx), A(s->cst), A(s->sc), A(nv), END));
         TR_TRY(clb_run(s, K_apply_debar, (size_t)s->ncomp, err, A(s->ebar), A(s->debar), A(s->sc),

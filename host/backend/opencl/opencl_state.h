@@ -48,14 +48,22 @@ typedef struct cl_state {
     int *h_start, *h_ne;
     tr_curve shape; /* host copy of the topology and constraints (for upload's snap-free ebar) */
     cl_mem start, ne, cidx, cst, gap;
-    cl_mem x, xs, ebar, ebar_s, debar;
+    cl_mem x, x_saved, ebar, ebar_saved, debar; /* positions, ebar, and their saved copies (save) */
     cl_mem curv; /* per component: largest turning angle and its ebar term (curv_limits) */
-    cl_mem F, G, H, dx;
-    cl_mem t1, t2, t3; /* nv reals: per-vertex terms for reductions */
+    /* the tension step: the force, the field that moves the curve (the force
+     * low-passed, then projected), the low-pass's other buffer; the
+     * correction's displacement */
+    cl_mem force, field, field_tmp, dx;
+    /* nv reals each: per-vertex terms an operation reduces to scalars
+     * (tension: |F|^2, F . dx, |dx|; measure: lengths, deviations, MinRad) */
+    cl_mem vterm_a, vterm_b, vterm_c;
     cl_mem sc;         /* scalars */
     /* contacts */
     int np, pcap;
-    cl_mem up, first, off, pa, pb;
+    /* per vertex: its upper partners' count and the first of them in its
+     * list, the pairs' offsets (a scan of the counts); per pair: its two
+     * edges' first vertices */
+    cl_mem upper_count, upper_first, pair_off, pair_a, pair_b;
     cl_mem dist, nbr; /* each pair's distance (rows_strut); its neighbours in the list (pairs_neighbours) */
     /* one partial result per work-item of a folding kernel (rows_chain and
      * rows_strut: largest violations; pairs_min_dist: closest pairs; j_rows
@@ -79,9 +87,12 @@ typedef struct cl_state {
     int vcap;  /* entries of the CG's vectors y, r, p, q, b, z (by list position) */
     /* rows */
     int rcap;
-    cl_mem rC, rgrad, ract, rs, rt, y, r, p, q, b;
-    cl_mem cgq, cdeb, chg; /* curvature rows' second gradient and ebar derivative; a flag */
-    cl_mem pdiag, z, po, tw, closed; /* preconditioner: diagonal, M^-1 r, edge off-diagonal, work */
+    /* per row: value, gradient, active flag, closest-point parameters s and
+     * t; the CG's vectors (multipliers y, residual r, direction p, q = A p,
+     * right-hand side b) */
+    cl_mem row_c, row_grad, row_active, row_s, row_t, y, r, p, q, b;
+    cl_mem cgq, cdeb, changed; /* curvature rows' second gradient and ebar derivative; a flag */
+    cl_mem pdiag, z, edge_off, edge_work, closed; /* preconditioner: diagonal, M^-1 r, edge off-diagonal, work */
     /* The edge block by parallel cyclic reduction (kernels/tridiag.cl) instead
      * of precond_edges' sequential sweep: level-0 set, two alternating sets,
      * the Sherman-Morrison vector; tri_group > 0: one work-group of that size
@@ -100,7 +111,7 @@ typedef struct cl_state {
     int ebar_groups;
     cl_mem ebar_part;
     size_t tri_group;
-    cl_mem tset0, tp, tq, tuu;
+    cl_mem pcr_set0, pcr_p, pcr_q, pcr_uu;
 } cl_state;
 
 /* Strut rows per item when the CG's row list is built (act_count, act_write). */

@@ -29,8 +29,8 @@ static int project_tangent(cl_state *s, const tr_correct_params *q, cl_mem G, tr
         TR_CL_CHECK(clEnqueueFillBuffer(s->ctx.queue, s->y, &zero, sizeof zero, 0,
                                         (size_t)nl * sizeof(double), 0, NULL, NULL));
         /* b = J (G, debar = 0), no regularisation term (y = 0) */
-        TR_TRY(clb_run(s, K_j_rows, clb_jrows_units(s, nl), err, A(s->dx), A(s->debar), A(s->cdeb), A(s->rgrad),
-                   A(s->cgq), A(s->ract), A(s->topo.next), A(s->topo.prev), A(s->topo.comp),
+        TR_TRY(clb_run(s, K_j_rows, clb_jrows_units(s, nl), err, A(s->dx), A(s->debar), A(s->cdeb), A(s->row_grad),
+                   A(s->cgq), A(s->row_active), A(s->topo.next), A(s->topo.prev), A(s->topo.comp),
                    A(s->sab), A(s->sw), A(s->y), A(nv), A(reg0), A(s->act), A(nl), A(s->b),
                    A(s->part), A(s->blkf), END));
         TR_TRY(clb_run(s, K_cg_reset, (size_t)nl, err, A(s->b), A(s->y), A(s->r), A(s->p), A(nl), END));
@@ -38,11 +38,11 @@ static int project_tangent(cl_state *s, const tr_correct_params *q, cl_mem G, tr
         TR_TRY(clb_cg_iterate(s, q, &iters, err));
         if (pass + 1 < q->max_newton && nl > nv) {
             int changed = 0;
-            TR_CL_CHECK(clEnqueueWriteBuffer(s->ctx.queue, s->chg, CL_FALSE, 0, sizeof izero, &izero, 0,
+            TR_CL_CHECK(clEnqueueWriteBuffer(s->ctx.queue, s->changed, CL_FALSE, 0, sizeof izero, &izero, 0,
                                              NULL, NULL));
-            TR_TRY(clb_run(s, K_release_pulling, (size_t)(nl - nv), err, A(s->ract), A(s->y), A(nv), A(s->act),
-                       A(nl), A(s->chg), END));
-            TR_CL_CHECK(clEnqueueReadBuffer(s->ctx.queue, s->chg, CL_TRUE, 0, sizeof changed, &changed,
+            TR_TRY(clb_run(s, K_release_pulling, (size_t)(nl - nv), err, A(s->row_active), A(s->y), A(nv), A(s->act),
+                       A(nl), A(s->changed), END));
+            TR_CL_CHECK(clEnqueueReadBuffer(s->ctx.queue, s->changed, CL_TRUE, 0, sizeof changed, &changed,
                                             0, NULL, NULL));
             if (changed)
                 continue;
@@ -63,9 +63,9 @@ int clb_tension_step(void *sp, const tr_tension_params *prm, tr_tension_stats *o
     int nv = s->nv;
     double h = prm->h, mm = prm->max_move;
     TR_TRY(clb_run(s, K_tension_force, (size_t)nv, err, A(s->x), A(s->topo.next), A(s->topo.prev), A(nv),
-               A(s->F), END));
-    cl_mem G = s->G, H = s->H;
-    TR_CL_CHECK(clEnqueueCopyBuffer(s->ctx.queue, s->F, G, 0, 0, 3 * (size_t)nv * sizeof(double), 0,
+               A(s->force), END));
+    cl_mem G = s->field, H = s->field_tmp;
+    TR_CL_CHECK(clEnqueueCopyBuffer(s->ctx.queue, s->force, G, 0, 0, 3 * (size_t)nv * sizeof(double), 0,
                                     NULL, NULL));
     for (int pass = 0; pass < prm->smooth_passes; pass++) {
         TR_TRY(clb_run(s, K_tension_smooth, (size_t)nv, err, A(G), A(s->topo.next), A(s->topo.prev),
@@ -74,21 +74,21 @@ int clb_tension_step(void *sp, const tr_tension_params *prm, tr_tension_stats *o
         G = H;
         H = t;
     }
-    TR_TRY(clb_run(s, K_tension_smooth2, (size_t)nv, err, A(G), A(s->cidx), A(s->cst), A(nv), A(s->t1), END));
-    TR_TRY(tr_cl_reduce_sum(&s->red, &s->ctx, s->t1, nv, s->sc, SC_SMOOTH2, err));
+    TR_TRY(clb_run(s, K_tension_smooth2, (size_t)nv, err, A(G), A(s->cidx), A(s->cst), A(nv), A(s->vterm_a), END));
+    TR_TRY(tr_cl_reduce_sum(&s->red, &s->ctx, s->vterm_a, nv, s->sc, SC_SMOOTH2, err));
     if (prm->project) {
         TR_TRY(clb_ensure_rows(s, err));
         TR_TRY(project_tangent(s, prm->project, G, err));
         TR_TRY(tr_cl_reduce_dot(&s->red, &s->ctx, G, G, 3 * nv, s->sc, SC_FREE2, err));
     }
-    TR_TRY(clb_run(s, K_tension_move, (size_t)nv, err, A(s->x), A(s->F), A(G), A(s->cidx), A(s->cst), A(nv), A(h),
-               A(mm), A(s->t1), A(s->t2), A(s->t3), END));
+    TR_TRY(clb_run(s, K_tension_move, (size_t)nv, err, A(s->x), A(s->force), A(G), A(s->cidx), A(s->cst), A(nv), A(h),
+               A(mm), A(s->vterm_a), A(s->vterm_b), A(s->vterm_c), END));
     if (prm->project)
         TR_TRY(clb_run(s, K_ebar_velocity, (size_t)s->ncomp, err, A(s->ebar), A(s->debar), A(h),
                    A(s->ncomp), END));
-    TR_TRY(tr_cl_reduce_sum(&s->red, &s->ctx, s->t1, nv, s->sc, SC_F2, err));
-    TR_TRY(tr_cl_reduce_sum(&s->red, &s->ctx, s->t2, nv, s->sc, SC_PRED, err));
-    TR_TRY(tr_cl_reduce_minmax(&s->red, &s->ctx, s->t3, nv, s->sc, SC_MOVE, err));
+    TR_TRY(tr_cl_reduce_sum(&s->red, &s->ctx, s->vterm_a, nv, s->sc, SC_F2, err));
+    TR_TRY(tr_cl_reduce_sum(&s->red, &s->ctx, s->vterm_b, nv, s->sc, SC_PRED, err));
+    TR_TRY(tr_cl_reduce_minmax(&s->red, &s->ctx, s->vterm_c, nv, s->sc, SC_MOVE, err));
     double v[14];
     TR_TRY(clb_read_scalars(s, SC_F2, 14, v, err)); /* slots 16 .. 29 */
     if (out) {
