@@ -13,7 +13,7 @@
 #include "util/vec3.h"
 
 /* The paper's values (Przybyl & Pieranski 2014, N = 200640, m = 10;
- * REFERENCE.md 5.3, 5.4). */
+ * docs/physics.md 5.3, 5.4). */
 static const double P_L = 32.742934477, P_l1 = 0.158, P_l2 = 0.319, P_dk1 = 0.264, P_dk2 = 0.115,
                     P_da1 = 0.159, P_da2 = 0.062, P_err_l = 0.001, P_err_j = 0.005;
 static const double P_c9m[9] = {0.189, 15.674, 32.370, 11.103, 26.588, 10.541, 22.018, 4.759, 21.455};

@@ -1,4 +1,4 @@
-/* The whole portrait of one closed component (issue 5): symmetry and origin,
+/* The whole portrait of one closed component (docs/physics.md 3-5): symmetry and origin,
  * m-averaged inscribed-arc curvature and torsion, kappa = 1 plateaus and the
  * jumps at their ends, contact functions and the cycles of sigma-^9. All
  * positions in the result are arclengths measured from the chosen origin

@@ -38,7 +38,7 @@
  *       C = |e_a| - ebar_k
  *       dC/dx[a] = -u_a, dC/dx[next a] = +u_a, dC/debar_k = -1
  *   curvature row i ("curvature beam", every vertex with prev and next):
- *   MinRad >= r for equal edges, in turning-angle form (REFERENCE.md 1.2(c):
+ *   MinRad >= r for equal edges, in turning-angle form (docs/physics.md 1.2(c):
  *   tan(theta/2) <= e/(2r)), scaled by ebar so its gradient is O(1) and
  *   orthogonal to the two edge rows at i (the chord form is nearly their
  *   sum, which made the CG crawl):
@@ -75,7 +75,7 @@
  *   (kernels/segment_distance.h: the connector within tilt of both edges' normal
  *   planes), sorted by (a, b) ascending. Why the tilt: at large N every
  *   vertex has ~cutoff/ebar partners on each strand it runs beside, so the
- *   plain cutoff list grows like N^2 (REFERENCE.md 7.4); the struts that
+ *   plain cutoff list grows like N^2 (docs/physics.md 7.4); the struts that
  *   matter are local minima of the distance along both strands, whose
  *   connector lies in the normal slab or wedge of each edge, and those pass
  *   once tilt >= sin(largest turning angle). Pairs a step may slide into
@@ -84,7 +84,7 @@
  *   min(|a - b|, n_k - |a - b|) on a closed one (n_k = vertices of k);
  *   exclude_gap[k] >= 2 always (edges sharing a vertex are excluded).
  *   Pairs on different components are never excluded. The engine passes
- *   exclude_gap[k] = ceil(pi * 1 / ebar_k) (REFERENCE.md 1.2(b)).
+ *   exclude_gap[k] = ceil(pi * 1 / ebar_k) (docs/physics.md 1.2(b)).
  *   Per-vertex gathers over struts visit, for vertex v, the pairs that touch
  *   v (as a, next a, b or next b) in ascending list order (a per-vertex CSR
  *   built from the sorted list); a pair touching v twice contributes both

@@ -1,4 +1,5 @@
-/* tightrope analyze: the paper's portrait of a tight knot (issue 5). */
+/* This file contains `tightrope analyze`: the paper's portrait of a tight knot
+ * (docs/physics.md 3-5). */
 #include <errno.h>
 #include <math.h>
 #include <stdio.h>
@@ -22,7 +23,7 @@ static void usage(FILE *f)
             "usage: tightrope analyze IN --out DIR [-m M] [--plots] [options]\n"
             "\n"
             "Curvature, torsion, symmetry and contact portrait of each closed component of IN\n"
-            "(REFERENCE.md 3-5). The curve is first scaled to thickness 1 (rope radius 1).\n"
+            "(docs/physics.md 3-5). The curve is first scaled to thickness 1 (rope radius 1).\n"
             "Writes into DIR (DIR/compK/ for a link): curvature.csv, torsion.csv, plateaus.csv,\n"
             "symmetry.csv, contacts.csv, sigma.csv, fixed_points.csv, summary.json, report.txt;\n"
             "with --plots also PNG plots drawn by gnuplot.\n"

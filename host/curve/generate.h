@@ -19,7 +19,7 @@ int tr_make_circle(tr_curve *out, double radius, size_t n, tr_error *err);
 /* Hopf link: two round circles through each other's centre, n vertices each. */
 int tr_make_hopf(tr_curve *out, size_t n, tr_error *err);
 
-/* Simple clasp (REFERENCE.md 6.1): two open ropes hooked in perpendicular
+/* Simple clasp (docs/physics.md 6.1): two open ropes hooked in perpendicular
  * planes. Rope A (component 0) lies in the plane y = 0: a half circle of
  * radius 3 centred at (0, 0, 1.5), opening upwards, with vertical legs from
  * (+-3, 0, 1.5) up to z = +h; rope B (component 1) is the same turned upside

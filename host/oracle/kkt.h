@@ -1,5 +1,5 @@
 /* The KKT certificate of a tight rope: how far a curve is from a
- * constrained critical point of its length (REFERENCE.md 7.1, ridgerunner's
+ * constrained critical point of its length (docs/physics.md 7.1, ridgerunner's
  * "residual"), computed on the curve alone, independently of how it was
  * made (engine, polish, another program).
  *

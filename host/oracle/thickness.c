@@ -1,4 +1,4 @@
-/* Rawdon's thickness of a polygon with octrope's conventions (REFERENCE.md 2):
+/* Rawdon's thickness of a polygon with octrope's conventions (docs/physics.md 2):
  * MinRad as octrope_minrad computes it, struts as octrope_struts accepts them
  * (Lumelsky closest points, the endpoint normal-wedge test, the pi_count index
  * rule), the paper's L_p, L_c, L_a, with a tree search in place of octrope's
