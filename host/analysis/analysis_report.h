@@ -4,7 +4,7 @@
 #ifndef TR_ANALYSIS_REPORT_H
 #define TR_ANALYSIS_REPORT_H
 
-#include "analysis/knot_analysis.h"
+#include "analysis/portrait.h"
 #include "oracle/thickness.h"
 
 typedef struct tr_report_ctx {

@@ -12,9 +12,9 @@
 #include "analysis/analysis_report.h"
 #include "cli/cli.h"
 #include "cli/cli_args.h"
-#include "analysis/contacts.h"
+#include "analysis/contact_functions.h"
 #include "curve/curve_io.h"
-#include "analysis/knot_analysis.h"
+#include "analysis/portrait.h"
 #include "oracle/thickness.h"
 
 static void usage(FILE *f)

@@ -12,7 +12,7 @@
 #include "geometry/struts.h"
 #include "segment_distance.h"
 #include "oracle/thickness.h"
-#include "geometry/turning.h"
+#include "geometry/turning_angle.h"
 #include "util/clock.h"
 #include "util/vec3.h"
 

@@ -3,12 +3,12 @@
  * jumps at their ends, contact functions and the cycles of sigma-^9. All
  * positions in the result are arclengths measured from the chosen origin
  * along the input direction, in [0, L). */
-#ifndef TR_KNOT_ANALYSIS_H
-#define TR_KNOT_ANALYSIS_H
+#ifndef TR_PORTRAIT_H
+#define TR_PORTRAIT_H
 
 #include <stddef.h>
 
-#include "analysis/contacts.h"
+#include "analysis/contact_functions.h"
 #include "analysis/curvature_torsion.h"
 #include "util/error.h"
 #include "analysis/profile_features.h"

@@ -1,12 +1,12 @@
 /* This file contains the contacts of a tight knot and its contact functions sigma-(l), sigma+(l)
- * (contacts.h). */
-#include "analysis/contacts.h"
+ * (contact_functions.h). */
+#include "analysis/contact_functions.h"
 
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "curve/polyline.h"
+#include "curve/arclength.h"
 
 int tr_contact_pairs_from_struts(const double *x, size_t n, size_t base, const tr_strut *s,
                                  size_t ns, double dist_max, tr_contact_pair **out, size_t *nout,
