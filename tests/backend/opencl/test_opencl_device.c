@@ -12,6 +12,7 @@
 #include "backend/opencl/cl_reduce.h"
 #include "curve/curve.h"
 #include "testlib.h"
+#include "util/compensated_sum.h"
 #include "backend/opencl/kernel_source.h"
 
 #define TR_PI 3.14159265358979323846
@@ -347,14 +348,13 @@ static void test_reductions(const tr_cl_ctx *ctx)
             /* the sum, one stage up to 1024 entries and two above: against
              * the host's Neumaier sum; either errs by at most ~log2(N) eps of
              * the sum of magnitudes, so 1e-14 of that bounds the difference */
-            double hs = 0.0, hc = 0.0, mag = 0.0;
+            tr_csum hs = {0.0, 0.0};
+            double mag = 0.0;
             for (size_t i = 0; i < c.nv; i++) {
-                double t = hs + coord[i];
-                hc += fabs(hs) >= fabs(coord[i]) ? (hs - t) + coord[i] : (coord[i] - t) + hs;
-                hs = t;
+                tr_csum_add(&hs, coord[i]);
                 mag += fabs(coord[i]);
             }
-            CHECK_NEAR(got[3], hs + hc, 1e-14 * mag);
+            CHECK_NEAR(got[3], tr_csum_value(&hs), 1e-14 * mag);
             /* Pairwise (device) and Neumaier (host) sums of N positive edge
              * lengths both err by at most ~log2(N) eps L < 13 * 1.1e-16 L, so
              * 1e-14 relative bounds the difference with margin; each edge
