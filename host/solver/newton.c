@@ -303,15 +303,8 @@ static int collect_pair(void *vc, size_t ei, size_t ej, double *cutoff)
     collect *cl = vc;
     solver *s = cl->s;
     const tr_nsearch *ns = &s->ns;
-    int k = ns->ecomp[ei];
-    if (k == ns->ecomp[ej]) {
-        size_t li = ei - ns->estart[k], lj = ej - ns->estart[k];
-        size_t g = li > lj ? li - lj : lj - li;
-        if (s->w.closed[k] && s->ne[k] - g < g)
-            g = s->ne[k] - g;
-        if (g < (size_t)s->gap[k])
-            return 0;
-    }
+    if (tr_nsearch_excluded(ns, ei, ej, (size_t)s->gap[ns->ecomp[ei]]))
+        return 0;
     size_t a = ns->ea[ei], b = ns->ea[ej];
     double sp, tp;
     const double *x = s->w.x;
