@@ -8,18 +8,12 @@
  * launch. The measurement behind the choice of blocks on CPU devices. */
 #include <stdio.h>
 #include <stdlib.h>
-#include <time.h>
 
 #include "backend/opencl/cl_device.h"
 #include "backend/opencl/cl_error.h"
 #include "backend/opencl/cl_reduce.h"
-
-static double now(void)
-{
-    struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
-}
+#include "layout.h"
+#include "util/clock.h"
 
 /* ms per launch of k over global items in groups of local (arguments set). */
 static int time_shape(const tr_cl_ctx *ctx, cl_kernel k, size_t global, size_t local, double *ms,
@@ -29,11 +23,11 @@ static int time_shape(const tr_cl_ctx *ctx, cl_kernel k, size_t global, size_t l
     const int reps = 200;
     TR_TRY(tr_cl_launch(ctx, k, global, local, err)); /* PoCL compiles for a new local size */
     TR_CL_CHECK(clFinish(ctx->queue));
-    double t = now();
+    double t = tr_clock_seconds();
     for (int i = 0; i < reps; i++)
         TR_TRY(tr_cl_launch(ctx, k, global, local, err));
     TR_CL_CHECK(clFinish(ctx->queue));
-    *ms = 1e3 * (now() - t) / reps;
+    *ms = 1e3 * (tr_clock_seconds() - t) / reps;
 cleanup:
     return rc;
 }
@@ -69,11 +63,11 @@ int main(int argc, char **argv)
         char zero = 0;
         TR_CL_CHECK(clEnqueueFillBuffer(ctx.queue, v[i], &zero, 1, 0, bytes[i], 0, NULL, NULL));
     }
-    /* sc[SC_PQ] (slot 2) and sc[SC_RZ] (slot 15) 1: alpha = 0 / 1, beta = 0 / 1 */
+    /* sc[SC_PQ] and sc[SC_RZ] (kernels/layout.h) 1: alpha = 0 / 1, beta = 0 / 1 */
     double one = 1.0;
-    TR_CL_CHECK(clEnqueueWriteBuffer(ctx.queue, v[3], CL_TRUE, 2 * sizeof(double), sizeof one, &one, 0,
+    TR_CL_CHECK(clEnqueueWriteBuffer(ctx.queue, v[3], CL_TRUE, SC_PQ * sizeof(double), sizeof one, &one, 0,
                                      NULL, NULL));
-    TR_CL_CHECK(clEnqueueWriteBuffer(ctx.queue, v[3], CL_TRUE, 15 * sizeof(double), sizeof one, &one, 0,
+    TR_CL_CHECK(clEnqueueWriteBuffer(ctx.queue, v[3], CL_TRUE, SC_RZ * sizeof(double), sizeof one, &one, 0,
                                      NULL, NULL));
     TR_CL_ARGS(k, 0, TR_CL_A(v[0]), TR_CL_A(v[1]), TR_CL_A(v[2]), TR_CL_A(v[3]), TR_CL_A(n));
     printf("%s, cg_p over %d entries, ms per launch (200 launches)\n", ch.cl.name, n);

@@ -5,21 +5,7 @@
  * (chain neighbours, then the vertex's contact adjacency in list order);
  * J dx is per row. The CG scalars live in a small device array `sc` so the
  * host reads nothing inside the CG loop but the `done` flag, every fourth
- * iteration. */
-
-/* sc[] slots (3 and 5, once alpha and beta, are free) */
-#define SC_RR 0
-#define SC_RR0 1
-#define SC_PQ 2
-#define SC_RR1 4
-#define SC_DONE 6
-#define SC_ITERS 7
-#define SC_TOL2 8
-#define SC_VIOL 9 /* and 10: minmax writes (min, max) - the max is at 10 */
-#define SC_MAXDX 12 /* minmax: min at 11, max at 12 */
-#define SC_SCALE 13
-#define SC_NACT 14
-#define SC_RZ 15
+ * iteration (slots: kernels/layout.h). */
 
 /* Per component k: the largest turning angle MinRad >= minrad allows,
  * 2 atan(ebar / (2 minrad)), and its ebar derivative times ebar; rows_chain
@@ -1296,7 +1282,7 @@ __kernel void dx_norm(__global const real *dx, const int nv, __global real *m)
 
 __kernel void step_scale(__global real *sc, const real max_step)
 {
-    real m = sc[SC_MAXDX];
+    real m = sc[SC_MAXDX + 1]; /* the max of the min/max pair */
     sc[SC_SCALE] = m > max_step ? max_step / m : 1.0;
 }
 
@@ -1343,30 +1329,6 @@ __kernel void release_pulling(__global int *ract, __global const real *y, const 
             ract[r] = 0;
             changed[0] = 1;
         }
-    }
-}
-
-/* G_i <- P_i G_i (before the tangent projection). */
-__kernel void project_field(__global real *G, __global const int *cidx, __global const real *cst, const int nv)
-{
-    TR_ITEMS(i, nv) {
-        vstore3(tr_project_motion(cidx, cst, i, vload3(i, G)), i, G);
-    }
-}
-
-/* G -= dx (flat), and debar <- -debar (the ebar velocity). */
-__kernel void tangent_finish(__global real *G, __global const real *dx, const int n3)
-{
-    TR_ITEMS(k, n3) {
-        G[k] -= dx[k];
-    }
-}
-
-__kernel void ebar_velocity(__global real *ebar, __global real *debar, const real h,
-                            const int ncomp)
-{
-    TR_ITEMS(k, ncomp) {
-        ebar[k] += h * (-debar[k]);
     }
 }
 

@@ -72,3 +72,31 @@ __kernel void tension_smooth2(__global const real *G, __global const int *cidx, 
         s2[i] = tr_dot3(g, g);
     }
 }
+
+/* ---- the tangent-cone projection of the force (backend.h tension_step 2b),
+ * around the correction's rows and CG (correct.cl, whose release_pulling
+ * frees the rows that pull) ---- */
+
+/* G_i <- P_i G_i (before the tangent projection). */
+__kernel void project_field(__global real *G, __global const int *cidx, __global const real *cst, const int nv)
+{
+    TR_ITEMS(i, nv) {
+        vstore3(tr_project_motion(cidx, cst, i, vload3(i, G)), i, G);
+    }
+}
+
+/* G -= dx (flat), and debar <- -debar (the ebar velocity). */
+__kernel void tangent_finish(__global real *G, __global const real *dx, const int n3)
+{
+    TR_ITEMS(k, n3) {
+        G[k] -= dx[k];
+    }
+}
+
+__kernel void ebar_velocity(__global real *ebar, __global real *debar, const real h,
+                            const int ncomp)
+{
+    TR_ITEMS(k, ncomp) {
+        ebar[k] += h * (-debar[k]);
+    }
+}

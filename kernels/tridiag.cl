@@ -1,4 +1,6 @@
-/* The edge block of the CG preconditioner (backend.h correct (c)) solved in
+/* This file contains the GPU and accelerator edge-block solve (TIGHTROPE_CL_TRIDIAG=pcr,
+ * the default there; twisted.cl serves CPU devices). The edge block of the CG
+ * preconditioner (backend.h correct (c)) solved in
  * parallel: parallel cyclic reduction (PCR, Hockney & Jesshope; Zhang, Cohen &
  * Owens 2010 for GPUs) instead of the sequential Thomas sweep of
  * precond_edges, which runs on one work-item and, on a GPU, costs more than

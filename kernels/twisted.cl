@@ -1,4 +1,6 @@
-/* The edge block of the CG preconditioner (backend.h correct (c)) on CPU
+/* This file contains the CPU devices' edge-block solve (TIGHTROPE_CL_TRIDIAG=twisted,
+ * the default there; tridiag.cl serves GPUs and accelerators). The edge block
+ * of the CG preconditioner (backend.h correct (c)) on CPU
  * devices: a twisted factorisation ("burn at both ends"; van der Vorst 1987,
  * Parlett & Dhillon 2000). Thomas's sweep is one dependent chain per
  * component, so precond_edges runs on one core while the others idle; here

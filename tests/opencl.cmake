@@ -18,6 +18,12 @@ add_test(NAME cli_bench_small COMMAND ${_tr} bench --n 300 --steps 2 --no-kernel
 set_tests_properties(cli_bench_small PROPERTIES ENVIRONMENT "${TR_TEST_ENV}"
   PASS_REGULAR_EXPRESSION "\"valid\": true, \"validation_diff\": [^,]+, \"steps\": 2"
   FAIL_REGULAR_EXPRESSION "\"valid\": false|\"error\"")
+# the serial reference's other names (util/device_spec.h) time the reference,
+# as tighten takes them, instead of failing as "not an opencl device"
+add_test(NAME cli_bench_serial_name COMMAND ${_tr} bench --device serial --n 100 --steps 1 --no-kernels --json)
+set_tests_properties(cli_bench_serial_name PROPERTIES ENVIRONMENT "${TR_TEST_ENV}"
+  PASS_REGULAR_EXPRESSION "\"device\": \"serial reference[^\"]*\", \"n\": 100, \"valid\": true"
+  FAIL_REGULAR_EXPRESSION "\"error\"")
 # The JSON reports parse (CMake's own JSON parser), also where a figure does
 # not exist: without a search the search time is null, not "nan".
 set(_json_check ${CMAKE_CURRENT_SOURCE_DIR}/scripts/json_valid.cmake)

@@ -1,3 +1,5 @@
+/* This file contains the test helpers: failure counting, reports, near-equality and data paths
+ * (testlib.h). */
 #include "testlib.h"
 
 #include <math.h>

@@ -1,3 +1,5 @@
+/* This file contains the analysis plots: gnuplot scripts drawn from the CSV files analyze writes
+ * (analysis_plots.h). */
 #include "analysis/analysis_plots.h"
 
 #include <errno.h>

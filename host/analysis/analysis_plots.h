@@ -7,7 +7,7 @@
 #define TR_ANALYSIS_PLOTS_H
 
 #include "util/error.h"
-#include "analysis/knot_analysis.h"
+#include "analysis/portrait.h"
 
 /* 1 if a `gnuplot` executable is on PATH. */
 int tr_gnuplot_available(void);

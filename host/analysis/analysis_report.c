@@ -1,3 +1,5 @@
+/* This file contains the analysis's text outputs: CSV tables, summary.json and report.txt, built
+ * as strings (analysis_report.h). */
 #include "analysis/analysis_report.h"
 
 #include <math.h>
@@ -6,12 +8,12 @@
 #include <string.h>
 
 #include "util/json.h"
-#include "curve/polyline.h"
+#include "curve/arclength.h"
 #include "util/text_file.h"
 #include "util/vec3.h"
 
 /* The paper's values (Przybyl & Pieranski 2014, N = 200640, m = 10;
- * REFERENCE.md 5.3, 5.4). */
+ * docs/physics.md 5.3, 5.4). */
 static const double P_L = 32.742934477, P_l1 = 0.158, P_l2 = 0.319, P_dk1 = 0.264, P_dk2 = 0.115,
                     P_da1 = 0.159, P_da2 = 0.062, P_err_l = 0.001, P_err_j = 0.005;
 static const double P_c9m[9] = {0.189, 15.674, 32.370, 11.103, 26.588, 10.541, 22.018, 4.759, 21.455};

@@ -1,10 +1,10 @@
 /* Text outputs of the shape analysis: CSV tables, summary.json and a short
  * human-readable report, built as strings (the command writes them). The
- * paper's trefoil values (REFERENCE.md 5.4) are set beside ours when asked. */
+ * paper's trefoil values (docs/physics.md 5.4) are set beside ours when asked. */
 #ifndef TR_ANALYSIS_REPORT_H
 #define TR_ANALYSIS_REPORT_H
 
-#include "analysis/knot_analysis.h"
+#include "analysis/portrait.h"
 #include "oracle/thickness.h"
 
 typedef struct tr_report_ctx {

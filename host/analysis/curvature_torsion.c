@@ -1,10 +1,12 @@
+/* This file contains curvature and torsion of the inscribed-arc knot on a closed polygon
+ * (curvature_torsion.h). */
 #include "analysis/curvature_torsion.h"
 
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "curve/polyline.h"
+#include "curve/arclength.h"
 #include "util/vec3.h"
 
 void tr_arc_profile_free(tr_arc_profile *p)

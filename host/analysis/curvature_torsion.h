@@ -1,5 +1,5 @@
 /* Curvature and torsion of the inscribed-arc knot K_c built on a closed
- * polygon (REFERENCE.md 3.2, 3.3). K_c is a chain of circular arcs, one per
+ * polygon (docs/physics.md 3.2, 3.3). K_c is a chain of circular arcs, one per
  * vertex, so curvature is constant on each arc and torsion lives only at the
  * junctions between arcs, as the signed angle between osculating planes. */
 #ifndef TR_CURVATURE_TORSION_H

@@ -1,10 +1,12 @@
+/* This file contains the features read off a curvature/torsion profile: kappa = 1 plateaus and
+ * one-sided jump fits (profile_features.h). */
 #include "analysis/profile_features.h"
 
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "curve/polyline.h"
+#include "curve/arclength.h"
 
 int tr_find_plateaus(const tr_arc_profile *p, double level, size_t min_arcs, tr_plateau **out,
                      size_t *nout, tr_error *err)

@@ -1,7 +1,7 @@
 /* Features read off a curvature/torsion profile: the kappa = 1 plateaus
  * (where the rope is bent as tightly as its thickness allows) and jumps of
  * kappa and of the accumulated torsion alpha at a point, measured by one-sided
- * fits (REFERENCE.md 3.4). */
+ * fits (docs/physics.md 3.4). */
 #ifndef TR_PROFILE_FEATURES_H
 #define TR_PROFILE_FEATURES_H
 

@@ -1,3 +1,5 @@
+/* This file contains the best rotation taking one point set onto another, Horn's quaternion form
+ * (rotation_fit.h). */
 #include "analysis/rotation_fit.h"
 
 #include <math.h>

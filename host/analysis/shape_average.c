@@ -1,9 +1,11 @@
+/* This file contains the m-averaged knot: block averages of m consecutive vertices at equal
+ * arclength (shape_average.h). */
 #include "analysis/shape_average.h"
 
 #include <stdlib.h>
 #include <string.h>
 
-#include "curve/polyline.h"
+#include "curve/arclength.h"
 
 void tr_averaged_knot_free(tr_averaged_knot *k)
 {

@@ -1,4 +1,4 @@
-/* The m-averaged knot K_p^(m) (REFERENCE.md 3.1): block averages of m
+/* The m-averaged knot K_p^(m) (docs/physics.md 3.1): block averages of m
  * consecutive vertices, which suppress the discretisation artefacts of the
  * full-resolution polygon before curvature and torsion are read off. */
 #ifndef TR_SHAPE_AVERAGE_H

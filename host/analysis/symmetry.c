@@ -1,10 +1,12 @@
+/* This file contains the rotational symmetry of a closed knot: threefold and twofold axes and
+ * the arclength origin (symmetry.h). */
 #include "analysis/symmetry.h"
 
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "curve/polyline.h"
+#include "curve/arclength.h"
 #include "util/vec3.h"
 
 #define TR_PI 3.14159265358979323846

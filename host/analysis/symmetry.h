@@ -1,4 +1,4 @@
-/* Rotational symmetry of a closed knot (REFERENCE.md 4): the threefold axis
+/* Rotational symmetry of a closed knot (docs/physics.md 4): the threefold axis
  * (a rotation taking l to l + L/3), the twofold axes (rotations by pi that
  * reverse the direction of travel, l -> 2 l* - l, where l* is a point where
  * the axis meets the curve), a verdict, the paper's arclength origin and the
@@ -71,7 +71,7 @@ void tr_symmetry_choose_origin(tr_symmetry *s, const tr_arc_profile *p);
 double tr_symmetry_from_origin(const tr_symmetry *s, double l);
 
 /* Representative position in [0, L/6) of l measured from the origin
- * (REFERENCE.md 4.4); *sector receives k = 0..5 (may be NULL). */
+ * (docs/physics.md 4.4); *sector receives k = 0..5 (may be NULL). */
 double tr_symmetry_reduce(double l_from_origin, double L, int *sector);
 
 #endif

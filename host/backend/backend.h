@@ -38,7 +38,7 @@
  *       C = |e_a| - ebar_k
  *       dC/dx[a] = -u_a, dC/dx[next a] = +u_a, dC/debar_k = -1
  *   curvature row i ("curvature beam", every vertex with prev and next):
- *   MinRad >= r for equal edges, in turning-angle form (REFERENCE.md 1.2(c):
+ *   MinRad >= r for equal edges, in turning-angle form (docs/physics.md 1.2(c):
  *   tan(theta/2) <= e/(2r)), scaled by ebar so its gradient is O(1) and
  *   orthogonal to the two edge rows at i (the chord form is nearly their
  *   sum, which made the CG crawl):
@@ -54,7 +54,7 @@
  *       gb = 0 and the row is inactive: a straight vertex is far from the bound).
  *   strut row p (every candidate pair p = (a, b), a < b, in list order):
  *       d, s, t = tr_segment_distance(x[a], x[next a], x[b], x[next b])
- *       (host/geometry/segdist.h, the exact algorithm), n = (P(s) - Q(t)) / d
+ *       (kernels/segment_distance.h, the exact algorithm), n = (P(s) - Q(t)) / d
  *       C = d - strut_dist
  *       dC/dx[a] = (1-s) n, dC/dx[next a] = s n,
  *       dC/dx[b] = -(1-t) n, dC/dx[next b] = -t n
@@ -72,10 +72,10 @@
  *       not excluded(a, b)  and  d = tr_segment_distance(x[a], x[next a],
  *       x[b], x[next b], &s, &t) < cutoff  and, when 0 < tilt < 1,
  *       tr_segment_nearly_normal(the same four points, s, t, d, tilt)
- *   (host/geometry/segdist.h: the connector within tilt of both edges' normal
+ *   (kernels/segment_distance.h: the connector within tilt of both edges' normal
  *   planes), sorted by (a, b) ascending. Why the tilt: at large N every
  *   vertex has ~cutoff/ebar partners on each strand it runs beside, so the
- *   plain cutoff list grows like N^2 (REFERENCE.md 7.4); the struts that
+ *   plain cutoff list grows like N^2 (docs/physics.md 7.4); the struts that
  *   matter are local minima of the distance along both strands, whose
  *   connector lies in the normal slab or wedge of each edge, and those pass
  *   once tilt >= sin(largest turning angle). Pairs a step may slide into
@@ -84,7 +84,7 @@
  *   min(|a - b|, n_k - |a - b|) on a closed one (n_k = vertices of k);
  *   exclude_gap[k] >= 2 always (edges sharing a vertex are excluded).
  *   Pairs on different components are never excluded. The engine passes
- *   exclude_gap[k] = ceil(pi * 1 / ebar_k) (REFERENCE.md 1.2(b)).
+ *   exclude_gap[k] = ceil(pi * 1 / ebar_k) (docs/physics.md 1.2(b)).
  *   Per-vertex gathers over struts visit, for vertex v, the pairs that touch
  *   v (as a, next a, b or next b) in ascending list order (a per-vertex CSR
  *   built from the sorted list); a pair touching v twice contributes both
@@ -261,8 +261,20 @@ typedef struct tr_measure {
     double max_disp;   /* since save() */
 } tr_measure;
 
+/* Device time per kernel function of a profiled backend (profile). */
+#define TR_BACKEND_PROFILE_MAX 128
+typedef struct tr_kernel_time {
+    char kernel[48]; /* kernel function name */
+    long launches;
+    double seconds;  /* summed device execution time (profiling events) */
+} tr_kernel_time;
+
 typedef struct tr_backend_ops {
     const char *name; /* "reference", "opencl" */
+    /* 1 for a backend that runs serially on the host with no cost per
+     * launch (the reference): the engine keeps it at coarse levels instead
+     * of moving them to the reference (engine.h device_min_n) */
+    int serial;
     /* Releases everything; state may be NULL. */
     void (*destroy)(void *state);
     int (*upload)(void *state, const double *x, const double *ebar, tr_error *err);
@@ -280,6 +292,13 @@ typedef struct tr_backend_ops {
     /* reductions; comp_length, comp_ebar may be NULL (else ncomp entries) */
     int (*measure)(void *state, tr_measure *out, double *comp_length, double *comp_ebar,
                    tr_error *err);
+    /* What the description does not say and a benchmark should: how this
+     * instance solves (e.g. "edge block twisted"); writes "" when nothing. */
+    void (*describe)(void *state, char *out, size_t size);
+    /* Per-kernel device times since open, for a backend opened with
+     * profiling (tr_backend_open_device); at most max entries; returns their
+     * number, 0 for a backend that does not profile. May be NULL. */
+    int (*profile)(void *state, tr_kernel_time *out, int max);
 } tr_backend_ops;
 
 /* An open backend: its operations, its opaque state, and what it is. */
@@ -299,6 +318,54 @@ typedef struct tr_backend {
  * The registry is the table in host/backend/backend.c: one line per backend. */
 int tr_backend_open(const char *spec, const tr_curve *c, tr_backend *out, tr_error *err);
 void tr_backend_close(tr_backend *b);
+
+/* Opens exactly the device spec names, never falling back: the reference
+ * for its names (util/device_spec.h), else the first accelerated backend
+ * that takes the spec; with profiling, one that records per-kernel times
+ * (profile), synchronising after every launch (so time whole steps without
+ * it). For bench, which measures the device asked for. */
+int tr_backend_open_device(const char *spec, const tr_curve *c, int profiling, tr_backend *out,
+                           tr_error *err);
+
+/* b->ops->describe and b->ops->profile, or "" and 0 where the backend has none. */
+void tr_backend_describe(const tr_backend *b, char *out, size_t size);
+int tr_backend_profile(const tr_backend *b, tr_kernel_time *out, int max);
+
+/* One device a spec can name, as `tightrope devices` lists it. */
+typedef struct tr_device_desc {
+    char id[32];               /* "P:D" */
+    char platform[128];
+    char platform_vendor[128]; /* "The pocl project", "NVIDIA Corporation" */
+    char name[256];
+    char vendor[128];
+    char version[128];
+    char driver[64];
+    const char *type;          /* "gpu", "accelerator", "cpu" or "other" */
+    unsigned compute_units, clock_mhz;
+    unsigned long long global_mem; /* bytes */
+    int fp64, usable;
+    char reason[192];          /* why unusable; "" when usable */
+} tr_device_desc;
+
+typedef struct tr_device_list {
+    tr_device_desc *dev; /* the accelerated backends' devices (not the reference) */
+    int n;
+    char none_reason[256];  /* when n == 0: why there are none */
+    char default_spec[128]; /* what no --device means: $TIGHTROPE_DEVICE or "auto" */
+    int picked;             /* the default spec resolves ... */
+    char selected[32];      /* ... to this id ("reference" or "P:D") */
+    char warning[512];      /* why it fell back to the reference ("" if not) */
+    char pick_error[1024];  /* why it does not resolve (when !picked) */
+} tr_device_list;
+
+/* Every device and what the default spec picks. */
+int tr_backend_list_devices(tr_device_list *out, tr_error *err);
+void tr_backend_device_list_free(tr_device_list *l);
+
+/* Whether spec names a usable device (the reference, or one that
+ * tr_backend_open_device could open), without opening it: TR_EINVAL for a
+ * spec that names nothing, another status for a device that cannot be used. */
+int tr_backend_check_spec(const char *spec, tr_error *err);
 
 /* Per-backend constructors the registry calls. Each returns TR_EUNSUPPORTED
  * when spec is not for it (so the next one may try), another status when it

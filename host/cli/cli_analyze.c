@@ -1,4 +1,5 @@
-/* tightrope analyze: the paper's portrait of a tight knot (issue 5). */
+/* This file contains `tightrope analyze`: the paper's portrait of a tight knot
+ * (docs/physics.md 3-5). */
 #include <errno.h>
 #include <math.h>
 #include <stdio.h>
@@ -11,10 +12,10 @@
 #include "analysis/analysis_report.h"
 #include "cli/cli.h"
 #include "cli/cli_args.h"
-#include "analysis/contacts.h"
+#include "analysis/contact_functions.h"
 #include "curve/curve_io.h"
-#include "analysis/knot_analysis.h"
 #include "analysis/open_rope.h"
+#include "analysis/portrait.h"
 #include "analysis/tube_mesh.h"
 #include "oracle/thickness.h"
 
@@ -24,7 +25,7 @@ static void usage(FILE *f)
             "usage: tightrope analyze IN --out DIR [-m M] [--plots] [options]\n"
             "\n"
             "Curvature, torsion, symmetry and contact portrait of each closed component of IN\n"
-            "(REFERENCE.md 3-5); curvature and torsion profiles of each open one (a rope: curvature.csv,\n"
+            "(docs/physics.md 3-5); curvature and torsion profiles of each open one (a rope: curvature.csv,\n"
             "torsion.csv, summary.json, report.txt). The curve is first scaled to thickness 1 (rope radius 1).\n"
             "Writes into DIR (DIR/compK/ for a link): curvature.csv, torsion.csv, plateaus.csv,\n"
             "symmetry.csv, contacts.csv, sigma.csv, fixed_points.csv, summary.json, report.txt;\n"

@@ -1,3 +1,4 @@
+/* This file contains the whole-token number parsing of command-line values (cli_args.h). */
 #include "cli/cli_args.h"
 
 #include <ctype.h>

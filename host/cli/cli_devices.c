@@ -1,23 +1,13 @@
-/* tightrope devices [--json]: the serial reference and every OpenCL device,
- * like `clinfo -l`, with double-precision status and why a device cannot be
- * used; marks the one "auto" (or TIGHTROPE_DEVICE) would pick. */
+/* This file contains `tightrope devices [--json]`: the serial reference and
+ * every OpenCL device, like `clinfo -l`, with double-precision status and why
+ * a device cannot be used; marks the one "auto" (or TIGHTROPE_DEVICE) would
+ * pick. It asks the backend registry (tr_backend_list_devices). */
 #include <stdio.h>
 #include <string.h>
 
-#include "backend/opencl/cl_device.h"
+#include "backend/backend.h"
 #include "cli/cli.h"
 #include "util/json.h"
-
-static const char *type_name(cl_device_type t)
-{
-    if (t & CL_DEVICE_TYPE_GPU)
-        return "gpu";
-    if (t & CL_DEVICE_TYPE_ACCELERATOR)
-        return "accelerator";
-    if (t & CL_DEVICE_TYPE_CPU)
-        return "cpu";
-    return "other";
-}
 
 static void usage(FILE *f)
 {
@@ -43,25 +33,20 @@ int tr_cmd_devices(int argc, char **argv)
         }
     }
     tr_error err = {{0}};
-    tr_cl_device_list l;
-    if (tr_cl_enumerate(&l, &err) != TR_OK) {
+    tr_device_list l;
+    if (tr_backend_list_devices(&l, &err) != TR_OK) {
         fprintf(stderr, "tightrope devices: %s\n", err.msg);
         return 1;
     }
-    tr_device_choice pick;
-    tr_error perr = {{0}};
-    int picked = tr_device_select(NULL, &pick, &perr) == TR_OK;
 
     if (json) {
         printf("{\"default_spec\": ");
-        tr_json_fputs(stdout, tr_device_spec_default());
+        tr_json_fputs(stdout, l.default_spec);
         printf(", \"selected\": ");
-        if (!picked)
+        if (!l.picked)
             printf("null");
-        else if (pick.kind == TR_DEVICE_REFERENCE)
-            printf("\"reference\"");
         else
-            printf("\"%d:%d\"", pick.cl.platform, pick.cl.device);
+            printf("\"%s\"", l.selected);
         printf(", \"opencl_absent_reason\": ");
         if (l.n == 0)
             tr_json_fputs(stdout, l.none_reason);
@@ -70,9 +55,9 @@ int tr_cmd_devices(int argc, char **argv)
         printf(",\n \"devices\": [\n  {\"id\": \"reference\", \"name\": \"serial reference (host C)\", "
                "\"type\": \"host\", \"fp64\": true, \"usable\": true, \"reason\": null}");
         for (int i = 0; i < l.n; i++) {
-            const tr_cl_device_info *d = &l.dev[i];
-            printf(",\n  {\"id\": \"%d:%d\", \"platform\": ", d->platform, d->device);
-            tr_json_fputs(stdout, d->platform_name);
+            const tr_device_desc *d = &l.dev[i];
+            printf(",\n  {\"id\": \"%s\", \"platform\": ", d->id);
+            tr_json_fputs(stdout, d->platform);
             printf(", \"platform_vendor\": ");
             tr_json_fputs(stdout, d->platform_vendor);
             printf(", \"name\": ");
@@ -85,8 +70,7 @@ int tr_cmd_devices(int argc, char **argv)
             tr_json_fputs(stdout, d->driver);
             printf(", \"type\": \"%s\", \"compute_units\": %u, \"clock_mhz\": %u, "
                    "\"global_mem_bytes\": %llu, \"fp64\": %s, \"usable\": %s, \"reason\": ",
-                   type_name(d->type), d->compute_units, d->clock_mhz,
-                   (unsigned long long)d->global_mem, d->fp64 ? "true" : "false",
+                   d->type, d->compute_units, d->clock_mhz, d->global_mem, d->fp64 ? "true" : "false",
                    d->usable ? "true" : "false");
             if (d->usable)
                 printf("null");
@@ -96,15 +80,13 @@ int tr_cmd_devices(int argc, char **argv)
         }
         printf("\n ]}\n");
     } else {
-        int ref_sel = picked && pick.kind == TR_DEVICE_REFERENCE;
+        int ref_sel = l.picked && !strcmp(l.selected, "reference");
         printf("%c reference  serial reference (host C)  fp64 yes\n", ref_sel ? '*' : ' ');
         for (int i = 0; i < l.n; i++) {
-            const tr_cl_device_info *d = &l.dev[i];
-            int sel = picked && pick.kind == TR_DEVICE_OPENCL && pick.cl.platform == d->platform &&
-                      pick.cl.device == d->device;
-            printf("%c %d:%d        %s / %s  [%s, %u CU, %u MHz, %llu MiB]  fp64 %s", sel ? '*' : ' ',
-                   d->platform, d->device, d->platform_name, d->name, type_name(d->type),
-                   d->compute_units, d->clock_mhz, (unsigned long long)(d->global_mem >> 20),
+            const tr_device_desc *d = &l.dev[i];
+            int sel = l.picked && !strcmp(l.selected, d->id);
+            printf("%c %s        %s / %s  [%s, %u CU, %u MHz, %llu MiB]  fp64 %s", sel ? '*' : ' ', d->id,
+                   d->platform, d->name, d->type, d->compute_units, d->clock_mhz, d->global_mem >> 20,
                    d->fp64 ? "yes" : "no");
             if (!d->usable)
                 printf("  UNUSABLE: %s", d->reason);
@@ -112,12 +94,11 @@ int tr_cmd_devices(int argc, char **argv)
         }
         if (l.n == 0)
             printf("  (no opencl devices: %s)\n", l.none_reason);
-        if (!picked)
-            printf("selection '%s': %s\n", tr_device_spec_default(), perr.msg);
+        if (!l.picked)
+            printf("selection '%s': %s\n", l.default_spec, l.pick_error);
         else
-            printf("* = selected by '%s'%s%s\n", tr_device_spec_default(),
-                   pick.warning[0] ? "; " : "", pick.warning);
+            printf("* = selected by '%s'%s%s\n", l.default_spec, l.warning[0] ? "; " : "", l.warning);
     }
-    tr_cl_device_list_free(&l);
+    tr_backend_device_list_free(&l);
     return 0;
 }

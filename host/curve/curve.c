@@ -1,3 +1,5 @@
+/* This file contains the curve container: allocation, copies, constraints, component lengths
+ * (curve.h). */
 #include "curve/curve.h"
 
 #include <math.h>
@@ -5,6 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "util/compensated_sum.h"
 #include "util/vec3.h"
 
 int tr_curve_alloc(tr_curve *c, int ncomp, const size_t *nv, const unsigned char *closed,
@@ -157,16 +160,13 @@ double tr_constraint_violation(const tr_constraint *k, const double *x)
 double tr_comp_length(const tr_curve *c, int k)
 {
     size_t s = c->start[k], n = tr_comp_nv(c, k), ne = tr_comp_ne(c, k);
-    double sum = 0.0, comp = 0.0;
+    tr_csum sum = {0.0, 0.0};
     for (size_t j = 0; j < ne; j++) {
         const double *a = c->x + 3 * (s + j);
         const double *b = c->x + 3 * (s + (j + 1) % n);
-        double l = sqrt(v3_dist2(a, b));
-        double t = sum + l;
-        comp += (fabs(sum) >= fabs(l)) ? (sum - t) + l : (l - t) + sum;
-        sum = t;
+        tr_csum_add(&sum, sqrt(v3_dist2(a, b)));
     }
-    return sum + comp;
+    return tr_csum_value(&sum);
 }
 
 double tr_curve_length(const tr_curve *c)

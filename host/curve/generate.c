@@ -9,6 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "util/compensated_sum.h"
 #include "util/vec3.h"
 
 /* strict C17 math.h has no TR_PI */
@@ -17,18 +18,6 @@
 /* Point of a parametrised curve at t; *hint is a segment index the callee may
  * keep between calls (t increases within one sweep). */
 typedef void (*curve_eval)(const void *ctx, double t, size_t *hint, double *out);
-
-/* Compensated (Neumaier) sum accumulator. */
-typedef struct ksum {
-    double s, c;
-} ksum;
-static void ks_add(ksum *k, double v)
-{
-    double t = k->s + v;
-    k->c += (fabs(k->s) >= fabs(v)) ? (k->s - t) + v : (v - t) + k->s;
-    k->s = t;
-}
-static double ks_val(const ksum *k) { return k->s + k->c; }
 
 /* Places n points at parameters t[0..n-1] on [t0, t0+T) (closed: the last
  * edge runs back to t[0]) or [t0, t0+T] (open: t[0] = t0, t[n-1] = t0+T
@@ -54,22 +43,22 @@ static int equal_chords(curve_eval f, const void *ctx, double t0, double T, int 
     int stall = 0;
     for (int iter = 0; iter < 400; iter++) {
         /* parameters from intervals, compensated so t[n-1] lands on the end */
-        ksum acc = {t0, 0};
+        tr_csum acc = {t0, 0};
         size_t hint = 0;
         for (size_t i = 0; i < n; i++) {
-            t[i] = ks_val(&acc);
+            t[i] = tr_csum_value(&acc);
             if (!closed && i == n - 1)
                 t[i] = t0 + T;
             f(ctx, t[i], &hint, x + 3 * i);
             if (i < m)
-                ks_add(&acc, dt[i]);
+                tr_csum_add(&acc, dt[i]);
         }
-        ksum cs = {0, 0};
+        tr_csum cs = {0, 0};
         for (size_t i = 0; i < m; i++) {
             ch[i] = sqrt(v3_dist2(x + 3 * i, x + 3 * ((i + 1) % n)));
-            ks_add(&cs, ch[i]);
+            tr_csum_add(&cs, ch[i]);
         }
-        double mean = ks_val(&cs) / (double)m, dev = 0;
+        double mean = tr_csum_value(&cs) / (double)m, dev = 0;
         for (size_t i = 0; i < m; i++)
             dev = fmax(dev, fabs(ch[i] - mean));
         dev /= mean;
@@ -98,12 +87,12 @@ static int equal_chords(curve_eval f, const void *ctx, double t0, double T, int 
             relax *= 0.5;
             stall = 0;
         }
-        ksum ds = {0, 0};
+        tr_csum ds = {0, 0};
         for (size_t i = 0; i < m; i++) {
             dt[i] *= relax == 1.0 ? mean / ch[i] : pow(mean / ch[i], relax);
-            ks_add(&ds, dt[i]);
+            tr_csum_add(&ds, dt[i]);
         }
-        double s = T / ks_val(&ds);
+        double s = T / tr_csum_value(&ds);
         for (size_t i = 0; i < m; i++)
             dt[i] *= s;
     }
@@ -147,11 +136,11 @@ static int poly_cum(poly_ctx *c, tr_error *err)
     c->cum = malloc((c->m + 1) * sizeof *c->cum);
     if (!c->cum)
         return tr_fail(err, TR_ENOMEM, "out of memory resampling");
-    ksum acc = {0, 0};
+    tr_csum acc = {0, 0};
     c->cum[0] = 0;
     for (size_t k = 0; k < c->m; k++) {
-        ks_add(&acc, sqrt(v3_dist2(c->x + 3 * k, c->x + 3 * ((k + 1) % c->n))));
-        c->cum[k + 1] = ks_val(&acc);
+        tr_csum_add(&acc, sqrt(v3_dist2(c->x + 3 * k, c->x + 3 * ((k + 1) % c->n))));
+        c->cum[k + 1] = tr_csum_value(&acc);
     }
     if (!(c->cum[c->m] > 0))
         return tr_fail(err, TR_EGEOMETRY, "cannot resample a component of zero length");

@@ -19,7 +19,7 @@ int tr_make_circle(tr_curve *out, double radius, size_t n, tr_error *err);
 /* Hopf link: two round circles through each other's centre, n vertices each. */
 int tr_make_hopf(tr_curve *out, size_t n, tr_error *err);
 
-/* Simple clasp (REFERENCE.md 6.1): two open ropes hooked in perpendicular
+/* Simple clasp (docs/physics.md 6.1): two open ropes hooked in perpendicular
  * planes. Rope A (component 0) lies in the plane y = 0: a half circle of
  * radius 3 centred at (0, 0, 1.5), opening upwards, with vertical legs from
  * (+-3, 0, 1.5) up to z = +h; rope B (component 1) is the same turned upside
@@ -30,9 +30,22 @@ int tr_make_hopf(tr_curve *out, size_t n, tr_error *err);
  * h >= 1.5. TR_EINVAL if n makes edges longer than 1. */
 int tr_make_clasp(tr_curve *out, size_t n, double h, tr_error *err);
 
-/* Resamples every component to the given number of vertices at equal
- * arclength (closed components equilateral to rounding; open components keep
- * their end vertices and constraints). n_per_comp may be NULL to keep counts. */
+/* The resamplers. There are three, and they differ on purpose:
+ *  - tr_resample: new vertices on the old polygon, with equal chords (the
+ *    engine wants equal edges). What tighten --n uses to remove vertices.
+ *  - tr_resample_smooth: the same along a cubic spline through the old
+ *    vertices, so that added vertices do not sit on straight old edges
+ *    (their kept corners would put MinRad at ~1/N). What tighten --n uses to
+ *    add vertices.
+ *  - tr_refine_lowpass (engine/refine_lowpass.h): equal arclength, then a
+ *    Fourier low-pass, for the refinement between levels of a tightened
+ *    curve, whose vertex-level curvature noise neither of the above removes;
+ *    the engine re-equalises the edges afterwards.
+ *
+ * tr_resample: every component to the given number of vertices, equal
+ * chords along the polygon (closed components equilateral to rounding; open
+ * components keep their end vertices and constraints). n_per_comp may be
+ * NULL to keep counts. */
 int tr_resample(const tr_curve *in, const size_t *n_per_comp, tr_curve *out, tr_error *err);
 
 /* As tr_resample, but along an interpolating cubic spline through the

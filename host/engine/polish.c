@@ -1,21 +1,20 @@
+/* This file contains the polish stage: augmented-Lagrangian / L-BFGS minimisation of a nearly
+ * tight rope on the host (polish.h). */
 #include "engine/polish.h"
 
 #include <math.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 #include "util/lbfgs.h"
 #include "geometry/neighbour_search.h"
-#include "geometry/segdist.h"
+#include "geometry/struts.h"
+#include "segment_distance.h"
 #include "oracle/thickness.h"
-#include "geometry/turning.h"
+#include "geometry/turning_angle.h"
+#include "util/clock.h"
 #include "util/vec3.h"
-
-#ifndef M_PI
-#define M_PI 3.14159265358979323846
-#endif
 
 #define NONE SIZE_MAX
 
@@ -42,13 +41,6 @@ void tr_polish_params_default(tr_polish_params *p)
     p->lbfgs_m = 12;
     p->max_restarts = 100;
     p->restart_tol = 1e-9;
-}
-
-static double now_s(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
 typedef struct strut_pair {
@@ -103,15 +95,8 @@ static int collect_pair(void *vc, size_t ei, size_t ej, double *cutoff)
     collect *cl = vc;
     ctx *c = cl->c;
     const tr_nsearch *s = &c->ns;
-    int k = s->ecomp[ei];
-    if (k == s->ecomp[ej]) {
-        size_t li = ei - s->estart[k], lj = ej - s->estart[k];
-        size_t g = li > lj ? li - lj : lj - li;
-        if (c->w.closed[k] && c->ne[k] - g < g)
-            g = c->ne[k] - g;
-        if (g < (size_t)c->gap[k])
-            return 0;
-    }
+    if (tr_nsearch_excluded(s, ei, ej, (size_t)c->gap[s->ecomp[ei]]))
+        return 0;
     size_t a = s->ea[ei], b = s->ea[ej];
     double sp, tp;
     const double *x = c->w.x;
@@ -249,14 +234,16 @@ static double eval(void *vc, const double *x, double *g)
         vs = fmax(vs, (2.0 - d) / 2.0);
         if (dphi == 0.0)
             continue;
+        double cn[3], gs[4][3];
+        for (int k = 0; k < 3; k++)
+            cn[k] = (x[3 * a + k] + s * (x[3 * na + k] - x[3 * a + k])) -
+                    (x[3 * b + k] + t * (x[3 * nb + k] - x[3 * b + k]));
+        tr_strut_gradient(cn, s, t, d, dphi, gs);
         for (int k = 0; k < 3; k++) {
-            double P = x[3 * a + k] + s * (x[3 * na + k] - x[3 * a + k]);
-            double Q = x[3 * b + k] + t * (x[3 * nb + k] - x[3 * b + k]);
-            double n = dphi * (P - Q) / d;
-            g[3 * a + k] += (1.0 - s) * n;
-            g[3 * na + k] += s * n;
-            g[3 * b + k] -= (1.0 - t) * n;
-            g[3 * nb + k] -= t * n;
+            g[3 * a + k] += gs[0][k];
+            g[3 * na + k] += gs[1][k];
+            g[3 * b + k] += gs[2][k];
+            g[3 * nb + k] += gs[3][k];
         }
     }
     /* constrained vertices (clasp ends) move only as their constraint
@@ -328,7 +315,7 @@ static int on_iter(void *vc, const double *x, double f, const double *g, int it)
         c->need_rebuild = 1;
         return 1;
     }
-    if ((c->deadline > 0 && now_s() > c->deadline) || (c->p->stop && *c->p->stop)) {
+    if ((c->deadline > 0 && tr_clock_seconds() > c->deadline) || (c->p->stop && *c->p->stop)) {
         c->out_of_time = 1;
         return 1;
     }
@@ -384,7 +371,7 @@ static int final_geometry(ctx *c, double *dmin, double *minrad, double *edge_dev
 static int polish_once(tr_curve *cv, const tr_polish_params *prm, tr_polish_stats *st, tr_error *err)
 {
     memset(st, 0, sizeof *st);
-    double t0 = now_s();
+    double t0 = tr_clock_seconds();
     tr_thickness th0;
     int rc = tr_thickness_measure(cv, NULL, &th0, NULL, err);
     if (rc)
@@ -438,8 +425,7 @@ static int polish_once(tr_curve *cv, const tr_polish_params *prm, tr_polish_stat
         }
         c.ne[k] = tr_comp_ne(&c.w, k);
         double lk = tr_comp_length(&c.w, k);
-        double g = ceil(M_PI / (lk / (double)c.ne[k]));
-        c.gap[k] = g < 2.0 ? 2 : (g > 1e9 ? 1000000000 : (int)g);
+        c.gap[k] = tr_exclusion_gap(1.0, lk / (double)c.ne[k]);
         ltot += lk;
         etot += c.ne[k];
     }
@@ -551,7 +537,7 @@ static int polish_once(tr_curve *cv, const tr_polish_params *prm, tr_polish_stat
     st->accepted = 1;
     st->ropelength_after = th.ropelength;
 done:
-    st->seconds = now_s() - t0;
+    st->seconds = tr_clock_seconds() - t0;
     free(x);
     free(best);
     ctx_free(&c);

@@ -7,7 +7,7 @@
  * Problem (rope radius 1, thickness-1 units): minimise the polygon length
  * subject to
  *   struts   d(a, b) >= 2 for every edge pair not excluded by index (the
- *            exact segment distance of segdist.h; candidate pairs within
+ *            exact segment distance of kernels/segment_distance.h; candidate pairs within
  *            2 + skin from the neighbour search, rebuilt before any vertex
  *            has moved skin/4 since; exclusion gap ceil(pi / ebar) per
  *            component as the engine's, backend.h);

@@ -1,3 +1,5 @@
+/* This file contains the refinement's resampler: equal arclength, then a Fourier low-pass
+ * (refine_lowpass.h). */
 #include "engine/refine_lowpass.h"
 
 #include <math.h>
@@ -11,7 +13,12 @@
 #endif
 
 /* Positions at equal arclength (m points) along component k, linear
- * interpolation; closed: m points starting at vertex 0, open: ends kept. */
+ * interpolation; closed: m points starting at vertex 0, open: ends kept:
+ * the Fourier series needs samples equally spaced in arclength. Not
+ * curve/arclength.h's point_at: that one is for closed polygons only and sums
+ * the arclength compensated; this plain sum is what every refined level has
+ * been computed with, and the other would move its coordinates in the last
+ * bits. */
 static int linear_resample(const tr_curve *c, int k, size_t m, double *y)
 {
     size_t s = c->start[k], n = tr_comp_nv(c, k), ne = tr_comp_ne(c, k);

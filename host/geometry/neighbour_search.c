@@ -1,3 +1,5 @@
+/* This file contains the neighbour search over a curve's edges: a tree along the curve, pair
+ * walks and exclusions (neighbour_search.h). */
 #include "geometry/neighbour_search.h"
 
 #include <float.h>

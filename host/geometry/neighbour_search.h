@@ -49,7 +49,7 @@ enum {
      * edge i: prunes boxes that lie wholly in front of edge i (beyond its end
      * vertex, unless it is the last edge of an open component) or wholly
      * outside the normal slab and the normal wedge at its start vertex
-     * (REFERENCE.md 2.2). The callback must still do the exact test. */
+     * (docs/physics.md 2.2). The callback must still do the exact test. */
     TR_NSEARCH_CRITICAL = 1u,
     /* Internal to tr_nsearch_pairs_slab (ignored elsewhere). */
     TR_NSEARCH_SLAB = 2u

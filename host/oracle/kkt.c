@@ -1,3 +1,5 @@
+/* This file contains the KKT certificate: the residual of a curve's tension against struts and
+ * MinRad rows (kkt.h). */
 #include "oracle/kkt.h"
 
 #include <math.h>
@@ -6,15 +8,12 @@
 #include <string.h>
 
 #include "geometry/neighbour_search.h"
-#include "oracle/rowchol.h"
-#include "geometry/segdist.h"
+#include "oracle/normal_equations.h"
+#include "geometry/struts.h"
+#include "segment_distance.h"
 #include "oracle/thickness.h"
-#include "geometry/turning.h"
+#include "geometry/turning_angle.h"
 #include "util/vec3.h"
-
-#ifndef M_PI
-#define M_PI 3.14159265358979323846
-#endif
 
 #define NONE SIZE_MAX
 
@@ -100,14 +99,8 @@ static int strut_pair(void *vc, size_t ei, size_t ej, double *cutoff)
     sys *s = sc->s;
     const tr_nsearch *ns = sc->ns;
     int k = ns->ecomp[ei];
-    if (k == ns->ecomp[ej]) {
-        size_t li = ei - ns->estart[k], lj = ej - ns->estart[k];
-        size_t g = li > lj ? li - lj : lj - li, nek = ns->estart[k + 1] - ns->estart[k];
-        if (s->c->closed[k] && nek - g < g)
-            g = nek - g;
-        if (g < (size_t)s->gap[k])
-            return 0;
-    }
+    if (tr_nsearch_excluded(ns, ei, ej, (size_t)s->gap[k]))
+        return 0;
     size_t a = ns->ea[ei], an = ns->eb[ei], b = ns->ea[ej], bn = ns->eb[ej];
     const double *x = s->c->x;
     double sp, tp;
@@ -119,18 +112,15 @@ static int strut_pair(void *vc, size_t ei, size_t ej, double *cutoff)
         return 1;
     q->kind = ROW_STRUT;
     q->comp = k;
-    double n[3], g[3];
+    double cn[3], g[4][3];
     for (int m = 0; m < 3; m++)
-        n[m] = (x[3 * a + m] + sp * (x[3 * an + m] - x[3 * a + m]) - x[3 * b + m] -
-                tp * (x[3 * bn + m] - x[3 * b + m])) / d;
-    v3_scale(g, 1.0 - sp, n);
-    add_vertex(s, q, a, g);
-    v3_scale(g, sp, n);
-    add_vertex(s, q, an, g);
-    v3_scale(g, -(1.0 - tp), n);
-    add_vertex(s, q, b, g);
-    v3_scale(g, -tp, n);
-    add_vertex(s, q, bn, g);
+        cn[m] = x[3 * a + m] + sp * (x[3 * an + m] - x[3 * a + m]) - x[3 * b + m] -
+                tp * (x[3 * bn + m] - x[3 * b + m]);
+    tr_strut_gradient(cn, sp, tp, d, 1.0, g);
+    add_vertex(s, q, a, g[0]);
+    add_vertex(s, q, an, g[1]);
+    add_vertex(s, q, b, g[2]);
+    add_vertex(s, q, bn, g[3]);
     return 0;
 }
 
@@ -147,8 +137,7 @@ static int build_rows(sys *s, tr_error *err)
             ebar[s->comp[a]] += sqrt(v3_dist2(x + 3 * s->next[a], x + 3 * a));
     for (int k = 0; k < s->ncomp; k++) {
         ebar[k] /= s->ne[k] > 0 ? s->ne[k] : 1.0;
-        double g = ebar[k] > 0 ? ceil(M_PI * s->radius / ebar[k]) : 2.0;
-        s->gap[k] = g < 2.0 ? 2 : (g > 1e9 ? 1000000000 : (int)g);
+        s->gap[k] = tr_exclusion_gap(s->radius, ebar[k]);
     }
     for (size_t a = 0; a < s->nv && !s->oom; a++) {
         if (s->next[a] == NONE)
@@ -321,7 +310,7 @@ static int factor_free(const sys *s, work *k, tr_rowchol **f, tr_error *err)
 /* Least squares on the free set, from y (warm start): proximal-point
  * iterations z += (J_F W^-1 J_F^T + beta I)^-1 J_F r(z) with the factor of
  * factor_free; rows dropped from F since then are pinned at 0 in it
- * (rowchol.h). beta makes the factor exist although the struts of a tight
+ * (normal_equations.h). beta makes the factor exist although the struts of a tight
  * knot are dependent; the iteration removes its bias on every direction
  * the rows can resolve. */
 static int ls_free(const sys *s, work *k, tr_rowchol *f, const double *y, double *z, int *solves, tr_error *err)

@@ -1,5 +1,5 @@
 /* The KKT certificate of a tight rope: how far a curve is from a
- * constrained critical point of its length (REFERENCE.md 7.1, ridgerunner's
+ * constrained critical point of its length (docs/physics.md 7.1, ridgerunner's
  * "residual"), computed on the curve alone, independently of how it was
  * made (engine, polish, another program).
  *
@@ -21,7 +21,7 @@
  * weighted by 1/ne_k, the metric of backend.h); the residual is
  * min |r(y)| / |g| over y with the inequality multipliers >= 0. It is found
  * by projected Newton on the bound-constrained least squares, the free
- * set's least squares solved with a sparse Cholesky factor (rowchol.h).
+ * set's least squares solved with a sparse Cholesky factor (normal_equations.h).
  * Every iterate keeps y feasible, so the residual reported is attained by
  * admissible multipliers: an upper bound on the exact minimum even when the
  * solve stops early (converged = 0). 0 means the tension is exactly held by

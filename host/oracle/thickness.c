@@ -1,4 +1,4 @@
-/* Rawdon's thickness of a polygon with octrope's conventions (REFERENCE.md 2):
+/* Rawdon's thickness of a polygon with octrope's conventions (docs/physics.md 2):
  * MinRad as octrope_minrad computes it, struts as octrope_struts accepts them
  * (Lumelsky closest points, the endpoint normal-wedge test, the pi_count index
  * rule), the paper's L_p, L_c, L_a, with a tree search in place of octrope's
@@ -11,6 +11,7 @@
 #include <string.h>
 
 #include "geometry/neighbour_search.h"
+#include "util/compensated_sum.h"
 #include "util/vec3.h"
 
 /* Edge lengths of a "near-equilateral" component differ by at most this
@@ -23,19 +24,6 @@
  * N = 10^6 (edges ~3e-5) skips every vertex and loses MinRad; relative to
  * |a||b| the test means the same on the knots octrope was made for. */
 #define STRAIGHT_SIN 1e-12
-
-typedef struct neumaier {
-    double sum, comp;
-} neumaier;
-
-static void nm_add(neumaier *s, double v)
-{
-    double t = s->sum + v;
-    s->comp += (fabs(s->sum) >= fabs(v)) ? (s->sum - t) + v : (v - t) + s->sum;
-    s->sum = t;
-}
-
-static double nm_get(const neumaier *s) { return s->sum + s->comp; }
 
 /* octrope's find_poca (Lumelsky's segment-segment closest points): s on
  * segment a, t on segment b. Ill-conditioned cases go to long double exactly
@@ -304,19 +292,19 @@ static void component_lengths(const tr_curve *c, int k, comp_lengths *out)
     int closed = c->closed[k];
     out->minrad = INFINITY;
     out->minrad_vertex = v0;
-    neumaier len = {0, 0};
+    tr_csum len = {0, 0};
     double emin = INFINITY, emax = 0.0;
     for (size_t j = 0; j < ne; j++) {
         double l = sqrt(v3_dist2(c->x + 3 * (v0 + j), c->x + 3 * (v0 + (j + 1) % n)));
-        nm_add(&len, l);
+        tr_csum_add(&len, l);
         emin = fmin(emin, l);
         emax = fmax(emax, l);
     }
-    out->length = nm_get(&len);
+    out->length = tr_csum_value(&len);
     /* Vertices with two edges: all on a closed component, interior ones on an
      * open one (octrope's convention). */
     size_t first = closed ? 0 : 1, end = closed ? n : (n >= 2 ? n - 1 : 0);
-    neumaier arcs = {0, 0};
+    tr_csum arcs = {0, 0};
     for (size_t j = first; j < end; j++) {
         const double *p = c->x + 3 * (v0 + (j + n - 1) % n);
         const double *v = c->x + 3 * (v0 + j);
@@ -330,7 +318,7 @@ static void component_lengths(const tr_curve *c, int k, comp_lengths *out)
         double crn = v3_norm(cr);
         double tj = 0.5 * fmin(normin, normout);
         if (closed)
-            nm_add(&arcs, tj * arc_factor(atan2(crn, dot)));
+            tr_csum_add(&arcs, tj * arc_factor(atan2(crn, dot)));
         double rad;
         if (crn <= STRAIGHT_SIN * normin * normout) {
             if (dot >= 0)
@@ -357,10 +345,10 @@ static void component_lengths(const tr_curve *c, int k, comp_lengths *out)
                 double l = sqrt(v3_dist2(c->x + 3 * (v0 + j), c->x + 3 * (v0 + (j + 1) % n)));
                 double ln = sqrt(v3_dist2(c->x + 3 * (v0 + (j + 1) % n), c->x + 3 * (v0 + (j + 2) % n)));
                 double piece = l - 0.5 * fmin(lp, l) - 0.5 * fmin(l, ln);
-                nm_add(&arcs, piece);
+                tr_csum_add(&arcs, piece);
             }
             double R_c = sqrt(1.0 - 0.25 * e_av * e_av);
-            out->L_c = nm_get(&arcs) / R_c;
+            out->L_c = tr_csum_value(&arcs) / R_c;
         }
     }
 }
@@ -432,13 +420,13 @@ static int measure_frame(const tr_curve *c, const tr_thickness_opts *opts, tr_th
             return tr_fail(err, TR_EGEOMETRY, "vertex %zu is not finite", i / 3);
 
     out->vertices = c->nv;
-    neumaier len = {0, 0}, lc = {0, 0};
+    tr_csum len = {0, 0}, lc = {0, 0};
     int all_equilateral = 1;
     out->minrad = INFINITY;
     for (int k = 0; k < c->ncomp; k++) {
         comp_lengths cl;
         component_lengths(c, k, &cl);
-        nm_add(&len, cl.length);
+        tr_csum_add(&len, cl.length);
         if (cl.minrad < out->minrad) {
             out->minrad = cl.minrad;
             out->minrad_vertex = cl.minrad_vertex;
@@ -446,12 +434,12 @@ static int measure_frame(const tr_curve *c, const tr_thickness_opts *opts, tr_th
         if (isnan(cl.L_c))
             all_equilateral = 0;
         else
-            nm_add(&lc, cl.L_c);
+            tr_csum_add(&lc, cl.L_c);
     }
-    out->length = nm_get(&len);
+    out->length = tr_csum_value(&len);
     if (all_equilateral) {
         out->L_p = out->length;
-        out->L_c = nm_get(&lc);
+        out->L_c = tr_csum_value(&lc);
         out->L_a = 0.8 * out->L_p + 0.2 * out->L_c;
     } else {
         out->L_p = out->L_c = out->L_a = NAN;

@@ -1,5 +1,5 @@
 /* The thickness oracle: Rawdon's polygonal thickness and ropelength, as
- * octrope computes them (REFERENCE.md 2), with a tree neighbour search
+ * octrope computes them (docs/physics.md 2), with a tree neighbour search
  * (neighbour_search.h) so the cost is linear in N for tight or smooth curves.
  *
  * octrope's conventions, kept: MinRad(v) = min(|a|,|b|) (|a||b| + a.b) /
@@ -49,7 +49,7 @@ typedef struct tr_thickness {
     tr_strut shortest;  /* the strut realising dcsd (valid when dcsd is finite) */
     double thickness;   /* min(minrad, dcsd/2) */
     double ropelength;  /* length / thickness */
-    /* The paper's lengths (REFERENCE.md 2.4); NAN unless every component is
+    /* The paper's lengths (docs/physics.md 2.4); NAN unless every component is
      * closed and near-equilateral. */
     double L_p, L_c, L_a;
 } tr_thickness;

@@ -9,17 +9,14 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 #include "geometry/neighbour_search.h"
-#include "geometry/segdist.h"
+#include "geometry/struts.h"
+#include "segment_distance.h"
 #include "solver/strut_hessian.h"
 #include "oracle/thickness.h"
+#include "util/clock.h"
 #include "util/vec3.h"
-
-#ifndef M_PI
-#define M_PI 3.14159265358979323846
-#endif
 
 #define NONE SIZE_MAX
 /* a step after which a listed pair is closer than this is cut back */
@@ -36,13 +33,6 @@ void tr_newton_params_default(tr_newton_params *p)
     p->mu_max = 1e9;
     p->viol_tol = 1e-11;
     p->stat_tol = 1e-7;
-}
-
-static double now_s(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
 typedef struct strut_row {
@@ -313,15 +303,8 @@ static int collect_pair(void *vc, size_t ei, size_t ej, double *cutoff)
     collect *cl = vc;
     solver *s = cl->s;
     const tr_nsearch *ns = &s->ns;
-    int k = ns->ecomp[ei];
-    if (k == ns->ecomp[ej]) {
-        size_t li = ei - ns->estart[k], lj = ej - ns->estart[k];
-        size_t g = li > lj ? li - lj : lj - li;
-        if (s->w.closed[k] && s->ne[k] - g < g)
-            g = s->ne[k] - g;
-        if (g < (size_t)s->gap[k])
-            return 0;
-    }
+    if (tr_nsearch_excluded(ns, ei, ej, (size_t)s->gap[ns->ecomp[ei]]))
+        return 0;
     size_t a = ns->ea[ei], b = ns->ea[ej];
     double sp, tp;
     const double *x = s->w.x;
@@ -452,7 +435,7 @@ static int rebuild(solver *s, const double *y, tr_error *err)
 static int newton_dir(solver *s, const double *grad, double *dir, double *lm, tr_newton_stats *st,
                       tr_error *err)
 {
-    double t0 = now_s();
+    double t0 = tr_clock_seconds();
     cholmod_common *cm = &s->cm;
     cholmod_triplet *T = cholmod_l_allocate_triplet(s->n, s->n, s->nz + s->n, 1, CHOLMOD_REAL, cm);
     if (!T)
@@ -497,7 +480,7 @@ static int newton_dir(solver *s, const double *grad, double *dir, double *lm, tr
         shift = fmax(shift * 10.0, 1e-8 * dmax);
     }
     *lm = shift;
-    double t1 = now_s();
+    double t1 = tr_clock_seconds();
     st->t_factor += t1 - t0;
     cholmod_dense *b = cholmod_l_allocate_dense(s->n, 1, s->n, CHOLMOD_REAL, cm);
     if (!b) {
@@ -515,7 +498,7 @@ static int newton_dir(solver *s, const double *grad, double *dir, double *lm, tr
     }
     memcpy(dir, xs->x, s->n * sizeof *dir);
     cholmod_l_free_dense(&xs, cm);
-    st->t_solve += now_s() - t1;
+    st->t_solve += tr_clock_seconds() - t1;
 done:
     cholmod_l_free_factor(&L, cm);
     cholmod_l_free_sparse(&A, cm);
@@ -616,8 +599,7 @@ static int solver_init(solver *s, const tr_curve *cv, double scale, tr_error *er
         s->l0[k] = tr_comp_length(&s->w, k) / (double)s->ne[k];
         s->scale_m[k] = 4.0 * s->l0[k] * s->l0[k];
         s->l0min = fmin(s->l0min, s->l0[k]);
-        double g = ceil(M_PI / s->l0[k]);
-        s->gap[k] = g < 2.0 ? 2 : (g > 1e9 ? 1000000000 : (int)g);
+        s->gap[k] = tr_exclusion_gap(1.0, s->l0[k]);
     }
     set_gauge(s);
     return tr_nsearch_build(&s->ns, &s->w, err);
@@ -669,12 +651,12 @@ static int minimise(solver *s, double *y, tr_newton_stats *st, double t0, tr_err
     double omega = 1e-2, prev_viol = INFINITY, lm = 0.0, prev_len = INFINITY;
     int inner = 0, settled = 0;
     for (int it = 0; it < p->max_iter; it++) {
-        if ((p->time_limit > 0 && now_s() - t0 > p->time_limit) || (p->stop && *p->stop))
+        if ((p->time_limit > 0 && tr_clock_seconds() - t0 > p->time_limit) || (p->stop && *p->stop))
             break;
-        double te = now_s();
+        double te = tr_clock_seconds();
         s->oom = 0;
         double f = al_eval(s, y, grad, 1);
-        st->t_eval += now_s() - te;
+        st->t_eval += tr_clock_seconds() - te;
         if (s->oom) {
             rc = tr_fail(err, TR_ENOMEM, "out of memory (Hessian)");
             goto done;
@@ -711,11 +693,11 @@ static int minimise(solver *s, double *y, tr_newton_stats *st, double t0, tr_err
             omega = fmax(0.1 * omega, 0.1 * p->stat_tol);
             inner = 0;
             st->outer++;
-            double tr = now_s();
+            double tr = tr_clock_seconds();
             if ((rc = rebuild(s, y, err)))
                 goto done;
             st->rebuilds++;
-            st->t_rebuild += now_s() - tr;
+            st->t_rebuild += tr_clock_seconds() - tr;
             continue;
         }
         /* Levenberg-Marquardt: a direction that is no descent (the
@@ -725,7 +707,7 @@ static int minimise(solver *s, double *y, tr_newton_stats *st, double t0, tr_err
          * tension's stiffness 1 / l0 */
         double alpha = 0.0, ft = f, slope = 0.0, mv = 0.0, cap = 1.0;
         int ok = 0;
-        double ts = now_s();
+        double ts = tr_clock_seconds();
         for (int lmtry = 0; lmtry < 6 && !ok; lmtry++) {
             if (lmtry > 0)
                 lm = fmax(100.0 * lm, 1e-6 / s->l0min);
@@ -757,13 +739,13 @@ static int minimise(solver *s, double *y, tr_newton_stats *st, double t0, tr_err
                 alpha *= 0.5;
             }
         }
-        st->t_search += now_s() - ts;
+        st->t_search += tr_clock_seconds() - ts;
         st->iters++;
         inner++;
         if (p->progress) {
             tr_newton_progress pr = {.iter = it, .outer = st->outer, .length = s->length, .viol = s->viol,
                                      .stat = stat, .mu = s->mu * s->l0min, .lm = lm, .step = ok ? alpha : 0.0,
-                                     .struts = s->nsp, .active = s->active, .seconds = now_s() - t0};
+                                     .struts = s->nsp, .active = s->active, .seconds = tr_clock_seconds() - t0};
             p->progress(p->user, &pr);
         }
         /* next time, start from a tenth of the shift that worked */
@@ -780,11 +762,11 @@ static int minimise(solver *s, double *y, tr_newton_stats *st, double t0, tr_err
         for (size_t i = 0; i < nv; i++)
             m = fmax(m, v3_dist2(y + 3 * i, s->w.x + 3 * i));
         if (sqrt(m) > fmin(0.25 * p->skin, 0.5 * s->l0min)) {
-            double tr = now_s();
+            double tr = tr_clock_seconds();
             if ((rc = rebuild(s, y, err)))
                 goto done;
             st->rebuilds++;
-            st->t_rebuild += now_s() - tr;
+            st->t_rebuild += tr_clock_seconds() - tr;
         }
     }
 done:
@@ -802,7 +784,7 @@ int tr_newton(tr_curve *cv, const tr_newton_params *prm, tr_newton_stats *st, tr
         prm = &defp;
     }
     memset(st, 0, sizeof *st);
-    double t0 = now_s();
+    double t0 = tr_clock_seconds();
     if (cv->ncst > 0) {
         st->skipped = 1;
         return TR_OK;
@@ -830,10 +812,10 @@ int tr_newton(tr_curve *cv, const tr_newton_params *prm, tr_newton_stats *st, tr
     memcpy(y, s.w.x, 3 * s.nv * sizeof *y);
     for (int k = 0; k < s.nc; k++)
         y[3 * s.nv + (size_t)k] = s.l0[k];
-    double tr = now_s();
+    double tr = tr_clock_seconds();
     if ((rc = rebuild(&s, y, err)))
         goto done;
-    st->t_rebuild += now_s() - tr;
+    st->t_rebuild += tr_clock_seconds() - tr;
     if ((rc = minimise(&s, y, st, t0, err)))
         goto done;
     /* the oracle decides: rescale to thickness 1, keep if shorter */
@@ -857,7 +839,7 @@ int tr_newton(tr_curve *cv, const tr_newton_params *prm, tr_newton_stats *st, tr
     st->accepted = 1;
     st->ropelength_after = th.ropelength;
 done:
-    st->seconds = now_s() - t0;
+    st->seconds = tr_clock_seconds() - t0;
     free(y);
     solver_free(&s);
     return rc;

@@ -5,12 +5,12 @@
 #include <math.h>
 #include <string.h>
 
-#include "geometry/segdist.h"
+#include "segment_distance.h"
 
 /* Interior test for a closest-point parameter: away from the clamp by more
  * than rounding. */
 #define PARAM_EPS 1e-12
-/* (nearly) parallel: sin^2 of the angle below this, as segdist.h decides */
+/* (nearly) parallel: sin^2 of the angle below this, as segment_distance.h decides */
 #define PARALLEL_SIN2 1e-10
 
 double tr_strut_distance_derivs(const double *p0, const double *p1, const double *q0, const double *q1,

@@ -5,7 +5,7 @@
  * d(x) = min over s, t in [0, 1] of |P(s) - Q(t)|, P(s) = p0 + s (p1 - p0),
  * Q(t) = q0 + t (q1 - q0), x = (p0, p1, q0, q1) in R^12. With F = d^2 and
  * phi(x, s, t) = |P(s) - Q(t)|^2, the closest-point parameters (s*, t*) are
- * recomputed at every x (segdist.h), so the rope cannot slip between
+ * recomputed at every x (kernels/segment_distance.h), so the rope cannot slip between
  * frozen sample points (a frozen-parameter distance lets a strand pass the
  * other between them: d_frozen - d_true grows like edge^2 / 8). By the
  * envelope theorem grad F = phi_x at (s*, t*); the Hessian is

@@ -1,3 +1,4 @@
+/* This file contains the library's error records: tr_fail and its wrapping form (error.h). */
 #include "util/error.h"
 
 #include <stdarg.h>

@@ -1,3 +1,4 @@
+/* This file contains the JSON writers of strings and numbers (json.h). */
 #include "util/json.h"
 
 #include <math.h>

@@ -1,3 +1,5 @@
+/* This file contains limited-memory BFGS with a per-step cap and a weak-Wolfe line search
+ * (lbfgs.h). */
 #include "util/lbfgs.h"
 
 #include <math.h>

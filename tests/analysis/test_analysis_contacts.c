@@ -8,8 +8,8 @@
 #include <math.h>
 #include <stdlib.h>
 
-#include "analysis/contacts.h"
-#include "curve/polyline.h"
+#include "analysis/contact_functions.h"
+#include "curve/arclength.h"
 #include "testlib.h"
 
 #define PI 3.14159265358979323846

@@ -8,10 +8,10 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-#include "analysis/contacts.h"
+#include "analysis/contact_functions.h"
 #include "curve/generate.h"
-#include "analysis/knot_analysis.h"
-#include "curve/polyline.h"
+#include "analysis/portrait.h"
+#include "curve/arclength.h"
 #include "testlib.h"
 
 #define PI 3.14159265358979323846

@@ -10,7 +10,7 @@
 #include <string.h>
 
 #include "analysis/analysis_report.h"
-#include "analysis/knot_analysis.h"
+#include "analysis/portrait.h"
 #include "testlib.h"
 
 #define PI 3.14159265358979323846

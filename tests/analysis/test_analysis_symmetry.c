@@ -2,14 +2,14 @@
  * knot T(2,3) in its standard embedding (D3), a rigidly moved copy (same
  * verdict, same origin up to the symmetry), perturbations that keep only a
  * twofold axis (C2) or nothing (none); the representative-interval map on the
- * paper's 9-cycle (REFERENCE.md 4.4). */
+ * paper's 9-cycle (docs/physics.md 4.4). */
 #include <math.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "analysis/curvature_torsion.h"
-#include "curve/polyline.h"
+#include "curve/arclength.h"
 #include "analysis/rotation_fit.h"
 #include "analysis/symmetry.h"
 #include "testlib.h"
@@ -134,7 +134,7 @@ static void test_torus_knot(void)
 
 static void test_reduce(void)
 {
-    /* REFERENCE.md 4.4: with L = 32.7429345 the paper's C9- reduces to the
+    /* docs/physics.md 4.4: with L = 32.7429345 the paper's C9- reduces to the
      * three classes {0.189, 0.373, 4.759}. */
     double L = 32.7429345;
     const double c9[9] = {0.189, 15.674, 32.370, 11.103, 26.588, 10.541, 22.018, 4.759, 21.455};

@@ -1,4 +1,4 @@
-/* The simple clasp (REFERENCE.md 6) tightened by the whole engine, polish
+/* The simple clasp (docs/physics.md 6) tightened by the whole engine, polish
  * included, from `tightrope make clasp` at 60 vertices per rope, with no
  * time limit (the run stops when it jams, so the result does not depend on
  * the machine's speed). Checked against the physics, not our own numbers:
@@ -9,7 +9,7 @@
  *  - both ropes congruent and each symmetric about its tip: the discrete
  *    curvature profiles agree to 1e-2 (the problem's symmetry, [P]);
  *  - the shoulder S has curvature 1/2 (it runs on a circle of radius 2
- *    around the other rope's tip, REFERENCE.md 6.2): its first four
+ *    around the other rope's tip, docs/physics.md 6.2): its first four
  *    vertices average to 1/2 within 0.02;
  *  - nowhere more bent than the limit, and most bent at the tip (the kink
  *    K; its curvature reaches 1 only from ~100 vertices per rope on,

@@ -9,7 +9,7 @@
 
 #include "curve/generate.h"
 #include "geometry/neighbour_search.h"
-#include "geometry/segdist.h"
+#include "segment_distance.h"
 #include "testlib.h"
 #include "oracle/thickness.h"
 

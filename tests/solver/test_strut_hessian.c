@@ -6,7 +6,7 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "geometry/segdist.h"
+#include "segment_distance.h"
 #include "solver/strut_hessian.h"
 #include "testlib.h"
 

@@ -15,19 +15,15 @@ int tr_backend_opencl_open(const char *spec, const tr_curve *c, tr_backend *out,
 int tr_backend_opencl_open_profiled(const char *spec, const tr_curve *c, tr_backend *out,
                                     tr_error *err);
 
-typedef struct tr_kernel_time {
-    char kernel[48]; /* kernel function name */
-    long launches;
-    double seconds;     /* summed device execution time (profiling events) */
-} tr_kernel_time;
-
-/* Per-kernel totals since open (profiled backends only; else returns 0).
- * Returns the number of entries written (at most max). */
-int tr_backend_opencl_kernel_times(const tr_backend *b, tr_kernel_time *out, int max);
-
 /* The edge-block solver an OpenCL backend uses: "thomas", "twisted" (CPU
  * devices' default), "pcr-group" or "pcr-levels" (see TIGHTROPE_CL_TRIDIAG in
- * the README); NULL for other backends. */
+ * the README); NULL for other backends. (describe says it as "edge block
+ * NAME"; profile gives the per-kernel times.) */
 const char *tr_backend_opencl_tridiag(const tr_backend *b);
+
+/* The device listing of backend.h (tr_backend_list_devices) and its spec
+ * check, for the OpenCL devices. */
+int tr_backend_opencl_list_devices(tr_device_list *out, tr_error *err);
+int tr_backend_opencl_check_spec(const char *spec, tr_error *err);
 
 #endif

@@ -8,6 +8,7 @@
 
 #include "backend/opencl/cl_error.h"
 #include "backend/opencl/kernel_source.h"
+#include "util/device_spec.h"
 
 static void get_string(cl_device_id d, cl_device_info what, char *buf, size_t n)
 {
@@ -92,9 +93,9 @@ static void describe_device(tr_cl_device_info *d)
         snprintf(d->reason, sizeof d->reason, "device reports itself unavailable");
     else if (!compiler)
         snprintf(d->reason, sizeof d->reason, "no opencl c compiler for this device");
-    else if (d->max_work_group < TR_CL_LOCAL)
+    else if (d->max_work_group < TR_LOCAL_SIZE)
         snprintf(d->reason, sizeof d->reason, "work-group limit %zu below the %d the kernels use",
-                 d->max_work_group, TR_CL_LOCAL);
+                 d->max_work_group, TR_LOCAL_SIZE);
     else {
         d->usable = 1;
         d->reason[0] = '\0';
@@ -249,7 +250,7 @@ int tr_device_select(const char *spec, tr_device_choice *out, tr_error *err)
     if (!spec || !*spec)
         spec = tr_device_spec_default();
     snprintf(out->spec, sizeof out->spec, "%s", spec);
-    if (!strcmp(spec, "reference") || !strcmp(spec, "serial") || !strcmp(spec, "cpu-reference")) {
+    if (tr_device_spec_is_reference(spec)) {
         out->kind = TR_DEVICE_REFERENCE;
         return TR_OK;
     }
@@ -433,7 +434,7 @@ int tr_cl_launch_items(const tr_cl_ctx *ctx, cl_kernel k, size_t n, tr_error *er
 {
     /* blocks: always one item per group, since PoCL compiles a kernel again
      * for every local size it meets */
-    return tr_cl_launch(ctx, k, tr_cl_items_global(ctx, n), ctx->block_items ? 1 : TR_CL_LOCAL, err);
+    return tr_cl_launch(ctx, k, tr_cl_items_global(ctx, n), ctx->block_items ? 1 : TR_LOCAL_SIZE, err);
 }
 
 /* One-line error text: the build log's line breaks become " | ". */
@@ -464,14 +465,17 @@ int tr_cl_build(const tr_cl_ctx *ctx, const char *const *files, int nfiles, cons
     cl_int e = CL_SUCCESS;
     cl_program prog = NULL;
     char *log = NULL;
-    char **src = calloc((size_t)nfiles + 1, sizeof *src);
+    static const char *const preamble[TR_CL_PREAMBLE_COUNT] = TR_CL_PREAMBLE;
+    const int np = TR_CL_PREAMBLE_COUNT;
+    char **src = calloc((size_t)(nfiles + np), sizeof *src);
     *out = NULL;
     if (!src)
         return tr_fail(err, TR_ENOMEM, "out of memory loading kernels");
-    TR_TRY(tr_kernel_source_load("common.clh", &src[0], err));
+    for (int i = 0; i < np; i++)
+        TR_TRY(tr_kernel_source_load(preamble[i], &src[i], err));
     for (int i = 0; i < nfiles; i++)
-        TR_TRY(tr_kernel_source_load(files[i], &src[i + 1], err));
-    TR_CL_CHECK((prog = clCreateProgramWithSource(ctx->context, (cl_uint)nfiles + 1,
+        TR_TRY(tr_kernel_source_load(files[i], &src[np + i], err));
+    TR_CL_CHECK((prog = clCreateProgramWithSource(ctx->context, (cl_uint)(nfiles + np),
                                                   (const char **)src, NULL, &e),
                  e));
     if (!options)
@@ -510,7 +514,7 @@ cleanup:
     if (prog)
         clReleaseProgram(prog);
     free(log);
-    for (int i = 0; i <= nfiles; i++)
+    for (int i = 0; i < nfiles + np; i++)
         free(src[i]);
     free(src);
     return rc;

@@ -8,6 +8,7 @@
 #include <CL/cl_ext.h> /* CL_PLATFORM_NOT_FOUND_KHR */
 #include <stddef.h>
 
+#include "layout.h" /* TR_LOCAL_SIZE, the work-group size of every launch */
 #include "util/error.h"
 
 typedef struct tr_cl_device_info {
@@ -99,7 +100,7 @@ void tr_cl_ctx_close(tr_cl_ctx *ctx);
 int tr_cl_launch(const tr_cl_ctx *ctx, cl_kernel k, size_t global, size_t local, tr_error *err);
 
 /* Launches a kernel that loops over the indices [0, n) (kernels/common.clh
- * TR_ITEMS). On a GPU, one index per work-item in groups of TR_CL_LOCAL; on a
+ * TR_ITEMS). On a GPU, one index per work-item in groups of TR_LOCAL_SIZE; on a
  * CPU device, ctx->block_items work-items of one each, every one walking a
  * contiguous block of indices: PoCL runs the CG's axpy over 2 x 10^5
  * entries 5x faster so, over 2 x 10^6 3x (bench/launch_shapes). TIGHTROPE_CL_ITEMS=one|blocks
@@ -110,24 +111,25 @@ int tr_cl_launch_items(const tr_cl_ctx *ctx, cl_kernel k, size_t n, tr_error *er
  * folds its indices writes one partial result per work-item). */
 size_t tr_cl_items_global(const tr_cl_ctx *ctx, size_t n);
 
-/* Builds one program from common.clh followed by the named kernel files
+/* The sources every program starts with, in order (kernels/): the layout the
+ * host shares, the helpers, the segment distance the host shares. */
+#define TR_CL_PREAMBLE {"layout.h", "common.clh", "segment_distance.h"}
+#define TR_CL_PREAMBLE_COUNT 3
+
+/* Builds one program from the preamble followed by the named kernel files
  * (embedded, or from TIGHTROPE_KERNEL_DIR). On failure err holds the call,
  * the options and the build log folded onto one line. */
 int tr_cl_build(const tr_cl_ctx *ctx, const char *const *files, int nfiles, const char *options,
                 cl_program *out, tr_error *err);
 
-/* Work-group size all Tightrope kernels are launched with: fixed, because
- * PoCL compiles a kernel anew for every local size it meets. */
-#define TR_CL_LOCAL 64
-
 /* Blocks of indices per compute unit of a CPU device (tr_cl_launch_items). */
 #define TR_CL_BLOCKS_PER_UNIT 8
 
-/* Global size padded up to a multiple of TR_CL_LOCAL (at least one group). */
+/* Global size padded up to a multiple of TR_LOCAL_SIZE (at least one group). */
 static inline size_t tr_cl_global(size_t n)
 {
-    size_t g = (n + TR_CL_LOCAL - 1) / TR_CL_LOCAL * TR_CL_LOCAL;
-    return g ? g : TR_CL_LOCAL;
+    size_t g = (n + TR_LOCAL_SIZE - 1) / TR_LOCAL_SIZE * TR_LOCAL_SIZE;
+    return g ? g : TR_LOCAL_SIZE;
 }
 
 #endif

@@ -1,3 +1,4 @@
+/* This file contains the names of OpenCL error codes and the checked-call helpers (cl_error.h). */
 #include "backend/opencl/cl_error.h"
 
 #include <ctype.h>

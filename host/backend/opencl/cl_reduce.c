@@ -1,3 +1,5 @@
+/* This file contains the device reductions (sum, dot, min/max, count, scan) into the scalar
+ * buffer (cl_reduce.h). */
 #include "backend/opencl/cl_reduce.h"
 
 #include <string.h>
@@ -12,7 +14,7 @@
 #define TR_RED_GROUPS 64
 /* Sums of at most this many values skip stage 1 (sixteen per item of
  * sum_final's one work-group): the per-work-item partials on CPU devices. */
-#define TR_RED_DIRECT (16 * TR_CL_LOCAL)
+#define TR_RED_DIRECT (16 * TR_LOCAL_SIZE)
 
 /* Stage 1's global size for n entries: at most TR_RED_GROUPS work-groups
  * on a GPU; on a CPU device as many as the blocks of an items launch
@@ -24,7 +26,7 @@ static size_t stage1_global(const tr_cl_ctx *ctx, size_t n)
     size_t g = tr_cl_global(n);
     size_t groups = ctx->block_items && ctx->block_items < TR_RED_GROUPS ? ctx->block_items
                                                                           : TR_RED_GROUPS;
-    return g < groups * TR_CL_LOCAL ? g : groups * TR_CL_LOCAL;
+    return g < groups * TR_LOCAL_SIZE ? g : groups * TR_LOCAL_SIZE;
 }
 
 int tr_cl_build_all(const tr_cl_ctx *ctx, cl_program *prog, tr_error *err)
@@ -52,7 +54,7 @@ int tr_cl_reduce_init(tr_cl_reduce *r, const tr_cl_ctx *ctx, cl_program prog, si
     TR_CL_CHECK((r->scan_local = clCreateKernel(prog, "scan_local", &e), e));
     TR_CL_CHECK((r->scan_sums = clCreateKernel(prog, "scan_sums", &e), e));
     TR_CL_CHECK((r->scan_add = clCreateKernel(prog, "scan_add", &e), e));
-    r->groups = tr_cl_global(n) / TR_CL_LOCAL;
+    r->groups = tr_cl_global(n) / TR_LOCAL_SIZE;
     TR_CL_CHECK((r->pa = clCreateBuffer(ctx->context, CL_MEM_READ_WRITE, r->groups * sizeof(double),
                                         NULL, &e),
                  e));
@@ -82,9 +84,9 @@ void tr_cl_reduce_free(tr_cl_reduce *r)
 
 static int check_size(const tr_cl_reduce *r, int n, tr_error *err)
 {
-    if (n < 1 || tr_cl_global((size_t)n) / TR_CL_LOCAL > r->groups)
+    if (n < 1 || tr_cl_global((size_t)n) / TR_LOCAL_SIZE > r->groups)
         return tr_fail(err, TR_EINVAL, "reduction over %d items exceeds the %zu prepared", n,
-                       r->groups * TR_CL_LOCAL);
+                       r->groups * TR_LOCAL_SIZE);
     return TR_OK;
 }
 
@@ -93,7 +95,7 @@ static int sum_stage2(tr_cl_reduce *r, const tr_cl_ctx *ctx, cl_mem src, int m, 
                       int slot, tr_error *err)
 {
     int rc = TR_OK;
-    size_t l = TR_CL_LOCAL;
+    size_t l = TR_LOCAL_SIZE;
     TR_CL_ARGS(r->sum_final, 0, TR_CL_A(src), TR_CL_A(m), TR_CL_A(out), TR_CL_A(slot));
     TR_TRY(tr_cl_launch(ctx, r->sum_final, l, l, err));
 cleanup:
@@ -106,7 +108,7 @@ int tr_cl_reduce_length(tr_cl_reduce *r, const tr_cl_ctx *ctx, cl_mem x, cl_mem 
     int rc = check_size(r, n, err);
     if (rc != TR_OK)
         return rc;
-    size_t g = stage1_global(ctx, (size_t)n), l = TR_CL_LOCAL;
+    size_t g = stage1_global(ctx, (size_t)n), l = TR_LOCAL_SIZE;
     int m = (int)(g / l);
     TR_CL_ARGS(r->length_partial, 0, TR_CL_A(x), TR_CL_A(next), TR_CL_A(n), TR_CL_A(r->pa));
     TR_TRY(tr_cl_launch(ctx, r->length_partial, g, l, err));
@@ -121,7 +123,7 @@ int tr_cl_reduce_minmax(tr_cl_reduce *r, const tr_cl_ctx *ctx, cl_mem v, int n, 
     int rc = check_size(r, n, err);
     if (rc != TR_OK)
         return rc;
-    size_t g = stage1_global(ctx, (size_t)n), l = TR_CL_LOCAL;
+    size_t g = stage1_global(ctx, (size_t)n), l = TR_LOCAL_SIZE;
     int m = (int)(g / l);
     TR_CL_ARGS(r->minmax_partial, 0, TR_CL_A(v), TR_CL_A(n), TR_CL_A(r->pa), TR_CL_A(r->pb));
     TR_TRY(tr_cl_launch(ctx, r->minmax_partial, g, l, err));
@@ -145,7 +147,7 @@ int tr_cl_reduce_reserve(tr_cl_reduce *r, const tr_cl_ctx *ctx, size_t n, tr_err
 {
     int rc = TR_OK;
     cl_int e = CL_SUCCESS;
-    size_t groups = tr_cl_global(n) / TR_CL_LOCAL;
+    size_t groups = tr_cl_global(n) / TR_LOCAL_SIZE;
     if (groups <= r->groups)
         return TR_OK;
     groups += groups / 2;
@@ -173,7 +175,7 @@ static int finish_sum(tr_cl_reduce *r, const tr_cl_ctx *ctx, cl_kernel k, int ar
     int rc = check_size(r, items, err);
     if (rc != TR_OK)
         return rc;
-    size_t g = stage1_global(ctx, (size_t)items), l = TR_CL_LOCAL;
+    size_t g = stage1_global(ctx, (size_t)items), l = TR_LOCAL_SIZE;
     int m = (int)(g / l);
     TR_CL_ARGS(k, (cl_uint)argn, TR_CL_A(n), TR_CL_A(r->pa));
     TR_TRY(tr_cl_launch(ctx, k, g, l, err));
@@ -223,7 +225,7 @@ int tr_cl_reduce_scan(tr_cl_reduce *r, const tr_cl_ctx *ctx, cl_mem in, int n, c
     int rc = check_size(r, n, err);
     if (rc != TR_OK)
         return rc;
-    size_t g = tr_cl_global((size_t)n), l = TR_CL_LOCAL;
+    size_t g = tr_cl_global((size_t)n), l = TR_LOCAL_SIZE;
     int groups = (int)(g / l);
     TR_CL_ARGS(r->scan_local, 0, TR_CL_A(in), TR_CL_A(n), TR_CL_A(out), TR_CL_A(r->pb));
     TR_TRY(tr_cl_launch(ctx, r->scan_local, g, l, err));

@@ -1,3 +1,5 @@
+/* This file contains the device neighbour search: the edge tree copied to the device, refitted
+ * and walked (cl_tree.h). */
 #include "backend/opencl/cl_tree.h"
 
 #include <math.h>

@@ -12,6 +12,7 @@
 #include "backend/opencl/cl_reduce.h"
 #include "curve/curve.h"
 #include "testlib.h"
+#include "util/compensated_sum.h"
 #include "backend/opencl/kernel_source.h"
 
 #define TR_PI 3.14159265358979323846
@@ -157,27 +158,28 @@ static void test_selection(int have_device)
     }
 }
 
-/* Writes common.clh and one kernel file `name` with text `src` into the
- * build's tests directory, for tr_cl_build under TIGHTROPE_KERNEL_DIR. */
+/* Writes the preamble (TR_CL_PREAMBLE) and one kernel file `name` with text
+ * `src` into the build's tests directory, for tr_cl_build under
+ * TIGHTROPE_KERNEL_DIR. */
 static int write_kernel_dir(const char *name, const char *src, char *dir, size_t dirsize)
 {
     char path[1100];
     snprintf(dir, dirsize, "%s/tests", TR_BINARY_DIR);
-    const char *names[] = {name, "common.clh"};
-    char *text = NULL;
-    tr_error err;
-    if (tr_kernel_source_load("common.clh", &text, &err) != TR_OK)
-        return 0;
-    const char *texts[] = {src, text};
+    static const char *const preamble[TR_CL_PREAMBLE_COUNT] = TR_CL_PREAMBLE;
     int ok = 1;
-    for (int k = 0; k < 2; k++) {
-        snprintf(path, sizeof path, "%s/%s", dir, names[k]);
+    for (int k = 0; k <= TR_CL_PREAMBLE_COUNT; k++) {
+        char *text = NULL;
+        tr_error err;
+        const char *fname = k < TR_CL_PREAMBLE_COUNT ? preamble[k] : name;
+        if (k < TR_CL_PREAMBLE_COUNT && tr_kernel_source_load(fname, &text, &err) != TR_OK)
+            return 0;
+        snprintf(path, sizeof path, "%s/%s", dir, fname);
         FILE *f = fopen(path, "w");
-        ok = ok && f && fputs(texts[k], f) >= 0;
+        ok = ok && f && fputs(text ? text : src, f) >= 0;
         if (f)
             ok = fclose(f) == 0 && ok;
+        free(text);
     }
-    free(text);
     return ok;
 }
 
@@ -346,14 +348,13 @@ static void test_reductions(const tr_cl_ctx *ctx)
             /* the sum, one stage up to 1024 entries and two above: against
              * the host's Neumaier sum; either errs by at most ~log2(N) eps of
              * the sum of magnitudes, so 1e-14 of that bounds the difference */
-            double hs = 0.0, hc = 0.0, mag = 0.0;
+            tr_csum hs = {0.0, 0.0};
+            double mag = 0.0;
             for (size_t i = 0; i < c.nv; i++) {
-                double t = hs + coord[i];
-                hc += fabs(hs) >= fabs(coord[i]) ? (hs - t) + coord[i] : (coord[i] - t) + hs;
-                hs = t;
+                tr_csum_add(&hs, coord[i]);
                 mag += fabs(coord[i]);
             }
-            CHECK_NEAR(got[3], hs + hc, 1e-14 * mag);
+            CHECK_NEAR(got[3], tr_csum_value(&hs), 1e-14 * mag);
             /* Pairwise (device) and Neumaier (host) sums of N positive edge
              * lengths both err by at most ~log2(N) eps L < 13 * 1.1e-16 L, so
              * 1e-14 relative bounds the difference with margin; each edge

@@ -12,7 +12,7 @@
 #include "backend/opencl/cl_reduce.h"
 #include "backend/opencl/cl_tree.h"
 #include "curve/curve.h"
-#include "geometry/segdist.h"
+#include "segment_distance.h"
 #include "testlib.h"
 
 #define TR_PI 3.14159265358979323846

@@ -7,7 +7,7 @@
 #include <string.h>
 
 #include "backend/backend.h"
-#include "geometry/segdist.h"
+#include "segment_distance.h"
 #include "testlib.h"
 #include "util/vec3.h"
 

@@ -1,9 +1,11 @@
-/* Arclength bookkeeping on one closed polygon: cumulative lengths, the point
- * at any arclength (periodic), equal-arclength resampling. The analysis of a
- * knot's shape works in the arclength coordinate of the input polygon, so
- * every other piece (averaging, symmetry, contacts) shares these helpers. */
-#ifndef TR_POLYLINE_H
-#define TR_POLYLINE_H
+/* Arclength bookkeeping on one closed polygon: cumulative lengths and the
+ * point at any arclength (periodic). The analysis of a knot's shape works in
+ * the arclength coordinate of the input polygon, so every other piece
+ * (averaging, symmetry, contacts) shares these helpers. (The resamplers that
+ * make new curves are tr_resample and tr_resample_smooth, curve/generate.h,
+ * and the refinement's tr_refine_lowpass, engine/refine_lowpass.h.) */
+#ifndef TR_ARCLENGTH_H
+#define TR_ARCLENGTH_H
 
 #include <math.h>
 #include <stddef.h>
@@ -17,10 +19,6 @@ void tr_polyline_arclength(const double *x, size_t n, double *s);
 /* Point at arclength l (any real; taken modulo L = s[n]) by linear
  * interpolation along the edge that holds it. */
 void tr_polyline_point_at(const double *x, size_t n, const double *s, double l, double *p);
-
-/* m points at arclength l0 + j L/m, j = 0..m-1, into out[3m]. */
-int tr_polyline_resample(const double *x, size_t n, size_t m, double l0, double *out,
-                         tr_error *err);
 
 /* l modulo L into [0, L). */
 static inline double tr_wrap(double l, double L)

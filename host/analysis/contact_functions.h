@@ -1,9 +1,9 @@
-/* Contacts of a tight knot and the contact functions (REFERENCE.md 5):
+/* Contacts of a tight knot and the contact functions (docs/physics.md 5):
  * every strut joins two points of the rope at arclengths (l_i, l_j); read as
  * a relation on the circle of length L, the struts trace two monotone
  * functions sigma-(l) and sigma+(l), the two partners of the point at l. */
-#ifndef TR_CONTACTS_H
-#define TR_CONTACTS_H
+#ifndef TR_CONTACT_FUNCTIONS_H
+#define TR_CONTACT_FUNCTIONS_H
 
 #include <stddef.h>
 

@@ -2,8 +2,8 @@
  * gradients: the one quantity behind Rawdon's MinRad, min(|p|,|q|) / (2 t),
  * shared by the polish (polish.c) and the KKT certificate (kkt.c) so both
  * differentiate the same function. */
-#ifndef TR_TURNING_H
-#define TR_TURNING_H
+#ifndef TR_TURNING_ANGLE_H
+#define TR_TURNING_ANGLE_H
 
 #include <string.h>
 

@@ -1,11 +1,13 @@
-#include "analysis/knot_analysis.h"
+/* This file contains the whole portrait of one closed component: symmetry, averaged curvature
+ * and torsion, plateaus, jumps, contacts (portrait.h). */
+#include "analysis/portrait.h"
 
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "curve/polyline.h"
+#include "curve/arclength.h"
 
 void tr_analysis_free(tr_analysis *a)
 {

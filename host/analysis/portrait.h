@@ -1,14 +1,14 @@
-/* The whole portrait of one closed component (issue 5): symmetry and origin,
+/* The whole portrait of one closed component (docs/physics.md 3-5): symmetry and origin,
  * m-averaged inscribed-arc curvature and torsion, kappa = 1 plateaus and the
  * jumps at their ends, contact functions and the cycles of sigma-^9. All
  * positions in the result are arclengths measured from the chosen origin
  * along the input direction, in [0, L). */
-#ifndef TR_KNOT_ANALYSIS_H
-#define TR_KNOT_ANALYSIS_H
+#ifndef TR_PORTRAIT_H
+#define TR_PORTRAIT_H
 
 #include <stddef.h>
 
-#include "analysis/contacts.h"
+#include "analysis/contact_functions.h"
 #include "analysis/curvature_torsion.h"
 #include "util/error.h"
 #include "analysis/profile_features.h"

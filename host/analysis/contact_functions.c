@@ -1,10 +1,12 @@
-#include "analysis/contacts.h"
+/* This file contains the contacts of a tight knot and its contact functions sigma-(l), sigma+(l)
+ * (contact_functions.h). */
+#include "analysis/contact_functions.h"
 
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "curve/polyline.h"
+#include "curve/arclength.h"
 
 int tr_contact_pairs_from_struts(const double *x, size_t n, size_t base, const tr_strut *s,
                                  size_t ns, double dist_max, tr_contact_pair **out, size_t *nout,

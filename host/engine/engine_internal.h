@@ -1,0 +1,62 @@
+/* This file contains the engine's state (struct tr_engine) and the helpers
+ * its files share, internal to host/engine/: engine.c (create, step, refine),
+ * checkpoint.c (the checkpoint format) and level_loop.c (tr_engine_run: the
+ * levels, the polish stage, the stop rules). */
+#ifndef TR_ENGINE_INTERNAL_H
+#define TR_ENGINE_INTERNAL_H
+
+#include "backend/backend.h"
+#include "engine/engine.h"
+
+struct tr_engine {
+    char device[128];
+    int coarse_ref; /* this level runs on the reference, not device (device_min_n) */
+    tr_engine_params prm;
+    tr_backend be;
+    tr_curve curve; /* topology, constraints; coordinates as of the last download */
+    int *gap;       /* exclusion gap per component, fixed between rebuilds */
+    double *ebar;   /* scratch, ncomp */
+    int contacts_valid;
+    double disp_acc; /* max vertex motion summed since the contact list was built */
+    double disp_est; /* the per-step motion the contact list's tilt allows for */
+    tr_contact_stats contacts; /* of the last rebuild */
+    double h;
+    long steps, rejected;
+    double length, residual, min_strut, minrad, edge_dev;
+    int jammed;
+    double elapsed_base; /* seconds before this process (from a checkpoint) */
+    double t0;           /* monotonic start of this process's run */
+    long steps_at_t0;
+    int polished; /* 0: not yet; 1: accepted; -1: ran and kept the engine's curve */
+    double polish_before, polish_after, polish_seconds;
+    const char *polish_why;
+    int newton_ran; /* as polished, for the second-order solver */
+    double newton_before, newton_after, newton_seconds;
+    int newton_iters;
+    /* The polished curve itself, kept when settling it onto the engine's
+     * constraint set cost ropelength (the oracle's, which is scale free):
+     * until the engine takes another step it is the curve handed out. */
+    double *polish_x;
+    long polish_steps;
+};
+
+/* The backend's measure, with e->ebar set from it. */
+int tr_engine_i_measure(tr_engine *e, tr_measure *m, tr_error *err);
+/* Rebuilds the contact list (and, with recompute_gap, the exclusion gaps).
+ * now: a measurement of the current state (e->ebar set by it) when the
+ * caller has one, else NULL. The list does not change what the tilt reads
+ * (the longest edge and MinRad), so it is not measured twice. */
+int tr_engine_i_rebuild_contacts(tr_engine *e, int recompute_gap, const tr_measure *now, tr_error *err);
+/* Copies a measurement into the engine's figures (length, MinRad, ...). */
+void tr_engine_i_fill_state(tr_engine *e, const tr_measure *m);
+/* Brings a fresh backend state onto the constraint set (equal edges,
+ * struts, chords) in damped Newton steps, guarding every one. */
+int tr_engine_i_settle(tr_engine *e, const char *what, double overlap_ok, tr_error *err);
+/* Opens e->be on c: the device, or the reference for a coarse level. */
+int tr_engine_i_open_backend(tr_engine *e, const tr_curve *c, tr_error *err);
+/* (Re)allocates the per-component arrays gap and ebar. */
+int tr_engine_i_alloc_comp_arrays(tr_engine *e, tr_error *err);
+/* A zeroed engine with its device spec and parameters (NULL: out of memory). */
+tr_engine *tr_engine_i_new(const char *device, const tr_engine_params *p);
+
+#endif

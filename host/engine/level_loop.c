@@ -1,0 +1,306 @@
+/* This file contains the engine's level loop, tr_engine_run (engine.h): the
+ * levels of a refinement, the backend each level runs on, the polish stage
+ * (or at the finest level the second-order solver), the stop rules, progress
+ * and periodic checkpoints. */
+#include <math.h>
+#include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "engine/engine.h"
+#include "engine/engine_internal.h"
+#include "engine/polish.h"
+#include "oracle/thickness.h"
+#include "solver/newton.h"
+#include "util/clock.h"
+
+/* After a polish was settled: if the settled curve measures longer (oracle
+ * ropelength) than the polished one in e->curve.x, keep the polished
+ * coordinates for tr_engine_get_curve. scratch: 3 nv doubles. */
+static int keep_if_settle_lost(tr_engine *e, double polished_rl, double *scratch, tr_error *err)
+{
+    size_t nx = 3 * e->curve.nv;
+    free(e->polish_x);
+    e->polish_x = NULL;
+    double *px = malloc(nx * sizeof *px);
+    if (!px)
+        return tr_fail(err, TR_ENOMEM, "out of memory");
+    memcpy(px, e->curve.x, nx * sizeof *px);
+    int rc = e->be.ops->download(e->be.state, scratch, NULL, err);
+    tr_thickness th;
+    if (rc == TR_OK) {
+        memcpy(e->curve.x, scratch, nx * sizeof *scratch);
+        rc = tr_thickness_measure(&e->curve, NULL, &th, NULL, err);
+    }
+    if (rc == TR_OK && th.ropelength > polished_rl * (1.0 + 1e-12)) {
+        e->polish_x = px;
+        e->polish_steps = e->steps;
+        e->polish_after = polished_rl;
+        return TR_OK;
+    }
+    free(px);
+    return rc;
+}
+
+/* The polish stage: download, polish on the host, upload and settle onto
+ * the engine's exact constraint set (equal edges to 1e-9). The polished
+ * curve is at thickness 1 with every constraint satisfied, so settle moves
+ * it by no more than its edge deviation. */
+/* The second-order solver on the host curve (the polished one, or the
+ * engine's where polish kept it), with its share of the time; reports
+ * whether it replaced the curve. */
+static int run_newton(tr_engine *e, double seconds, volatile sig_atomic_t *stop, int *accepted, tr_error *err)
+{
+    *accepted = 0;
+    if (e->curve.ncst > 0)
+        return TR_OK;
+    tr_newton_params np;
+    tr_newton_params_default(&np);
+    np.time_limit = seconds;
+    np.stop = stop;
+    tr_newton_stats ns;
+    int rc = tr_newton(&e->curve, &np, &ns, err);
+    if (rc)
+        return rc == TR_EGEOMETRY ? TR_OK : rc;
+    e->newton_ran = ns.accepted ? 1 : -1;
+    e->newton_before = ns.ropelength_before;
+    e->newton_after = ns.ropelength_after;
+    e->newton_seconds = ns.seconds;
+    e->newton_iters = ns.iters;
+    *accepted = ns.accepted;
+    return TR_OK;
+}
+
+static int run_polish(tr_engine *e, double seconds, double target, int final, volatile sig_atomic_t *stop,
+                      tr_error *err)
+{
+    int newton = final && e->prm.newton && e->curve.ncst == 0;
+    size_t nx = 3 * e->curve.nv;
+    double *keep = malloc((nx + (size_t)e->curve.ncomp) * sizeof *keep);
+    if (!keep)
+        return tr_fail(err, TR_ENOMEM, "out of memory");
+    int rc = e->be.ops->download(e->be.state, keep, keep + nx, err);
+    if (rc) {
+        free(keep);
+        return rc;
+    }
+    memcpy(e->curve.x, keep, nx * sizeof *keep);
+    tr_polish_params pp;
+    tr_polish_params_default(&pp);
+    pp.time_limit = seconds;
+    pp.target = target;
+    pp.stop = stop;
+    tr_polish_stats ps;
+    memset(&ps, 0, sizeof ps);
+    if (newton) {
+        /* at the finest level the second-order solver takes the polish's
+         * place (bench/RESULTS.md, "Second-order solver") */
+        int nacc = 0;
+        if ((rc = run_newton(e, seconds, stop, &nacc, err))) {
+            free(keep);
+            return rc;
+        }
+        ps.accepted = nacc;
+        ps.ropelength_after = e->newton_after;
+        e->polished = nacc ? 1 : -1;
+        e->polish_before = e->newton_before;
+        e->polish_after = e->newton_after;
+        e->polish_seconds = e->newton_seconds;
+        e->polish_why = nacc ? NULL : "the second-order solver's result is not shorter";
+    } else {
+        if ((rc = tr_polish(&e->curve, &pp, &ps, err))) {
+            free(keep);
+            if (rc != TR_EGEOMETRY)
+                return rc;
+            e->polished = -1; /* nothing to polish (no finite thickness): the engine goes on */
+            return TR_OK;
+        }
+        e->polish_before = ps.ropelength_before;
+        e->polish_after = ps.ropelength_after;
+        e->polish_seconds = ps.seconds;
+        e->polish_why = ps.skipped ? "below thickness 1 with constrained vertices" : ps.why_rejected;
+        e->polished = ps.accepted ? 1 : -1;
+    }
+    if (!ps.accepted) {
+        free(keep);
+        return TR_OK;
+    }
+    if ((rc = e->be.ops->upload(e->be.state, e->curve.x, NULL, err)))
+        goto restore;
+    e->contacts_valid = 0;
+    if ((rc = tr_engine_i_settle(e, "the polished curve", 0.0, err)))
+        goto restore;
+    /* settling moves the polished curve by its own small violations, but
+     * where the curvature limit holds along a stretch (132 MinRad rows of
+     * the N = 2400 trefoil) it can cost more ropelength than polish gained:
+     * then the polished curve is kept to hand out */
+    if ((rc = keep_if_settle_lost(e, ps.ropelength_after, keep, err))) {
+        free(keep);
+        return rc;
+    }
+    free(keep);
+    e->h = e->ebar[0];
+    e->jammed = 0;
+    return TR_OK;
+restore:
+    /* the engine could not take the polished curve on: go on from its own */
+    if (rc == TR_ENOMEM || rc == TR_EOPENCL) {
+        free(keep);
+        return rc;
+    }
+    memcpy(e->curve.x, keep, 3 * e->curve.nv * sizeof *keep);
+    rc = e->be.ops->upload(e->be.state, keep, keep + 3 * e->curve.nv, err);
+    free(keep);
+    if (rc)
+        return rc;
+    tr_measure m;
+    if ((rc = tr_engine_i_rebuild_contacts(e, 1, NULL, err)) || (rc = tr_engine_i_measure(e, &m, err)))
+        return rc;
+    tr_engine_i_fill_state(e, &m);
+    e->polished = -1;
+    e->polish_after = e->polish_before;
+    e->polish_why = "the engine could not settle the polished curve";
+    return TR_OK;
+}
+
+/* ---- the run loop with levels, stops, checkpoints, progress ---- */
+
+/* The last level of a run: no refinement asked, or n_per_comp vertices per
+ * component reach refine_to. */
+static int is_final_level(const tr_engine_limits *lim, size_t n_per_comp)
+{
+    return lim->refine_to == 0 || n_per_comp >= lim->refine_to;
+}
+
+/* Whether a level of n vertices in all runs on the reference instead of
+ * the chosen device (device_min_n): only coarse levels, and only when the
+ * chosen device is not the reference already. */
+static int wants_coarse_ref(const tr_engine *e, size_t n, int final_level)
+{
+    int chosen_is_ref = !e->coarse_ref && e->be.ops->serial;
+    return !final_level && n < e->prm.device_min_n && !chosen_is_ref;
+}
+
+/* Moves the state to the backend the level wants (wants_coarse_ref): the
+ * positions and ebar go over as they are, the contact list is rebuilt. */
+static int level_backend(tr_engine *e, int coarse_ref, tr_error *err)
+{
+    if (coarse_ref == e->coarse_ref)
+        return TR_OK;
+    int rc = e->be.ops->download(e->be.state, e->curve.x, e->ebar, err);
+    if (rc)
+        return rc;
+    tr_backend_close(&e->be);
+    e->coarse_ref = coarse_ref;
+    if ((rc = tr_engine_i_open_backend(e, &e->curve, err)))
+        return rc;
+    return e->be.ops->upload(e->be.state, e->curve.x, e->ebar, err);
+}
+
+#define STALL_STEPS 200
+#define STALL_REL 1e-5
+
+int tr_engine_run(tr_engine *e, const tr_engine_limits *lim, tr_stop_reason *why, tr_error *err)
+{
+    int rc;
+    double t_last_ckpt = tr_clock_seconds(), t_last_prog = 0.0;
+    double level_t0 = tr_clock_seconds();
+    /* Without a time limit to share out, a level is polished (and a coarse
+     * one refined) once the engine stalls: less than STALL_REL shorter over
+     * STALL_STEPS steps. The projection engine crawls long before it jams
+     * (the 2 x 100 clasp: 8800 steps, 100 s, where polish then needs 2 s). */
+    long stall_step = e->steps;
+    double stall_len = INFINITY;
+    double time_left_at_level = lim->time_limit > 0 ? lim->time_limit - (e->elapsed_base + tr_clock_seconds() - e->t0) : 0;
+    *why = TR_STOP_NONE;
+    rc = level_backend(e, wants_coarse_ref(e, e->curve.nv, is_final_level(lim, e->curve.nv / (size_t)e->curve.ncomp)),
+                       err);
+    if (rc)
+        return rc;
+    for (;;) {
+        tr_engine_progress p;
+        tr_engine_get_progress(e, &p);
+        int final_level = is_final_level(lim, e->curve.nv / (size_t)e->curve.ncomp);
+        tr_stop_reason stop = TR_STOP_NONE;
+        int stalled = 0;
+        if (lim->time_limit <= 0 && e->steps - stall_step >= STALL_STEPS) {
+            stalled = !(p.ropelength < stall_len * (1.0 - STALL_REL));
+            stall_len = p.ropelength;
+            stall_step = e->steps;
+        }
+        int level_done = 0;
+        if (lim->stop && *lim->stop)
+            stop = TR_STOP_SIGNAL;
+        else if (lim->time_limit > 0 && p.elapsed >= lim->time_limit)
+            stop = TR_STOP_TIME;
+        else if (lim->max_steps > 0 && e->steps >= lim->max_steps)
+            stop = TR_STOP_STEPS;
+        else if (final_level && lim->target > 0 && p.ropelength <= lim->target)
+            stop = TR_STOP_TARGET;
+        else if (final_level && e->steps > 0 && lim->residual > 0 && e->residual < lim->residual)
+            stop = TR_STOP_RESIDUAL;
+        else if (final_level && e->jammed)
+            stop = TR_STOP_JAMMED;
+        int can_polish = e->prm.polish && e->polished == 0;
+        if (final_level && can_polish &&
+            (stop == TR_STOP_RESIDUAL || stop == TR_STOP_JAMMED || (stop == TR_STOP_NONE && stalled) ||
+             (stop == TR_STOP_NONE && lim->time_limit > 0 &&
+              tr_clock_seconds() - level_t0 >= (1.0 - e->prm.polish_share) * time_left_at_level))) {
+            double left = lim->time_limit > 0 ? lim->time_limit - p.elapsed : 0.0;
+            if ((rc = run_polish(e, lim->time_limit > 0 ? fmax(left, 1e-3) : 0.0, lim->target, 1,
+                                 lim->stop, err)))
+                return rc;
+            continue;
+        }
+        if (!final_level && stop == TR_STOP_NONE) {
+            /* a coarse level has half the time left when it began; with
+             * polish_coarse the engine gets the first half of that and the
+             * polish the rest (it usually converges much sooner) */
+            int pc = e->prm.polish && e->prm.polish_coarse;
+            double coarse_res = lim->coarse_residual > 0 ? lim->coarse_residual : 1e-3;
+            double used = tr_clock_seconds() - level_t0;
+            if (e->jammed || stalled || (e->steps > 0 && e->residual < coarse_res) || (pc && e->polished != 0))
+                level_done = 1;
+            if (lim->time_limit > 0 && used > (pc ? 0.25 : 0.5) * time_left_at_level)
+                level_done = 1;
+            if (level_done && pc && e->polished == 0) {
+                double budget = lim->time_limit > 0 ? fmax(0.5 * time_left_at_level - used, 1e-3) : 0.0;
+                if ((rc = run_polish(e, budget, 0.0, 0, lim->stop, err)))
+                    return rc;
+                continue;
+            }
+        }
+        if (lim->progress && (stop != TR_STOP_NONE || tr_clock_seconds() - t_last_prog >= lim->progress_every)) {
+            lim->progress(&p, lim->user);
+            t_last_prog = tr_clock_seconds();
+        }
+        if (stop != TR_STOP_NONE) {
+            *why = stop;
+            if (lim->checkpoint_path && (rc = tr_engine_checkpoint_write(e, lim->checkpoint_path, err)))
+                return rc;
+            return TR_OK;
+        }
+        if (level_done) {
+            size_t n = e->curve.nv / (size_t)e->curve.ncomp;
+            size_t next = 2 * n < lim->refine_to ? 2 * n : lim->refine_to;
+            /* tr_engine_refine opens the next level's backend */
+            e->coarse_ref = wants_coarse_ref(e, next * (size_t)e->curve.ncomp, is_final_level(lim, next));
+            if ((rc = tr_engine_refine(e, next, err)))
+                return rc;
+            level_t0 = tr_clock_seconds();
+            stall_step = e->steps;
+            stall_len = INFINITY;
+            time_left_at_level = lim->time_limit > 0 ? lim->time_limit - (e->elapsed_base + tr_clock_seconds() - e->t0) : 0;
+            continue;
+        }
+        if (lim->checkpoint_path && lim->checkpoint_every > 0 && tr_clock_seconds() - t_last_ckpt >= lim->checkpoint_every) {
+            if ((rc = tr_engine_checkpoint_write(e, lim->checkpoint_path, err)))
+                return rc;
+            t_last_ckpt = tr_clock_seconds();
+        }
+        int acc;
+        if ((rc = tr_engine_step(e, &acc, err)))
+            return rc;
+    }
+}

@@ -1,0 +1,27 @@
+/* This file contains the two rules about struts that the engine, the polish
+ * and the KKT certificate share: which pairs of edges of one component are
+ * too close along the curve to be a strut (the exclusion gap), and the
+ * gradient of a strut's length with respect to its four end points. */
+#ifndef TR_STRUTS_H
+#define TR_STRUTS_H
+
+/* The exclusion gap of a component of mean edge length ebar for a rope of
+ * radius r: ceil(pi r / ebar) edges, at least 2 (and 2 where ebar is not
+ * positive), at most 10^9. A curve whose radius of curvature is at least r
+ * (MinRad >= r) cannot come back to within 2 r of itself before it has run
+ * the arclength pi r of a half circle of radius r, so two edges closer than
+ * that along the curve are neighbours, never a strut (docs/physics.md). */
+int tr_exclusion_gap(double radius, double ebar);
+
+/* The gradient of the distance d = |P(s) - Q(t)| of the edges pa-pan and
+ * pb-pbn (s, t, d as tr_segment_distance returns them; d > 0) with respect to
+ * pa, pan, pb and pbn, times `scale`, given the connector c = P(s) - Q(t):
+ * with n = scale c / d, g[0] = (1 - s) n, g[1] = s n, g[2] = -(1 - t) n,
+ * g[3] = -t n. The closest points' parameters do not move to first order
+ * (they minimise the distance), so the gradient is that of |P - Q| at fixed
+ * s and t. The caller forms c: the KKT certificate and the polish round it
+ * differently (their results are kept to the bit). */
+void tr_strut_gradient(const double c[3], double s, double t, double d, double scale,
+                       double g[4][3]);
+
+#endif
