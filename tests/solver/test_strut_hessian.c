@@ -1,5 +1,5 @@
 /* Tests the exact strut distance's gradient and Hessian (strut_hessian.h)
- * against central finite differences of the distance itself (segdist.h),
+ * against central finite differences of the distance itself (kernels/segment_distance.h),
  * for the cases the closest points can be in: both interior (crossing
  * skew segments), one at an end, both at ends, and nearly parallel. */
 #include <math.h>
