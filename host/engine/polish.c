@@ -43,10 +43,7 @@ void tr_polish_params_default(tr_polish_params *p)
     p->restart_tol = 1e-9;
 }
 
-typedef struct strut_pair {
-    size_t a, b; /* first vertices of the two edges, a < b */
-    double lam;
-} strut_pair;
+typedef tr_strut_pair strut_pair;
 
 typedef struct ctx {
     tr_curve w; /* working copy: topology; x = positions at the last pair-list build */
@@ -73,80 +70,15 @@ typedef struct ctx {
     int need_rebuild, broken, out_of_time;
 } ctx;
 
-static int cmp_pair(const void *x, const void *y)
-{
-    const strut_pair *a = x, *b = y;
-    if (a->a != b->a)
-        return a->a < b->a ? -1 : 1;
-    return a->b < b->b ? -1 : (a->b > b->b);
-}
-
-typedef struct collect {
-    ctx *c;
-    strut_pair *out;
-    size_t n, cap;
-    double cutoff;
-    int oom;
-} collect;
-
-static int collect_pair(void *vc, size_t ei, size_t ej, double *cutoff)
-{
-    (void)cutoff;
-    collect *cl = vc;
-    ctx *c = cl->c;
-    const tr_nsearch *s = &c->ns;
-    if (tr_nsearch_excluded(s, ei, ej, (size_t)c->gap[s->ecomp[ei]]))
-        return 0;
-    size_t a = s->ea[ei], b = s->ea[ej];
-    double sp, tp;
-    const double *x = c->w.x;
-    double d = tr_segment_distance(x + 3 * a, x + 3 * c->next[a], x + 3 * b, x + 3 * c->next[b], &sp, &tp);
-    if (!(d < cl->cutoff))
-        return 0;
-    if (cl->n == cl->cap) {
-        size_t nc = cl->cap ? 2 * cl->cap : 1024;
-        strut_pair *g2 = realloc(cl->out, nc * sizeof *g2);
-        if (!g2) {
-            cl->oom = 1;
-            return 1;
-        }
-        cl->out = g2;
-        cl->cap = nc;
-    }
-    strut_pair q = {.a = a < b ? a : b, .b = a < b ? b : a, .lam = 0.0};
-    cl->out[cl->n++] = q;
-    return 0;
-}
-
 /* Rebuilds the candidate pair list at x, carrying the multipliers of pairs
  * that stay listed. */
 static int rebuild(ctx *c, const double *x, tr_error *err)
 {
     memcpy(c->w.x, x, 3 * c->nv * sizeof *x);
     tr_nsearch_refit(&c->ns);
-    collect cl = {.c = c, .cutoff = 2.0 + c->p->skin};
-    double cut = cl.cutoff;
-    int gmin = c->gap[0];
-    for (int k = 1; k < c->w.ncomp; k++)
-        gmin = c->gap[k] < gmin ? c->gap[k] : gmin;
-    tr_nsearch_pairs(&c->ns, &cut, (size_t)gmin, 0, collect_pair, &cl);
-    if (cl.oom) {
-        free(cl.out);
-        return tr_fail(err, TR_ENOMEM, "out of memory (polish pair list)");
-    }
-    if (cl.n)
-        qsort(cl.out, cl.n, sizeof *cl.out, cmp_pair);
-    size_t j = 0;
-    for (size_t i = 0; i < cl.n; i++) {
-        while (j < c->nsp && cmp_pair(&c->sp[j], &cl.out[i]) < 0)
-            j++;
-        if (j < c->nsp && cmp_pair(&c->sp[j], &cl.out[i]) == 0)
-            cl.out[i].lam = c->sp[j].lam;
-    }
-    free(c->sp);
-    c->sp = cl.out;
-    c->nsp = cl.n;
-    return TR_OK;
+    return tr_strut_candidates(&c->ns, c->w.x, c->next, c->gap, c->w.ncomp, 2.0 + c->p->skin, &c->sp, &c->nsp,
+                               err);
+
 }
 
 /* Penalty of an inequality row C >= 0 (PHR): value, derivative in C. */

@@ -1,9 +1,15 @@
-/* This file contains the two rules about struts that the engine, the polish
- * and the KKT certificate share: which pairs of edges of one component are
+/* This file contains the rules about struts that the engine, the polish,
+ * the second-order solver and the KKT certificate share: the candidate
+ * list of the polish and the solver; which pairs of edges of one component are
  * too close along the curve to be a strut (the exclusion gap), and the
  * gradient of a strut's length with respect to its four end points. */
 #ifndef TR_STRUTS_H
 #define TR_STRUTS_H
+
+#include <stddef.h>
+
+#include "geometry/neighbour_search.h"
+#include "util/error.h"
 
 /* The exclusion gap of a component of mean edge length ebar for a rope of
  * radius r: ceil(pi r / ebar) edges, at least 2 (and 2 where ebar is not
@@ -23,5 +29,23 @@ int tr_exclusion_gap(double radius, double ebar);
  * differently (their results are kept to the bit). */
 void tr_strut_gradient(const double c[3], double s, double t, double d, double scale,
                        double g[4][3]);
+
+/* A candidate strut: the edges starting at vertices a < b, and the
+ * multiplier the caller's augmented Lagrangian gives it. */
+typedef struct tr_strut_pair {
+    size_t a, b;
+    double lam;
+} tr_strut_pair;
+
+/* Orders pairs by (a, b), for qsort and bsearch. */
+int tr_strut_pair_cmp(const void *x, const void *y);
+
+/* Every pair of edges of the curve in ns (positions x, edge a from a to
+ * next[a]) not excluded by its component's gap (gap[k], along the curve)
+ * and closer than cutoff, sorted by (a, b); a pair also in *list (sorted,
+ * n_list pairs) keeps its multiplier, a new one gets 0. *list is replaced
+ * (freed and reallocated); on error it is left as it was. */
+int tr_strut_candidates(const tr_nsearch *ns, const double *x, const size_t *next, const int *gap, int ncomp,
+                        double cutoff, tr_strut_pair **list, size_t *n_list, tr_error *err);
 
 #endif

@@ -35,10 +35,7 @@ void tr_newton_params_default(tr_newton_params *p)
     p->stat_tol = 1e-7;
 }
 
-typedef struct strut_row {
-    size_t a, b; /* first vertices of the two edges, a < b */
-    double lam;
-} strut_row;
+typedef tr_strut_pair strut_row;
 
 typedef struct solver {
     tr_curve w; /* topology; x = the positions at the last list build */
@@ -281,52 +278,6 @@ static double al_eval(solver *s, const double *y, double *grad, int hess)
 
 /* ---- the strut list ---- */
 
-static int cmp_row(const void *x, const void *y)
-{
-    const strut_row *a = x, *b = y;
-    if (a->a != b->a)
-        return a->a < b->a ? -1 : 1;
-    return a->b < b->b ? -1 : (a->b > b->b);
-}
-
-typedef struct collect {
-    solver *s;
-    strut_row *out;
-    size_t n, cap;
-    double cutoff;
-    int oom;
-} collect;
-
-static int collect_pair(void *vc, size_t ei, size_t ej, double *cutoff)
-{
-    (void)cutoff;
-    collect *cl = vc;
-    solver *s = cl->s;
-    const tr_nsearch *ns = &s->ns;
-    if (tr_nsearch_excluded(ns, ei, ej, (size_t)s->gap[ns->ecomp[ei]]))
-        return 0;
-    size_t a = ns->ea[ei], b = ns->ea[ej];
-    double sp, tp;
-    const double *x = s->w.x;
-    double d = tr_segment_distance(x + 3 * a, x + 3 * s->next[a], x + 3 * b, x + 3 * s->next[b], &sp, &tp);
-    if (!(d < cl->cutoff))
-        return 0;
-    if (cl->n == cl->cap) {
-        size_t nc = cl->cap ? 2 * cl->cap : 4096;
-        strut_row *g2 = realloc(cl->out, nc * sizeof *g2);
-        if (!g2) {
-            cl->oom = 1;
-            return 1;
-        }
-        cl->out = g2;
-        cl->cap = nc;
-    }
-    strut_row q = {.a = a < b ? a : b, .b = a < b ? b : a, .lam = 0.0};
-    cl->out[cl->n++] = q;
-    return 0;
-}
-
-
 static double pair_dist(const solver *s, size_t a, size_t b)
 {
     double sp, tp;
@@ -379,7 +330,7 @@ static size_t keep_near_minima(solver *s, strut_row *r, size_t n)
         for (int ia = 0; ia < na; ia++)
             for (int ib = 0; ib < nb; ib++) {
                 strut_row q = {.a = av[ia] < bv[ib] ? av[ia] : bv[ib], .b = av[ia] < bv[ib] ? bv[ib] : av[ia]};
-                strut_row *hit = bsearch(&q, r, n, sizeof *r, cmp_row);
+                strut_row *hit = bsearch(&q, r, n, sizeof *r, tr_strut_pair_cmp);
                 if (hit)
                     keep[hit - r] = 1;
             }
@@ -397,31 +348,12 @@ static int rebuild(solver *s, const double *y, tr_error *err)
 {
     memcpy(s->w.x, y, 3 * s->nv * sizeof *y);
     tr_nsearch_refit(&s->ns);
-    collect cl = {.s = s, .cutoff = 2.0 + s->p->skin};
-    double cut = cl.cutoff;
-    int gmin = s->gap[0];
-    for (int k = 1; k < s->nc; k++)
-        gmin = s->gap[k] < gmin ? s->gap[k] : gmin;
-    tr_nsearch_pairs(&s->ns, &cut, (size_t)gmin, 0, collect_pair, &cl);
-    if (cl.oom) {
-        free(cl.out);
-        return tr_fail(err, TR_ENOMEM, "out of memory (strut list)");
-    }
-    if (cl.n)
-        qsort(cl.out, cl.n, sizeof *cl.out, cmp_row);
-    cl.n = keep_near_minima(s, cl.out, cl.n);
-    size_t j = 0;
-    for (size_t i = 0; i < cl.n; i++) {
-        while (j < s->nsp && cmp_row(&s->sp[j], &cl.out[i]) < 0)
-            j++;
-        if (j < s->nsp && cmp_row(&s->sp[j], &cl.out[i]) == 0)
-            cl.out[i].lam = s->sp[j].lam;
-    }
-    free(s->sp);
+    int rc = tr_strut_candidates(&s->ns, s->w.x, s->next, s->gap, s->nc, 2.0 + s->p->skin, &s->sp, &s->nsp, err);
+    if (rc)
+        return rc;
+    s->nsp = keep_near_minima(s, s->sp, s->nsp);
     free(s->pi_s);
-    s->sp = cl.out;
-    s->nsp = cl.n;
-    s->pi_s = calloc(cl.n ? cl.n : 1, sizeof *s->pi_s);
+    s->pi_s = calloc(s->nsp ? s->nsp : 1, sizeof *s->pi_s);
     if (!s->pi_s)
         return tr_fail(err, TR_ENOMEM, "out of memory (strut list)");
     return TR_OK;
