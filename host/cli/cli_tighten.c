@@ -152,13 +152,21 @@ static void scale_curve(tr_curve *c, double f)
     }
 }
 
-int tr_cmd_tighten(int argc, char **argv)
+/* The command line's options. */
+typedef struct tighten_opts {
+    const char *in, *out, *ckpt, *resume, *device;
+    long n, refine_to, steps, device_from;
+    double target, residual, time_limit, ckpt_every;
+    int residual_given; /* the default residual is a stopping rule, not a goal */
+    int json, quiet, no_polish, newton, scale, kkt; /* kkt -1: up to KKT_AUTO_MAX_N */
+} tighten_opts;
+
+/* Parses the command line into o and checks the paths against each other.
+ * Returns -1 to go on, else the exit status (0 after --help, 2 for a bad
+ * command line, with its message printed). */
+static int parse_options(int argc, char **argv, tighten_opts *o)
 {
-    const char *in = NULL, *out = NULL, *ckpt = NULL, *resume = NULL, *device = NULL;
-    long n = 0, refine_to = 0, steps = 0, device_from = -1;
-    double target = 0, residual = 1e-4, time_limit = 0, ckpt_every = 300;
-    int residual_given = 0; /* the default residual is a stopping rule, not a goal */
-    int json = 0, quiet = 0, no_polish = 0, newton = 0, scale = 0, kkt = -1; /* -1: up to KKT_AUTO_MAX_N */
+    *o = (tighten_opts){.device_from = -1, .residual = 1e-4, .ckpt_every = 300, .kkt = -1};
     static const char *valued[] = {"-o", "--output", "--n", "--refine-to", "--target", "--residual",
                                    "--steps", "--time-limit", "--checkpoint", "--checkpoint-every",
                                    "--resume", "--device", "--device-from"};
@@ -175,31 +183,31 @@ int tr_cmd_tighten(int argc, char **argv)
             return 0;
         }
         if (!strcmp(a, "--json")) {
-            json = 1;
+            o->json = 1;
             continue;
         }
         if (!strcmp(a, "--newton")) {
-            newton = 1;
+            o->newton = 1;
             continue;
         }
         if (!strcmp(a, "--no-polish")) {
-            no_polish = 1;
+            o->no_polish = 1;
             continue;
         }
         if (!strcmp(a, "--kkt") || !strcmp(a, "--no-kkt")) {
-            if (kkt >= 0 && kkt != (a[2] == 'k')) {
+            if (o->kkt >= 0 && o->kkt != (a[2] == 'k')) {
                 fprintf(stderr, "tightrope tighten: --kkt and --no-kkt contradict each other\n");
                 return 2;
             }
-            kkt = a[2] == 'k';
+            o->kkt = a[2] == 'k';
             continue;
         }
         if (!strcmp(a, "--quiet")) {
-            quiet = 1;
+            o->quiet = 1;
             continue;
         }
         if (!strcmp(a, "--scale")) {
-            scale = 1;
+            o->scale = 1;
             continue;
         }
         int takes = 0;
@@ -222,31 +230,31 @@ int tr_cmd_tighten(int argc, char **argv)
             const char *v = argv[++i];
             int bad = 0;
             if (!strcmp(a, "-o") || !strcmp(a, "--output"))
-                out = v;
+                o->out = v;
             else if (!strcmp(a, "--n"))
-                bad = tr_arg_long(v, 4, LONG_MAX, &n);
+                bad = tr_arg_long(v, 4, LONG_MAX, &o->n);
             else if (!strcmp(a, "--refine-to"))
-                bad = tr_arg_long(v, 4, LONG_MAX, &refine_to);
+                bad = tr_arg_long(v, 4, LONG_MAX, &o->refine_to);
             else if (!strcmp(a, "--target"))
-                bad = tr_arg_double(v, 0, DBL_MAX, &target) || target <= 0;
+                bad = tr_arg_double(v, 0, DBL_MAX, &o->target) || o->target <= 0;
             else if (!strcmp(a, "--residual")) {
-                bad = tr_arg_double(v, 0, DBL_MAX, &residual);
-                residual_given = 1;
+                bad = tr_arg_double(v, 0, DBL_MAX, &o->residual);
+                o->residual_given = 1;
             }
             else if (!strcmp(a, "--steps"))
-                bad = tr_arg_long(v, 1, LONG_MAX, &steps);
+                bad = tr_arg_long(v, 1, LONG_MAX, &o->steps);
             else if (!strcmp(a, "--time-limit"))
-                bad = tr_arg_double(v, 0, DBL_MAX, &time_limit) || time_limit <= 0;
+                bad = tr_arg_double(v, 0, DBL_MAX, &o->time_limit) || o->time_limit <= 0;
             else if (!strcmp(a, "--checkpoint"))
-                ckpt = v;
+                o->ckpt = v;
             else if (!strcmp(a, "--checkpoint-every"))
-                bad = tr_arg_double(v, 0, DBL_MAX, &ckpt_every) || ckpt_every <= 0;
+                bad = tr_arg_double(v, 0, DBL_MAX, &o->ckpt_every) || o->ckpt_every <= 0;
             else if (!strcmp(a, "--resume"))
-                resume = v;
+                o->resume = v;
             else if (!strcmp(a, "--device-from"))
-                bad = tr_arg_long(v, 0, LONG_MAX, &device_from);
+                bad = tr_arg_long(v, 0, LONG_MAX, &o->device_from);
             else
-                device = v;
+                o->device = v;
             if (bad) {
                 size_t k = 0;
                 while (strcmp(a, valued[k]))
@@ -260,118 +268,140 @@ int tr_cmd_tighten(int argc, char **argv)
             fprintf(stderr, "tightrope tighten: unknown option '%s' (see tightrope tighten --help)\n", a);
             return 2;
         }
-        if (in) {
+        if (o->in) {
             fprintf(stderr, "tightrope tighten: unexpected argument '%s'\n", a);
             return 2;
         }
-        in = a;
+        o->in = a;
     }
-    if (!in && !resume) {
+    if (!o->in && !o->resume) {
         fprintf(stderr, "tightrope tighten: no input curve (see tightrope tighten --help)\n");
         return 2;
     }
-    if (!out) {
+    if (!o->out) {
         fprintf(stderr, "tightrope tighten: no output file (-o OUT)\n");
         return 2;
     }
-    if (resume && (in || n > 0 || scale)) {
+    if (o->resume && (o->in || o->n > 0 || o->scale)) {
         fprintf(stderr, "tightrope tighten: --resume continues the checkpoint's curve; %s\n",
-                in ? "drop the input file" : n > 0 ? "--n cannot resample it" : "--scale cannot scale it");
+                o->in ? "drop the input file" : o->n > 0 ? "--n cannot resample it" : "--scale cannot scale it");
         return 2;
     }
     /* the checkpoint is rewritten during the run: over the input it would
      * destroy the start, over the output the output would replace it */
     /* the output is written over whatever it names: never over an input */
-    const char *src = in ? in : resume;
-    if (same_file(out, src)) {
-        fprintf(stderr, "tightrope tighten: the output %s is the %s %s; write the result elsewhere\n", out,
-                in ? "input" : "checkpoint to resume", src);
+    const char *src = o->in ? o->in : o->resume;
+    if (same_file(o->out, src)) {
+        fprintf(stderr, "tightrope tighten: the output %s is the %s %s; write the result elsewhere\n", o->out,
+                o->in ? "input" : "checkpoint to resume", src);
         return 2;
     }
-    if (ckpt && (same_file(ckpt, out) || (in && same_file(ckpt, in)))) {
-        fprintf(stderr, "tightrope tighten: --checkpoint %s is the %s file\n", ckpt,
-                same_file(ckpt, out) ? "output" : "input");
+    if (o->ckpt && (same_file(o->ckpt, o->out) || (o->in && same_file(o->ckpt, o->in)))) {
+        fprintf(stderr, "tightrope tighten: --checkpoint %s is the %s file\n", o->ckpt,
+                same_file(o->ckpt, o->out) ? "output" : "input");
         return 2;
     }
+    return -1;
+}
 
+/* Reads the start curve IN into c, resampled with --n and scaled with
+ * --scale, and checks that it can be tightened: its open ends are held and
+ * its thickness is at a scale the engine can work in. */
+static int read_start(const tighten_opts *o, tr_curve *c, tr_error *err)
+{
+    const char *in = o->in;
+    int rc = tr_curve_read(in, TR_FORMAT_AUTO, c, err);
+    if (rc != TR_OK)
+        return rc;
+    if (o->n > 0) {
+        size_t *per = malloc((size_t)c->ncomp * sizeof *per);
+        tr_curve r;
+        if (!per) {
+            rc = tr_fail(err, TR_ENOMEM, "out of memory");
+        } else {
+            /* Adding vertices on the old straight edges would keep the
+             * polygon's corners: MinRad falls like 1/N and a smooth
+             * start is refused as bent too tight. Along a spline
+             * through the vertices the start stays the smooth curve. */
+            int adds = 0;
+            for (int k = 0; k < c->ncomp; k++) {
+                per[k] = (size_t)o->n;
+                adds |= per[k] > c->start[k + 1] - c->start[k];
+            }
+            rc = adds ? tr_resample_smooth(c, per, &r, err) : tr_resample(c, per, &r, err);
+            free(per);
+            if (rc == TR_OK) {
+                tr_curve_free(c);
+                *c = r;
+            }
+        }
+    }
+    /* Ropelength is scale free: --scale takes a start at another scale
+     * (a tight knot from another code at thickness 0.99995, a file in
+     * its own units) to the rope's radius 1. Constraint planes sit at
+     * fixed places, so a constrained start is not scaled. */
+    /* The oracle looks at the start first: a curve through itself has
+     * no thickness at all, and one at a scale like 1e+-300 would lose
+     * the engine's squared distances to under- or overflow (the oracle
+     * measures it in a rescaled frame, curve.h). */
+    /* An open rope with a free end shortens by pulling that end
+     * through: it comes out untied. Its ends must be held. */
+    for (int k = 0; rc == TR_OK && k < c->ncomp; k++) {
+        size_t ends[2] = {c->start[k], c->start[k + 1] - 1};
+        for (int q = 0; rc == TR_OK && !c->closed[k] && q < 2; q++)
+            if (!c->vcst || c->vcst[ends[q]] < 0)
+                rc = tr_fail(err, TR_EGEOMETRY,
+                             "%s: component %d is open and its %s end (vertex %zu) is free: tightening would "
+                             "pull it through and untie the rope; hold both ends with a constraint (a "
+                             "'# Constraint 1 Plane 0 0 1 6' comment and '# Cst: 1' after the end vertex, "
+                             "as tightrope make clasp writes)",
+                             in, k, q ? "last" : "first", ends[q] - c->start[k]);
+    }
+    tr_thickness t0;
+    if (rc == TR_OK && (rc = tr_thickness_measure(c, NULL, &t0, NULL, err)))
+        tr_fail_wrap(err, rc, "%s", in);
+    if (rc == TR_OK && !o->scale && tr_curve_scale_exponent(c))
+        rc = tr_fail(err, TR_EGEOMETRY,
+                     "%s has thickness %.3g, too far from 1 to tighten in its own units (squared "
+                     "distances would %s); --scale scales a start to thickness 1",
+                     in, t0.thickness, tr_curve_scale_exponent(c) > 0 ? "overflow" : "underflow");
+    if (rc == TR_OK && o->scale) {
+        if (c->ncst > 0)
+            rc = tr_fail(err, TR_EINVAL, "--scale: %s has constraints, whose planes would move", in);
+        if (rc == TR_OK && !(t0.thickness > 0 && isfinite(t0.thickness)))
+            rc = tr_fail(err, TR_EGEOMETRY, "--scale: %s has thickness %g; no scale makes it a rope", in,
+                         t0.thickness);
+        if (rc == TR_OK)
+            scale_curve(c, 1.0 / t0.thickness);
+    }
+    if (rc != TR_OK)
+        tr_curve_free(c);
+    return rc;
+}
+
+/* Opens the engine on the start (IN or the checkpoint to resume) and
+ * checks the outputs before the run. Returns -1 to go on with *e, else the
+ * exit status, with the message printed. */
+static int open_start(const tighten_opts *o, tr_engine **e)
+{
     tr_error err;
     tr_engine_params prm;
     tr_engine_params_default(&prm);
-    prm.polish = !no_polish;
-    prm.newton = newton;
-    if (device_from >= 0)
-        prm.device_min_n = (size_t)device_from;
-    tr_engine *e = NULL;
+    prm.polish = !o->no_polish;
+    prm.newton = o->newton;
+    if (o->device_from >= 0)
+        prm.device_min_n = (size_t)o->device_from;
+    *e = NULL;
     int rc;
-    if (resume) {
-        rc = tr_engine_resume(&e, resume, device, &prm, &err);
+    if (o->resume) {
+        rc = tr_engine_resume(e, o->resume, o->device, &prm, &err);
     } else {
         tr_curve c;
-        rc = tr_curve_read(in, TR_FORMAT_AUTO, &c, &err);
-        if (rc == TR_OK && n > 0) {
-            size_t *per = malloc((size_t)c.ncomp * sizeof *per);
-            tr_curve r;
-            if (!per) {
-                rc = tr_fail(&err, TR_ENOMEM, "out of memory");
-            } else {
-                /* Adding vertices on the old straight edges would keep the
-                 * polygon's corners: MinRad falls like 1/N and a smooth
-                 * start is refused as bent too tight. Along a spline
-                 * through the vertices the start stays the smooth curve. */
-                int adds = 0;
-                for (int k = 0; k < c.ncomp; k++) {
-                    per[k] = (size_t)n;
-                    adds |= per[k] > c.start[k + 1] - c.start[k];
-                }
-                rc = adds ? tr_resample_smooth(&c, per, &r, &err) : tr_resample(&c, per, &r, &err);
-                free(per);
-                if (rc == TR_OK) {
-                    tr_curve_free(&c);
-                    c = r;
-                }
-            }
+        rc = read_start(o, &c, &err);
+        if (rc == TR_OK) {
+            rc = tr_engine_create(e, &c, o->device, &prm, &err);
+            tr_curve_free(&c);
         }
-        /* Ropelength is scale free: --scale takes a start at another scale
-         * (a tight knot from another code at thickness 0.99995, a file in
-         * its own units) to the rope's radius 1. Constraint planes sit at
-         * fixed places, so a constrained start is not scaled. */
-        /* The oracle looks at the start first: a curve through itself has
-         * no thickness at all, and one at a scale like 1e+-300 would lose
-         * the engine's squared distances to under- or overflow (the oracle
-         * measures it in a rescaled frame, curve.h). */
-        /* An open rope with a free end shortens by pulling that end
-         * through: it comes out untied. Its ends must be held. */
-        for (int k = 0; rc == TR_OK && k < c.ncomp; k++) {
-            size_t ends[2] = {c.start[k], c.start[k + 1] - 1};
-            for (int q = 0; rc == TR_OK && !c.closed[k] && q < 2; q++)
-                if (!c.vcst || c.vcst[ends[q]] < 0)
-                    rc = tr_fail(&err, TR_EGEOMETRY,
-                                 "%s: component %d is open and its %s end (vertex %zu) is free: tightening would "
-                                 "pull it through and untie the rope; hold both ends with a constraint (a "
-                                 "'# Constraint 1 Plane 0 0 1 6' comment and '# Cst: 1' after the end vertex, "
-                                 "as tightrope make clasp writes)",
-                                 in, k, q ? "last" : "first", ends[q] - c.start[k]);
-        }
-        tr_thickness t0;
-        if (rc == TR_OK && (rc = tr_thickness_measure(&c, NULL, &t0, NULL, &err)))
-            tr_fail_wrap(&err, rc, "%s", in);
-        if (rc == TR_OK && !scale && tr_curve_scale_exponent(&c))
-            rc = tr_fail(&err, TR_EGEOMETRY,
-                         "%s has thickness %.3g, too far from 1 to tighten in its own units (squared "
-                         "distances would %s); --scale scales a start to thickness 1",
-                         in, t0.thickness, tr_curve_scale_exponent(&c) > 0 ? "overflow" : "underflow");
-        if (rc == TR_OK && scale) {
-            if (c.ncst > 0)
-                rc = tr_fail(&err, TR_EINVAL, "--scale: %s has constraints, whose planes would move", in);
-            if (rc == TR_OK && !(t0.thickness > 0 && isfinite(t0.thickness)))
-                rc = tr_fail(&err, TR_EGEOMETRY, "--scale: %s has thickness %g; no scale makes it a rope", in,
-                             t0.thickness);
-            if (rc == TR_OK)
-                scale_curve(&c, 1.0 / t0.thickness);
-        }
-        if (rc == TR_OK)
-            rc = tr_engine_create(&e, &c, device, &prm, &err);
-        tr_curve_free(&c);
     }
     if (rc) {
         fprintf(stderr, "tightrope tighten: %s\n", err.msg);
@@ -381,27 +411,34 @@ int tr_cmd_tighten(int argc, char **argv)
     }
     /* A run of hours must not end in "cannot write": the output's format
      * and both paths are checked before it starts. */
-    rc = check_outputs(e, (size_t)refine_to, out, ckpt, &err);
+    rc = check_outputs(*e, (size_t)o->refine_to, o->out, o->ckpt, &err);
     if (rc) {
         fprintf(stderr, "tightrope tighten: %s\n", err.msg);
-        tr_engine_destroy(e);
+        tr_engine_destroy(*e);
+        *e = NULL;
         return rc == TR_ENOMEM ? 1 : 2;
     }
-    if (tr_engine_warning(e)[0])
-        fprintf(stderr, "tightrope tighten: warning: %s\n", tr_engine_warning(e));
-    if (resume) {
+    if (tr_engine_warning(*e)[0])
+        fprintf(stderr, "tightrope tighten: warning: %s\n", tr_engine_warning(*e));
+    if (o->resume) {
         /* both limits count the runs before the checkpoint: say so when
          * they leave this run nothing to do */
         tr_engine_progress p0;
-        tr_engine_get_progress(e, &p0);
-        if (steps > 0 && p0.steps >= steps)
+        tr_engine_get_progress(*e, &p0);
+        if (o->steps > 0 && p0.steps >= o->steps)
             fprintf(stderr, "tightrope tighten: warning: the checkpoint has %ld steps already; --steps %ld "
-                            "counts them, so no step is taken\n", p0.steps, steps);
-        if (time_limit > 0 && p0.elapsed >= time_limit)
+                            "counts them, so no step is taken\n", p0.steps, o->steps);
+        if (o->time_limit > 0 && p0.elapsed >= o->time_limit)
             fprintf(stderr, "tightrope tighten: warning: the checkpoint has used %.1f s already; "
-                            "--time-limit %g counts them, so no step is taken\n", p0.elapsed, time_limit);
+                            "--time-limit %g counts them, so no step is taken\n", p0.elapsed, o->time_limit);
     }
+    return -1;
+}
 
+/* Runs the engine to its limits, stopping at SIGINT/SIGTERM. Returns -1 to
+ * go on with *why, else the exit status, with the message printed. */
+static int run(const tighten_opts *o, tr_engine *e, tr_stop_reason *why)
+{
     struct sigaction sa;
     memset(&sa, 0, sizeof sa);
     sa.sa_handler = on_signal;
@@ -409,155 +446,214 @@ int tr_cmd_tighten(int argc, char **argv)
     sigaction(SIGINT, &sa, NULL);
     sigaction(SIGTERM, &sa, NULL);
 
-    progress_ctx pctx = {.tty = !quiet && isatty(2), .printed = 0};
-    tr_engine_limits lim = {.refine_to = (size_t)refine_to,
-                            .residual = residual,
-                            .target = target,
-                            .max_steps = steps,
-                            .time_limit = time_limit,
+    progress_ctx pctx = {.tty = !o->quiet && isatty(2), .printed = 0};
+    tr_engine_limits lim = {.refine_to = (size_t)o->refine_to,
+                            .residual = o->residual,
+                            .target = o->target,
+                            .max_steps = o->steps,
+                            .time_limit = o->time_limit,
                             .coarse_residual = 1e-3,
-                            .checkpoint_every = ckpt ? ckpt_every : 0,
-                            .checkpoint_path = ckpt,
+                            .checkpoint_every = o->ckpt ? o->ckpt_every : 0,
+                            .checkpoint_path = o->ckpt,
                             .stop = &stop_requested,
                             .progress_every = 0.25,
                             .progress = on_progress,
                             .user = &pctx};
-    tr_stop_reason why;
-    rc = tr_engine_run(e, &lim, &why, &err);
+    tr_error err;
+    int rc = tr_engine_run(e, &lim, why, &err);
     if (pctx.printed)
         fprintf(stderr, "\n");
     if (rc) {
         fprintf(stderr, "tightrope tighten: %s\n", err.msg);
-        tr_engine_destroy(e);
         /* exit codes as cli.h: a checkpoint that cannot be written or a bad
          * option is the user's to fix (2); a refused step, a device or
          * memory failure is a run that did not get there (1) */
         return rc == TR_EIO || rc == TR_EINVAL || rc == TR_EPARSE ? 2 : 1;
     }
+    return -1;
+}
 
+/* What the run came to: the engine's progress, the written curve and its
+ * certificate. */
+typedef struct tighten_result {
+    tr_stop_reason why;
     tr_engine_progress p;
-    tr_engine_get_progress(e, &p);
+    tr_curve fin;
+    tr_thickness th;
+    int rescaled;  /* fin was scaled to thickness 1 */
+    tr_kkt kr;
+    int certified; /* kr holds the KKT certificate of fin */
+} tighten_result;
+
+/* Takes the engine's curve into r->fin, rescaled to thickness 1 where no
+ * vertex is constrained, and measures and (as --kkt/--no-kkt say)
+ * certifies it. */
+static int certify(const tighten_opts *o, tr_engine *e, tighten_result *r, tr_error *err)
+{
+    tr_engine_get_progress(e, &r->p);
     /* no step ever taken (a --target the start already meets): the engine
      * has no residual to report, and 0 would read as converged */
-    if (p.steps == 0)
-        p.residual = NAN;
-    tr_curve fin = {0};
-    tr_thickness th;
-    rc = tr_engine_get_curve(e, &fin, &err);
+    if (r->p.steps == 0)
+        r->p.residual = NAN;
+    int rc = tr_engine_get_curve(e, &r->fin, err);
     if (rc == TR_OK)
-        rc = tr_thickness_measure(&fin, NULL, &th, NULL, &err);
-    int rescaled = 0;
-    if (rc == TR_OK && fin.ncst == 0 && isfinite(th.thickness) && th.thickness > 0) {
+        rc = tr_thickness_measure(&r->fin, NULL, &r->th, NULL, err);
+    if (rc == TR_OK && r->fin.ncst == 0 && isfinite(r->th.thickness) && r->th.thickness > 0) {
         /* certificate at thickness exactly 1: ropelength = length */
-        scale_curve(&fin, 1.0 / th.thickness);
-        rc = tr_thickness_measure(&fin, NULL, &th, NULL, &err);
-        rescaled = 1;
+        scale_curve(&r->fin, 1.0 / r->th.thickness);
+        rc = tr_thickness_measure(&r->fin, NULL, &r->th, NULL, err);
+        r->rescaled = 1;
     }
     /* the certificate of what is written, computed on it alone */
-    tr_kkt kr = {0};
-    int certified = 0;
-    if (rc == TR_OK && why != TR_STOP_SIGNAL && (kkt == 1 || (kkt < 0 && fin.nv <= KKT_AUTO_MAX_N))) {
-        rc = tr_kkt_certify(&fin, NULL, &kr, &err);
-        certified = rc == TR_OK;
+    if (rc == TR_OK && r->why != TR_STOP_SIGNAL &&
+        (o->kkt == 1 || (o->kkt < 0 && r->fin.nv <= KKT_AUTO_MAX_N))) {
+        rc = tr_kkt_certify(&r->fin, NULL, &r->kr, err);
+        r->certified = rc == TR_OK;
     }
+    return rc;
+}
+
+/* Writes r->fin to OUT with its certificate and the command line in
+ * comments. */
+static int write_output(const tighten_opts *o, tr_engine *e, const tighten_result *r, int argc, char **argv,
+                        tr_error *err)
+{
+    const tr_engine_progress *p = &r->p;
+    const tr_thickness *th = &r->th;
+    const tr_kkt *kr = &r->kr;
     tr_text cm = {0};
-    char *comments = NULL;
-    if (rc == TR_OK) {
-        tr_text_printf(&cm, "tightened by tightrope %s on %s\n", TIGHTROPE_VERSION, tr_engine_device(e));
-        tr_text_printf(&cm, "command:");
-        for (int i = 0; i < argc; i++)
-            tr_text_printf(&cm, " %s", argv[i]);
-        tr_text_printf(&cm, "\nN %zu\nlength %.17g\nMinRad %.17g\ndcsd %.17g\nthickness %.17g\nropelength %.17g\n",
-                th.vertices, th.length, th.minrad, th.dcsd, th.thickness, th.ropelength);
-        if (isfinite(p.residual))
-            tr_text_printf(&cm, "residual %.6g\n", p.residual);
-        else
-            tr_text_printf(&cm, "residual not computed (no step taken)\n");
-        tr_text_printf(&cm, "steps %ld\nstop %s\n%s", p.steps, tr_stop_reason_name(why),
-                rescaled ? "rescaled to thickness 1\n" : "");
-        if (certified)
-            tr_text_printf(&cm, "kkt_residual %.6e (band %g: %zu/%zu struts, %zu/%zu MinRad rows hold%s)\n", kr.residual,
-                           TR_KKT_DEFAULT_BAND, kr.strut_active, kr.strut_rows, kr.minrad_active, kr.minrad_rows,
-                           kr.converged ? "" : "; an upper bound");
-        else
-            tr_text_printf(&cm, "kkt_residual not computed (%s)\n",
-                           why == TR_STOP_SIGNAL ? "interrupted" : kkt == 0 ? "--no-kkt" : "N above the default limit; --kkt");
-        if (p.polished && !p.newton_ran)
-            tr_text_printf(&cm, "polish %s: ropelength %.9f -> %.9f in %.2f s%s%s%s\n", p.polished > 0 ? "accepted" : "rejected",
-                    p.polish_before, p.polish_after, p.polish_seconds, p.polish_why ? " (" : "",
-                    p.polish_why ? p.polish_why : "", p.polish_why ? ")" : "");
-        if (p.newton_ran)
-            tr_text_printf(&cm, "newton %s: ropelength %.9f -> %.9f in %.2f s, %d steps\n",
-                           p.newton_ran > 0 ? "accepted" : "rejected", p.newton_before, p.newton_after,
-                           p.newton_seconds, p.newton_iters);
-        comments = tr_text_take(&cm, NULL);
-        if (!comments)
-            rc = tr_fail(&err, TR_ENOMEM, "out of memory");
-    }
-    if (rc == TR_OK)
-        rc = tr_curve_write(out, TR_FORMAT_AUTO, &fin, comments, &err);
-    if (rc) {
-        fprintf(stderr, "tightrope tighten: %s\n", err.msg);
-        free(comments);
-        tr_curve_free(&fin);
-        tr_engine_destroy(e);
-        return 2;
-    }
-    if (json) {
+    tr_text_printf(&cm, "tightened by tightrope %s on %s\n", TIGHTROPE_VERSION, tr_engine_device(e));
+    tr_text_printf(&cm, "command:");
+    for (int i = 0; i < argc; i++)
+        tr_text_printf(&cm, " %s", argv[i]);
+    tr_text_printf(&cm, "\nN %zu\nlength %.17g\nMinRad %.17g\ndcsd %.17g\nthickness %.17g\nropelength %.17g\n",
+            th->vertices, th->length, th->minrad, th->dcsd, th->thickness, th->ropelength);
+    if (isfinite(p->residual))
+        tr_text_printf(&cm, "residual %.6g\n", p->residual);
+    else
+        tr_text_printf(&cm, "residual not computed (no step taken)\n");
+    tr_text_printf(&cm, "steps %ld\nstop %s\n%s", p->steps, tr_stop_reason_name(r->why),
+            r->rescaled ? "rescaled to thickness 1\n" : "");
+    if (r->certified)
+        tr_text_printf(&cm, "kkt_residual %.6e (band %g: %zu/%zu struts, %zu/%zu MinRad rows hold%s)\n", kr->residual,
+                       TR_KKT_DEFAULT_BAND, kr->strut_active, kr->strut_rows, kr->minrad_active, kr->minrad_rows,
+                       kr->converged ? "" : "; an upper bound");
+    else
+        tr_text_printf(&cm, "kkt_residual not computed (%s)\n",
+                       r->why == TR_STOP_SIGNAL ? "interrupted" : o->kkt == 0 ? "--no-kkt" : "N above the default limit; --kkt");
+    if (p->polished && !p->newton_ran)
+        tr_text_printf(&cm, "polish %s: ropelength %.9f -> %.9f in %.2f s%s%s%s\n", p->polished > 0 ? "accepted" : "rejected",
+                p->polish_before, p->polish_after, p->polish_seconds, p->polish_why ? " (" : "",
+                p->polish_why ? p->polish_why : "", p->polish_why ? ")" : "");
+    if (p->newton_ran)
+        tr_text_printf(&cm, "newton %s: ropelength %.9f -> %.9f in %.2f s, %d steps\n",
+                       p->newton_ran > 0 ? "accepted" : "rejected", p->newton_before, p->newton_after,
+                       p->newton_seconds, p->newton_iters);
+    char *comments = tr_text_take(&cm, NULL);
+    if (!comments)
+        return tr_fail(err, TR_ENOMEM, "out of memory");
+    int rc = tr_curve_write(o->out, TR_FORMAT_AUTO, &r->fin, comments, err);
+    free(comments);
+    return rc;
+}
+
+/* Prints the summary of the run on stdout: JSON with --json, else lines. */
+static void print_summary(const tighten_opts *o, tr_engine *e, const tighten_result *r)
+{
+    const tr_engine_progress *p = &r->p;
+    const tr_thickness *th = &r->th;
+    const tr_kkt *kr = &r->kr;
+    if (o->json) {
         printf("{\n");
-        json_str("output", out, 1);
+        json_str("output", o->out, 1);
         json_str("device", tr_engine_device(e), 1);
-        json_str("stop", tr_stop_reason_name(why), 1);
-        printf("  \"N\": %zu,\n  \"steps\": %ld,\n  \"rejected\": %ld,\n", th.vertices, p.steps, p.rejected);
-        json_num("length", th.length, 1);
-        json_num("minrad", th.minrad, 1);
-        json_num("dcsd", th.dcsd, 1);
-        json_num("thickness", th.thickness, 1);
-        json_num("ropelength", th.ropelength, 1);
-        json_num("residual", p.residual, 1);
-        json_num("kkt_residual", certified ? kr.residual : NAN, 1);
-        if (certified)
-            printf("  \"kkt_converged\": %s,\n", kr.converged ? "true" : "false");
-        json_num("elapsed_s", p.elapsed, 1);
-        json_num("steps_per_s", p.steps_per_s, 0);
+        json_str("stop", tr_stop_reason_name(r->why), 1);
+        printf("  \"N\": %zu,\n  \"steps\": %ld,\n  \"rejected\": %ld,\n", th->vertices, p->steps, p->rejected);
+        json_num("length", th->length, 1);
+        json_num("minrad", th->minrad, 1);
+        json_num("dcsd", th->dcsd, 1);
+        json_num("thickness", th->thickness, 1);
+        json_num("ropelength", th->ropelength, 1);
+        json_num("residual", p->residual, 1);
+        json_num("kkt_residual", r->certified ? kr->residual : NAN, 1);
+        if (r->certified)
+            printf("  \"kkt_converged\": %s,\n", kr->converged ? "true" : "false");
+        json_num("elapsed_s", p->elapsed, 1);
+        json_num("steps_per_s", p->steps_per_s, 0);
         printf("}\n");
     } else {
-        printf("%s: N %zu  ropelength %.6f  (length %.6f, thickness %.9f, MinRad %.9f, dcsd %.9f)\n", out,
-               th.vertices, th.ropelength, th.length, th.thickness, th.minrad, th.dcsd);
+        printf("%s: N %zu  ropelength %.6f  (length %.6f, thickness %.9f, MinRad %.9f, dcsd %.9f)\n", o->out,
+               th->vertices, th->ropelength, th->length, th->thickness, th->minrad, th->dcsd);
         char res[32] = "not computed";
-        if (isfinite(p.residual))
-            snprintf(res, sizeof res, "%.2e", p.residual);
-        printf("  %ld steps in %.1f s, residual %s, stopped: %s\n", p.steps, p.elapsed, res,
-               tr_stop_reason_name(why));
-        if (certified)
-            printf("  KKT residual %.2e (%zu/%zu struts and %zu/%zu MinRad rows hold the tension%s)\n", kr.residual,
-                   kr.strut_active, kr.strut_rows, kr.minrad_active, kr.minrad_rows,
-                   kr.converged ? "" : "; an upper bound");
-        if (p.polished && !p.newton_ran)
-            printf("  polish %s: ropelength %.6f -> %.6f in %.1f s%s%s%s\n", p.polished > 0 ? "accepted" : "rejected",
-                   p.polish_before, p.polish_after, p.polish_seconds, p.polish_why ? " (" : "",
-                   p.polish_why ? p.polish_why : "", p.polish_why ? ")" : "");
-        if (p.newton_ran)
+        if (isfinite(p->residual))
+            snprintf(res, sizeof res, "%.2e", p->residual);
+        printf("  %ld steps in %.1f s, residual %s, stopped: %s\n", p->steps, p->elapsed, res,
+               tr_stop_reason_name(r->why));
+        if (r->certified)
+            printf("  KKT residual %.2e (%zu/%zu struts and %zu/%zu MinRad rows hold the tension%s)\n", kr->residual,
+                   kr->strut_active, kr->strut_rows, kr->minrad_active, kr->minrad_rows,
+                   kr->converged ? "" : "; an upper bound");
+        if (p->polished && !p->newton_ran)
+            printf("  polish %s: ropelength %.6f -> %.6f in %.1f s%s%s%s\n", p->polished > 0 ? "accepted" : "rejected",
+                   p->polish_before, p->polish_after, p->polish_seconds, p->polish_why ? " (" : "",
+                   p->polish_why ? p->polish_why : "", p->polish_why ? ")" : "");
+        if (p->newton_ran)
             printf("  newton %s: ropelength %.9f -> %.9f in %.1f s, %d steps\n",
-                   p.newton_ran > 0 ? "accepted" : "rejected", p.newton_before, p.newton_after, p.newton_seconds,
-                   p.newton_iters);
+                   p->newton_ran > 0 ? "accepted" : "rejected", p->newton_before, p->newton_after, p->newton_seconds,
+                   p->newton_iters);
     }
-    if (why == TR_STOP_SIGNAL)
-        fprintf(stderr, "tightrope tighten: interrupted; %s%s%swrote %s\n", ckpt ? "checkpoint " : "",
-                ckpt ? ckpt : "", ckpt ? " and " : "", out);
+}
+
+/* The exit status of a finished run, with its notes on stderr: 1 when it
+ * was interrupted or did not reach a requested ropelength or residual. */
+static int final_status(const tighten_opts *o, const tighten_result *r)
+{
+    if (r->why == TR_STOP_SIGNAL)
+        fprintf(stderr, "tightrope tighten: interrupted; %s%s%swrote %s\n", o->ckpt ? "checkpoint " : "",
+                o->ckpt ? o->ckpt : "", o->ckpt ? " and " : "", o->out);
     /* a requested ropelength or residual that was not reached is a run that
      * did not reach its goal: the best state is written, the status says so */
-    int goal = target > 0 || residual_given;
+    int goal = o->target > 0 || o->residual_given;
     /* --residual is met by the engine's own force balance or, once the run
      * has stopped for another reason (jammed, steps), by the certificate of
      * what was written, which is the stricter measure (kkt.h) */
-    int reached = why == TR_STOP_TARGET || why == TR_STOP_RESIDUAL ||
-                  (target <= 0 && residual_given && certified && kr.residual <= residual);
-    if (goal && !reached && why != TR_STOP_SIGNAL)
+    int reached = r->why == TR_STOP_TARGET || r->why == TR_STOP_RESIDUAL ||
+                  (o->target <= 0 && o->residual_given && r->certified && r->kr.residual <= o->residual);
+    if (goal && !reached && r->why != TR_STOP_SIGNAL)
         fprintf(stderr, "tightrope tighten: stopped (%s) before reaching the requested %s; wrote %s\n",
-                tr_stop_reason_name(why), target > 0 ? "ropelength" : "residual", out);
-    free(comments);
-    tr_curve_free(&fin);
+                tr_stop_reason_name(r->why), o->target > 0 ? "ropelength" : "residual", o->out);
+    return r->why == TR_STOP_SIGNAL || (goal && !reached) ? 1 : 0;
+}
+
+int tr_cmd_tighten(int argc, char **argv)
+{
+    tighten_opts o;
+    int rc = parse_options(argc, argv, &o);
+    if (rc >= 0)
+        return rc;
+    tr_engine *e;
+    rc = open_start(&o, &e);
+    if (rc >= 0)
+        return rc;
+    tighten_result r = {0};
+    rc = run(&o, e, &r.why);
+    if (rc >= 0) {
+        tr_engine_destroy(e);
+        return rc;
+    }
+    tr_error err;
+    rc = certify(&o, e, &r, &err);
+    if (rc == TR_OK)
+        rc = write_output(&o, e, &r, argc, argv, &err);
+    if (rc) {
+        fprintf(stderr, "tightrope tighten: %s\n", err.msg);
+        tr_curve_free(&r.fin);
+        tr_engine_destroy(e);
+        return 2;
+    }
+    print_summary(&o, e, &r);
+    rc = final_status(&o, &r);
+    tr_curve_free(&r.fin);
     tr_engine_destroy(e);
-    return why == TR_STOP_SIGNAL || (goal && !reached) ? 1 : 0;
+    return rc;
 }
