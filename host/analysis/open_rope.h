@@ -8,7 +8,7 @@
 #include <stddef.h>
 
 #include "analysis/analysis_report.h"
-#include "analysis/curvature_torsion.h"
+#include "analysis/arc_profile.h"
 #include "util/error.h"
 
 typedef struct tr_open_rope {

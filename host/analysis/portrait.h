@@ -9,7 +9,7 @@
 #include <stddef.h>
 
 #include "analysis/contact_functions.h"
-#include "analysis/curvature_torsion.h"
+#include "analysis/arc_profile.h"
 #include "util/error.h"
 #include "analysis/profile_features.h"
 #include "analysis/shape_average.h"

@@ -7,7 +7,7 @@
 
 #include <stddef.h>
 
-#include "analysis/curvature_torsion.h"
+#include "analysis/arc_profile.h"
 #include "util/error.h"
 
 typedef struct tr_plateau {

@@ -14,7 +14,7 @@
 
 #include <stddef.h>
 
-#include "analysis/curvature_torsion.h"
+#include "analysis/arc_profile.h"
 #include "util/error.h"
 #include "analysis/rotation_fit.h"
 

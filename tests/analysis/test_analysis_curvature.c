@@ -7,7 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "analysis/curvature_torsion.h"
+#include "analysis/arc_profile.h"
 #include "analysis/profile_features.h"
 #include "analysis/shape_average.h"
 #include "testlib.h"

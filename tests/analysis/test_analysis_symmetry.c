@@ -8,7 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "analysis/curvature_torsion.h"
+#include "analysis/arc_profile.h"
 #include "curve/arclength.h"
 #include "analysis/rotation_fit.h"
 #include "analysis/symmetry.h"

@@ -2,8 +2,8 @@
  * polygon (docs/physics.md 3.2, 3.3). K_c is a chain of circular arcs, one per
  * vertex, so curvature is constant on each arc and torsion lives only at the
  * junctions between arcs, as the signed angle between osculating planes. */
-#ifndef TR_CURVATURE_TORSION_H
-#define TR_CURVATURE_TORSION_H
+#ifndef TR_ARC_PROFILE_H
+#define TR_ARC_PROFILE_H
 
 #include <stddef.h>
 

@@ -1,6 +1,6 @@
 /* This file contains curvature and torsion of the inscribed-arc knot on a closed polygon
- * (curvature_torsion.h). */
-#include "analysis/curvature_torsion.h"
+ * (arc_profile.h). */
+#include "analysis/arc_profile.h"
 
 #include <math.h>
 #include <stdlib.h>
