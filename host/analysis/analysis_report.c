@@ -8,7 +8,7 @@
 #include <string.h>
 
 #include "util/json.h"
-#include "curve/arclength.h"
+#include "curve/polyline.h"
 #include "util/text_file.h"
 #include "util/vec3.h"
 

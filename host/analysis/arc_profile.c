@@ -6,7 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "curve/arclength.h"
+#include "curve/polyline.h"
 #include "util/vec3.h"
 
 void tr_arc_profile_free(tr_arc_profile *p)

@@ -6,7 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "curve/arclength.h"
+#include "curve/polyline.h"
 
 int tr_contact_pairs_from_struts(const double *x, size_t n, size_t base, const tr_strut *s,
                                  size_t ns, double dist_max, tr_contact_pair **out, size_t *nout,

@@ -7,7 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "curve/arclength.h"
+#include "curve/polyline.h"
 
 void tr_analysis_free(tr_analysis *a)
 {

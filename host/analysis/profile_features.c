@@ -6,7 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "curve/arclength.h"
+#include "curve/polyline.h"
 
 int tr_find_plateaus(const tr_arc_profile *p, double level, size_t min_arcs, tr_plateau **out,
                      size_t *nout, tr_error *err)

@@ -5,7 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "curve/arclength.h"
+#include "curve/polyline.h"
 
 void tr_averaged_knot_free(tr_averaged_knot *k)
 {

@@ -6,7 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "curve/arclength.h"
+#include "curve/polyline.h"
 #include "util/vec3.h"
 
 #define TR_PI 3.14159265358979323846

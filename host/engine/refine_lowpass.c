@@ -15,7 +15,7 @@
 /* Positions at equal arclength (m points) along component k, linear
  * interpolation; closed: m points starting at vertex 0, open: ends kept:
  * the Fourier series needs samples equally spaced in arclength. Not
- * curve/arclength.h's point_at: that one is for closed polygons only and sums
+ * curve/polyline.h's point_at: that one is for closed polygons only and sums
  * the arclength compensated; this plain sum is what every refined level has
  * been computed with, and the other would move its coordinates in the last
  * bits. */

@@ -9,7 +9,7 @@
 #include <stdlib.h>
 
 #include "analysis/contact_functions.h"
-#include "curve/arclength.h"
+#include "curve/polyline.h"
 #include "testlib.h"
 
 #define PI 3.14159265358979323846

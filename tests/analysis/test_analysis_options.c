@@ -11,7 +11,7 @@
 #include "analysis/contact_functions.h"
 #include "curve/generate.h"
 #include "analysis/portrait.h"
-#include "curve/arclength.h"
+#include "curve/polyline.h"
 #include "testlib.h"
 
 #define PI 3.14159265358979323846

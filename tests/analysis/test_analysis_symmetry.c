@@ -9,7 +9,7 @@
 #include <string.h>
 
 #include "analysis/arc_profile.h"
-#include "curve/arclength.h"
+#include "curve/polyline.h"
 #include "analysis/rotation_fit.h"
 #include "analysis/symmetry.h"
 #include "testlib.h"

@@ -4,8 +4,8 @@
  * (averaging, symmetry, contacts) shares these helpers. (The resamplers that
  * make new curves are tr_resample and tr_resample_smooth, curve/generate.h,
  * and the refinement's tr_refine_lowpass, engine/refine_lowpass.h.) */
-#ifndef TR_ARCLENGTH_H
-#define TR_ARCLENGTH_H
+#ifndef TR_POLYLINE_H
+#define TR_POLYLINE_H
 
 #include <math.h>
 #include <stddef.h>

@@ -1,6 +1,6 @@
 /* This file contains arclength bookkeeping on one closed polygon: cumulative lengths and the
- * point at an arclength (arclength.h). */
-#include "curve/arclength.h"
+ * point at an arclength (polyline.h). */
+#include "curve/polyline.h"
 
 
 #include "util/compensated_sum.h"
