@@ -8,7 +8,7 @@
 #include <string.h>
 
 #include "geometry/neighbour_search.h"
-#include "oracle/normal_equations.h"
+#include "oracle/rowchol.h"
 #include "geometry/struts.h"
 #include "segment_distance.h"
 #include "oracle/thickness.h"
@@ -310,7 +310,7 @@ static int factor_free(const sys *s, work *k, tr_rowchol **f, tr_error *err)
 /* Least squares on the free set, from y (warm start): proximal-point
  * iterations z += (J_F W^-1 J_F^T + beta I)^-1 J_F r(z) with the factor of
  * factor_free; rows dropped from F since then are pinned at 0 in it
- * (normal_equations.h). beta makes the factor exist although the struts of a tight
+ * (rowchol.h). beta makes the factor exist although the struts of a tight
  * knot are dependent; the iteration removes its bias on every direction
  * the rows can resolve. */
 static int ls_free(const sys *s, work *k, tr_rowchol *f, const double *y, double *z, int *solves, tr_error *err)

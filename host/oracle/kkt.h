@@ -21,7 +21,7 @@
  * weighted by 1/ne_k, the metric of backend.h); the residual is
  * min |r(y)| / |g| over y with the inequality multipliers >= 0. It is found
  * by projected Newton on the bound-constrained least squares, the free
- * set's least squares solved with a sparse Cholesky factor (normal_equations.h).
+ * set's least squares solved with a sparse Cholesky factor (rowchol.h).
  * Every iterate keeps y feasible, so the residual reported is attained by
  * admissible multipliers: an upper bound on the exact minimum even when the
  * solve stops early (converged = 0). 0 means the tension is exactly held by

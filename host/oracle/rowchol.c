@@ -1,6 +1,6 @@
 /* This file contains the sparse Cholesky solve of (A A^T + U U^T + beta I) z = v that the KKT
- * certificate needs (normal_equations.h). */
-#include "oracle/normal_equations.h"
+ * certificate needs (rowchol.h). */
+#include "oracle/rowchol.h"
 
 #include <math.h>
 #include <stdlib.h>

@@ -11,8 +11,8 @@
  * term is added by Sherman-Morrison-Woodbury with an nu x nu Cholesky.
  * beta > 0 keeps the factor defined when rows are dependent (struts of a
  * tight knot are: many more than the vertices can independently feel). */
-#ifndef TR_NORMAL_EQUATIONS_H
-#define TR_NORMAL_EQUATIONS_H
+#ifndef TR_ROWCHOL_H
+#define TR_ROWCHOL_H
 
 #include <stddef.h>
 #include <stdint.h>
