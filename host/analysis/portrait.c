@@ -55,7 +55,7 @@ static int summarise_jump(const tr_analysis *a, tr_jump_quantity q, double r, in
     out->at = r;
     for (int k = 0; k < n; k++) {
         tr_jump j;
-        if (tr_measure_jump(&a->prof, q, pos[k], a->jump_w, a->jump_W, &j, err) != TR_OK)
+        if (tr_profile_measure_jump(&a->prof, q, pos[k], a->jump_w, a->jump_W, &j, err) != TR_OK)
             continue;
         double v = j.jump;
         if (q == TR_JUMP_KAPPA) {
@@ -154,8 +154,8 @@ int tr_analyze_component(const double *x, size_t n, const tr_contact_pair *pairs
         goto fail;
 
     /* Plateaus and their representative ends. */
-    if ((rc = tr_find_plateaus(&out->prof, 1.0 - o.plateau_eps, o.plateau_min, &out->plateaus,
-                               &out->nplateaus, err)) != TR_OK)
+    if ((rc = tr_profile_find_plateaus(&out->prof, 1.0 - o.plateau_eps, o.plateau_min, &out->plateaus,
+                                       &out->nplateaus, err)) != TR_OK)
         goto fail;
     /* The inscribed-arc curvature of arc k uses two averaged edges and each
      * averaged vertex smears over m edges: a step in kappa is spread over

@@ -8,8 +8,8 @@
 
 #include "curve/polyline.h"
 
-int tr_find_plateaus(const tr_arc_profile *p, double level, size_t min_arcs, tr_plateau **out,
-                     size_t *nout, tr_error *err)
+int tr_profile_find_plateaus(const tr_arc_profile *p, double level, size_t min_arcs, tr_plateau **out,
+                             size_t *nout, tr_error *err)
 {
     *out = NULL;
     *nout = 0;
@@ -131,8 +131,8 @@ static int by_dx(const void *a, const void *b)
     return (da > db) - (da < db);
 }
 
-int tr_measure_jump(const tr_arc_profile *p, tr_jump_quantity q, double at, double w, double W,
-                    tr_jump *out, tr_error *err)
+int tr_profile_measure_jump(const tr_arc_profile *p, tr_jump_quantity q, double at, double w, double W,
+                            tr_jump *out, tr_error *err)
 {
     memset(out, 0, sizeof *out);
     out->at = at;

@@ -18,8 +18,8 @@ typedef struct tr_plateau {
 /* Maximal cyclic runs of arcs with kappa >= level, at least min_arcs long.
  * *out is allocated (free()), *nout may be 0. A profile that is all plateau
  * (a circle of radius 1/level) gives one run with first = 0, last = n-1. */
-int tr_find_plateaus(const tr_arc_profile *p, double level, size_t min_arcs, tr_plateau **out,
-                     size_t *nout, tr_error *err);
+int tr_profile_find_plateaus(const tr_arc_profile *p, double level, size_t min_arcs, tr_plateau **out,
+                             size_t *nout, tr_error *err);
 
 typedef enum tr_jump_quantity { TR_JUMP_KAPPA = 0, TR_JUMP_ALPHA = 1 } tr_jump_quantity;
 
@@ -37,7 +37,7 @@ typedef struct tr_jump {
  * arc positions, alpha at the junctions (its value just after each junction),
  * accumulated from the first junction of the window so the result does not
  * depend on where the profile starts. Needs 3 points on each side. */
-int tr_measure_jump(const tr_arc_profile *p, tr_jump_quantity q, double at, double w, double W,
-                    tr_jump *out, tr_error *err);
+int tr_profile_measure_jump(const tr_arc_profile *p, tr_jump_quantity q, double at, double w, double W,
+                            tr_jump *out, tr_error *err);
 
 #endif

@@ -47,7 +47,7 @@ static void test_circle(void)
     /* Whole circle at kappa >= 1/r (1 - 1e-4): one plateau covering everything. */
     tr_plateau *pl;
     size_t np;
-    CHECK_OK(tr_find_plateaus(&p, (1.0 - 1e-4) / r, 1, &pl, &np, &err));
+    CHECK_OK(tr_profile_find_plateaus(&p, (1.0 - 1e-4) / r, 1, &pl, &np, &err));
     CHECK(np == 1 && pl[0].first == 0 && pl[0].last == n - 1);
     free(pl);
     tr_arc_profile_free(&p);
@@ -133,7 +133,7 @@ static void test_jumps(void)
     }
     tr_plateau *pl;
     size_t np;
-    CHECK_OK(tr_find_plateaus(&p, 1.0 - 1e-4, 3, &pl, &np, &err));
+    CHECK_OK(tr_profile_find_plateaus(&p, 1.0 - 1e-4, 3, &pl, &np, &err));
     /* kappa >= 1 on [2, 3] and again just after 3 (1.2 - ...) until l = 7 */
     CHECK(np == 1);
     if (np == 1) {
@@ -142,19 +142,19 @@ static void test_jumps(void)
     }
     free(pl);
     tr_jump j;
-    CHECK_OK(tr_measure_jump(&p, TR_JUMP_KAPPA, 2.0, 0.03, 0.3, &j, &err));
+    CHECK_OK(tr_profile_measure_jump(&p, TR_JUMP_KAPPA, 2.0, 0.03, 0.3, &j, &err));
     CHECK_NEAR(j.jump, 1.0 - 0.7, 1e-9);
     CHECK(j.err < 1e-9);
-    CHECK_OK(tr_measure_jump(&p, TR_JUMP_KAPPA, 3.0, 0.03, 0.3, &j, &err));
+    CHECK_OK(tr_profile_measure_jump(&p, TR_JUMP_KAPPA, 3.0, 0.03, 0.3, &j, &err));
     CHECK_NEAR(j.jump, 0.2, 1e-9);
-    CHECK_OK(tr_measure_jump(&p, TR_JUMP_ALPHA, 3.0, 0.03, 0.3, &j, &err));
+    CHECK_OK(tr_profile_measure_jump(&p, TR_JUMP_ALPHA, 3.0, 0.03, 0.3, &j, &err));
     CHECK_NEAR(j.jump, 0.3, 1e-9);
-    CHECK_OK(tr_measure_jump(&p, TR_JUMP_ALPHA, 5.0, 0.03, 0.3, &j, &err));
+    CHECK_OK(tr_profile_measure_jump(&p, TR_JUMP_ALPHA, 5.0, 0.03, 0.3, &j, &err));
     CHECK_NEAR(j.jump, 0.0, 1e-9);
     /* across the period boundary: kappa at 0 jumps from 1.2 - 0.05*7 = 0.85 to 0.5 */
-    CHECK_OK(tr_measure_jump(&p, TR_JUMP_KAPPA, 0.0, 0.03, 0.3, &j, &err));
+    CHECK_OK(tr_profile_measure_jump(&p, TR_JUMP_KAPPA, 0.0, 0.03, 0.3, &j, &err));
     CHECK_NEAR(j.jump, 0.5 - 0.85, 1e-9);
-    CHECK(tr_measure_jump(&p, TR_JUMP_KAPPA, 2.0, 0.03, 0.035, &j, &err) == TR_EGEOMETRY);
+    CHECK(tr_profile_measure_jump(&p, TR_JUMP_KAPPA, 2.0, 0.03, 0.035, &j, &err) == TR_EGEOMETRY);
     tr_arc_profile_free(&p);
 }
 
