@@ -9,38 +9,15 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
-#include <sys/wait.h>
 #include <time.h>
 #include <unistd.h>
 
 #include "curve/curve_io.h"
 #include "analysis/symmetry.h"
 
-int tr_gnuplot_available(void)
-{
-    const char *path = getenv("PATH");
-    if (!path)
-        return 0;
-    char buf[4096];
-    const char *p = path;
-    while (*p) {
-        const char *q = strchr(p, ':');
-        size_t len = q ? (size_t)(q - p) : strlen(p);
-        if (len && len + 9 < sizeof buf) {
-            memcpy(buf, p, len);
-            memcpy(buf + len, "/gnuplot", 9);
-            if (access(buf, X_OK) == 0)
-                return 1;
-        }
-        if (!q)
-            break;
-        p = q + 1;
-    }
-    return 0;
-}
-
 /* The plots, the names gnuplot writes them under, and what is in each. */
 enum { PLOT_CT, PLOT_ZOOM, PLOT_ALPHA, PLOT_MAP, PLOT_SIGMA, NPLOTS };
+_Static_assert(NPLOTS == TR_PLOTS_MAX, "tr_plot_script holds every plot");
 static const char *const plot_names[NPLOTS] = {"curvature_torsion.png", "plateau_zoom.png",
                                                "accumulated_torsion.png", "contact_map.png",
                                                "sigma9.png"};
@@ -127,10 +104,8 @@ static void zoom_window(const tr_analysis *a, int d3, double xmax, double *z0, d
     *z0 = lo, *z1 = hi;
 }
 
-int tr_analysis_plots(const char *dir, const tr_analysis *a, tr_error *err)
+int tr_analysis_plots_script(const char *dir, const tr_analysis *a, tr_plot_script *ps, tr_error *err)
 {
-    if (!tr_gnuplot_available())
-        return tr_fail(err, TR_EUNSUPPORTED, "gnuplot not found on PATH (Debian package gnuplot-nox)");
     double L6 = a->L / 6.0;
     int d3 = a->sym.verdict == TR_SYM_D3;
     double xmax = d3 ? L6 : a->L;
@@ -140,9 +115,10 @@ int tr_analysis_plots(const char *dir, const tr_analysis *a, tr_error *err)
     double zl1 = a->have_l12 && !d3 && a->l1 > a->l2 ? a->l1 - a->L : a->l1;
 
     size_t nplots = a->have_sigma ? NPLOTS : PLOT_MAP;
-    char tmp[NPLOTS][4096];
+    char (*tmp)[sizeof ps->tmp[0]] = ps->tmp;
     const char *base[NPLOTS];
     size_t ntmp = 0;
+    ps->n = 0;
     struct timespec ts;
     clock_gettime(CLOCK_REALTIME, &ts);
     unsigned salt = (unsigned)getpid() * 2654435761u ^ (unsigned)ts.tv_nsec;
@@ -287,54 +263,40 @@ int tr_analysis_plots(const char *dir, const tr_analysis *a, tr_error *err)
     }
     char path[4096];
     int m = snprintf(path, sizeof path, "%s/plots.gp", dir);
-    char logp[4096];
-    int ml = snprintf(logp, sizeof logp, "%s/gnuplot.log", dir);
-    if (m < 0 || (size_t)m >= sizeof path || ml < 0 || (size_t)ml >= sizeof logp) {
+    if (m < 0 || (size_t)m >= sizeof path) {
         rc = tr_fail(err, TR_EINVAL, "%s: output path too long", dir);
         goto out;
     }
     if ((rc = tr_write_file_atomic(path, s, len, err)) != TR_OK)
         goto out;
-    pid_t pid = fork();
-    if (pid < 0) {
-        rc = tr_fail(err, TR_EIO, "cannot start gnuplot: fork failed");
-        goto out;
-    }
-    if (pid == 0) {
-        int fd = open(logp, O_WRONLY | O_CREAT | O_TRUNC, 0644);
-        if (fd >= 0) {
-            dup2(fd, 1);
-            dup2(fd, 2);
-            close(fd);
-        }
-        if (chdir(dir) != 0)
-            _exit(126);
-        execlp("gnuplot", "gnuplot", "plots.gp", (char *)NULL);
-        _exit(127);
-    }
-    int status = 0;
-    if (waitpid(pid, &status, 0) < 0) {
-        rc = tr_fail(err, TR_EIO, "waiting for gnuplot failed");
-        goto out;
-    }
-    if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
-        rc = tr_fail(err, TR_EIO, "gnuplot failed (status %d); see %s",
-                     WIFEXITED(status) ? WEXITSTATUS(status) : -1, logp);
-        goto out;
-    }
-    /* All drawn: now each takes its name. */
-    for (size_t i = 0; i < nplots; i++) {
-        char fin[4096];
-        int f = snprintf(fin, sizeof fin, "%s/%s", dir, plot_names[i]);
-        if (f < 0 || (size_t)f >= sizeof fin || commit_temp(tmp[i], fin) != 0) {
-            rc = tr_fail(err, TR_EIO, "cannot write %s/%s: %s", dir, plot_names[i], strerror(errno));
-            goto out;
-        }
-    }
-    ntmp = 0; /* renamed */
+    ps->n = ntmp;
+    ntmp = 0; /* the caller's now */
 out:
     for (size_t i = 0; i < ntmp; i++)
         unlink(tmp[i]);
     free(s);
     return rc;
+}
+
+int tr_analysis_plots_commit(const char *dir, tr_plot_script *ps, tr_error *err)
+{
+    /* All drawn: now each takes its name. */
+    for (size_t i = 0; i < ps->n; i++) {
+        char fin[4096];
+        int f = snprintf(fin, sizeof fin, "%s/%s", dir, plot_names[i]);
+        if (f < 0 || (size_t)f >= sizeof fin || commit_temp(ps->tmp[i], fin) != 0) {
+            int rc = tr_fail(err, TR_EIO, "cannot write %s/%s: %s", dir, plot_names[i], strerror(errno));
+            tr_analysis_plots_discard(ps);
+            return rc;
+        }
+    }
+    ps->n = 0; /* renamed */
+    return TR_OK;
+}
+
+void tr_analysis_plots_discard(tr_plot_script *ps)
+{
+    for (size_t i = 0; i < ps->n; i++)
+        unlink(ps->tmp[i]);
+    ps->n = 0;
 }

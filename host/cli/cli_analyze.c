@@ -12,6 +12,7 @@
 #include "analysis/analysis_report.h"
 #include "cli/cli.h"
 #include "cli/cli_args.h"
+#include "cli/cli_gnuplot.h"
 #include "analysis/contact_functions.h"
 #include "curve/curve_io.h"
 #include "analysis/open_rope.h"
@@ -269,6 +270,25 @@ static int write_open_rope(comp_result *r, const char *in, const char *dir, cons
     return 0;
 }
 
+/* Writes DIR/plots.gp and has gnuplot draw it there (its output in
+ * DIR/gnuplot.log). TR_EUNSUPPORTED if gnuplot is missing, TR_EIO if it
+ * fails. */
+static int draw_plots(const char *dir, const tr_analysis *an, tr_error *err)
+{
+    if (!tr_gnuplot_available())
+        return tr_fail(err, TR_EUNSUPPORTED, "gnuplot not found on PATH (Debian package gnuplot-nox)");
+    tr_plot_script ps;
+    int rc = tr_analysis_plots_script(dir, an, &ps, err);
+    if (rc != TR_OK)
+        return rc;
+    rc = tr_gnuplot_run(dir, "plots.gp", "gnuplot.log", err);
+    if (rc != TR_OK) {
+        tr_analysis_plots_discard(&ps);
+        return rc;
+    }
+    return tr_analysis_plots_commit(dir, &ps, err);
+}
+
 /* Writes the tables, the summary and (with --plots) the plots of one
  * analysed component into dir, which exists. Returns a process status. */
 static int write_component(comp_result *r, const char *in, const char *dir, const cli_opts *o,
@@ -334,7 +354,7 @@ static int write_component(comp_result *r, const char *in, const char *dir, cons
             fprintf(stderr, "tightrope analyze: warning: cannot remove the stale %s: %s\n", path, strerror(errno));
     }
     if (o->plots) {
-        rc = tr_analysis_plots(dir, an, &err);
+        rc = draw_plots(dir, an, &err);
         if (rc == TR_EUNSUPPORTED) {
             fprintf(stderr, "tightrope analyze: no plots: %s; the CSV files are written\n", err.msg);
             *plots_missing = 1;

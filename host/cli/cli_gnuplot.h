@@ -1,0 +1,16 @@
+/* This file contains running gnuplot for the commands that draw plots: the
+ * library writes the scripts (analysis/analysis_plots.h) and starts no
+ * process; the command line finds gnuplot and runs it. */
+#ifndef TIGHTROPE_CLI_GNUPLOT_H
+#define TIGHTROPE_CLI_GNUPLOT_H
+
+#include "util/error.h"
+
+/* 1 if a `gnuplot` executable is on PATH. */
+int tr_gnuplot_available(void);
+
+/* Runs `gnuplot SCRIPT` in DIR, its output to DIR/LOG, and waits for it.
+ * TR_EIO if it cannot be started or fails (the message names the log). */
+int tr_gnuplot_run(const char *dir, const char *script, const char *log, tr_error *err);
+
+#endif
