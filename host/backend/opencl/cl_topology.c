@@ -30,15 +30,26 @@ int tr_topology_arrays(const tr_curve *c, int **next, int **prev, int **comp, in
     return TR_OK;
 }
 
-int tr_cl_upload_ints(const tr_cl_ctx *ctx, const int *v, size_t n, cl_mem *out, tr_error *err)
+static int upload_ints(const tr_cl_ctx *ctx, cl_mem_flags access, const int *v, size_t n,
+                       cl_mem *out, tr_error *err)
 {
     int rc = TR_OK;
     cl_int e = CL_SUCCESS;
-    TR_CL_CHECK((*out = clCreateBuffer(ctx->context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
+    TR_CL_CHECK((*out = clCreateBuffer(ctx->context, access | CL_MEM_COPY_HOST_PTR,
                                        (n ? n : 1) * sizeof(int), (void *)v, &e),
                  e));
 cleanup:
     return rc;
+}
+
+int tr_cl_upload_ints(const tr_cl_ctx *ctx, const int *v, size_t n, cl_mem *out, tr_error *err)
+{
+    return upload_ints(ctx, CL_MEM_READ_ONLY, v, n, out, err);
+}
+
+int tr_cl_upload_ints_rw(const tr_cl_ctx *ctx, const int *v, size_t n, cl_mem *out, tr_error *err)
+{
+    return upload_ints(ctx, CL_MEM_READ_WRITE, v, n, out, err);
 }
 
 int tr_cl_topology_upload(const tr_cl_ctx *ctx, const tr_curve *c, tr_cl_topology *t,

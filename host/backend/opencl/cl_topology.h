@@ -23,7 +23,11 @@ int tr_cl_topology_upload(const tr_cl_ctx *ctx, const tr_curve *c, tr_cl_topolog
                           tr_error *err);
 void tr_cl_topology_free(tr_cl_topology *t);
 
-/* A read-only device copy of n ints (n == 0 allocates one). */
+/* A device copy of n ints (n == 0 allocates one): read-only, for data the
+ * kernels only read; _rw for a start that kernels later overwrite (a scan's
+ * output). A kernel writing a CL_MEM_READ_ONLY buffer is undefined
+ * behaviour, which Oclgrind reports (scripts/test.sh --oclgrind). */
 int tr_cl_upload_ints(const tr_cl_ctx *ctx, const int *v, size_t n, cl_mem *out, tr_error *err);
+int tr_cl_upload_ints_rw(const tr_cl_ctx *ctx, const int *v, size_t n, cl_mem *out, tr_error *err);
 
 #endif

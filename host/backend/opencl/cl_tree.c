@@ -179,7 +179,8 @@ int tr_cl_tree_init(tr_cl_tree *t, const tr_cl_ctx *ctx, cl_program prog, const 
     }
     for (size_t v = 0; v <= c->nv; v++)
         l.loff[v] = (int)v * cap;
-    TR_TRY(tr_cl_upload_ints(ctx, l.loff, c->nv + 1, &t->loff, err));
+    /* rewritten by size_rows' scan: read-write */
+    TR_TRY(tr_cl_upload_ints_rw(ctx, l.loff, c->nv + 1, &t->loff, err));
     TR_TRY(reserve_list(t, ctx, (size_t)cap * c->nv, err));
 cleanup:
     layout_free(&l);
