@@ -500,9 +500,16 @@ int tr_cl_build(const tr_cl_ctx *ctx, const char *const *files, int nfiles, cons
                 log[0] = '\0';
             log[n] = '\0';
         }
-        char what[256], folded[768];
-        fold_lines(log ? log : "", folded, sizeof folded);
-        snprintf(what, sizeof what, "%s%s", files[0], nfiles > 1 ? " ..." : "");
+        /* every file: the log's "FILE:LINE:" says which one failed */
+        char what[256] = "", folded[768];
+        for (int i = 0; i < np + nfiles; i++) {
+            size_t w = strlen(what);
+            snprintf(what + w, sizeof what - w, "%s%s", i ? ", " : "",
+                     i < np ? preamble[i] : files[i - np]);
+        }
+        char *located = log ? tr_kernel_log_locate(log, (const char *const *)src, np + nfiles) : NULL;
+        fold_lines(located ? located : log ? log : "", folded, sizeof folded);
+        free(located);
         rc = tr_fail(err, TR_EOPENCL, "clBuildProgram: %s (%d) building %s with options '%s': %s",
                      tr_cl_strerror(e), (int)e, what, options,
                      folded[0] ? folded : "no build log");

@@ -158,28 +158,37 @@ static void test_selection(int have_device)
     }
 }
 
+/* The embedded text of kernel file `name` as it is in kernels/ (NULL if
+ * there is none); tr_kernel_source_load would add its #line directive. */
+static const char *embedded(const char *name)
+{
+    for (const tr_kernel_source *k = tr_kernel_sources; k->name; k++)
+        if (!strcmp(k->name, name))
+            return k->text;
+    return NULL;
+}
+
+static int write_text(const char *dir, const char *name, const char *text)
+{
+    char path[1100];
+    snprintf(path, sizeof path, "%s/%s", dir, name);
+    FILE *f = fopen(path, "w");
+    int ok = f && text && fputs(text, f) >= 0;
+    if (f)
+        ok = fclose(f) == 0 && ok;
+    return ok;
+}
+
 /* Writes the preamble (TR_CL_PREAMBLE) and one kernel file `name` with text
  * `src` into the build's tests directory, for tr_cl_build under
  * TIGHTROPE_KERNEL_DIR. */
 static int write_kernel_dir(const char *name, const char *src, char *dir, size_t dirsize)
 {
-    char path[1100];
     snprintf(dir, dirsize, "%s/tests", TR_BINARY_DIR);
     static const char *const preamble[TR_CL_PREAMBLE_COUNT] = TR_CL_PREAMBLE;
-    int ok = 1;
-    for (int k = 0; k <= TR_CL_PREAMBLE_COUNT; k++) {
-        char *text = NULL;
-        tr_error err;
-        const char *fname = k < TR_CL_PREAMBLE_COUNT ? preamble[k] : name;
-        if (k < TR_CL_PREAMBLE_COUNT && tr_kernel_source_load(fname, &text, &err) != TR_OK)
-            return 0;
-        snprintf(path, sizeof path, "%s/%s", dir, fname);
-        FILE *f = fopen(path, "w");
-        ok = ok && f && fputs(text ? text : src, f) >= 0;
-        if (f)
-            ok = fclose(f) == 0 && ok;
-        free(text);
-    }
+    int ok = write_text(dir, name, src);
+    for (int k = 0; k < TR_CL_PREAMBLE_COUNT; k++)
+        ok = ok && write_text(dir, preamble[k], embedded(preamble[k]));
     return ok;
 }
 
@@ -202,6 +211,64 @@ static void test_build_failure(const tr_cl_ctx *ctx)
     CHECK(strstr(err.msg, "-cl-std=CL1.2") != NULL);
     CHECK(strstr(err.msg, "undefined_name") != NULL);
     CHECK(strchr(err.msg, '\n') == NULL);
+    /* the compiler names the file and its line (the #line directive) */
+    char where[1100];
+    snprintf(where, sizeof where, "%s/broken.cl:1:", dir);
+    CHECK(strstr(err.msg, where) != NULL);
+    if (rc == TR_OK && prog)
+        clReleaseProgram(prog);
+}
+
+/* A syntax error in one file of the whole program (tension.cl, not the
+ * first) from a kernel directory: the message names that file and the line
+ * of the error, not the first file nor a line of the concatenated program
+ * (PoCL: "line 846 of tempfile_*.cl"). The embedded sources carry the
+ * directive that makes it so too, naming kernels/FILE. */
+static void test_build_failure_line(const tr_cl_ctx *ctx)
+{
+    char *text = NULL;
+    tr_error err;
+    CHECK_OK(tr_kernel_source_load("reduce.cl", &text, &err));
+    static const char directive[] = "#line 1 \"kernels/reduce.cl\"\n";
+    CHECK(text && !strncmp(text, directive, strlen(directive)));
+    free(text);
+
+    char dir[1024];
+    snprintf(dir, sizeof dir, "%s/tests/kernels_broken_tension", TR_BINARY_DIR);
+    char mk[1100];
+    snprintf(mk, sizeof mk, "mkdir -p '%s'", dir);
+    CHECK(system(mk) == 0);
+    int line = 1, ok = 1;
+    for (const tr_kernel_source *k = tr_kernel_sources; k->name; k++) {
+        if (strcmp(k->name, "tension.cl")) {
+            ok = ok && write_text(dir, k->name, k->text);
+            continue;
+        }
+        /* one bad declaration after the file's last line */
+        size_t n = strlen(k->text);
+        char *bad = malloc(n + 64);
+        CHECK(bad != NULL && n > 0 && k->text[n - 1] == '\n');
+        if (!bad)
+            return;
+        for (size_t i = 0; i < n; i++)
+            line += k->text[i] == '\n';
+        snprintf(bad, n + 64, "%str_no_such_type broken_here;\n", k->text);
+        ok = ok && write_text(dir, k->name, bad);
+        free(bad);
+    }
+    CHECK(ok);
+    setenv("TIGHTROPE_KERNEL_DIR", dir, 1);
+    cl_program prog = NULL;
+    int rc = tr_cl_build_all(ctx, &prog, &err);
+    unsetenv("TIGHTROPE_KERNEL_DIR");
+    CHECK(rc == TR_EOPENCL && prog == NULL);
+    char where[1200];
+    snprintf(where, sizeof where, "%s/tension.cl:%d:1:", dir, line);
+    int named = strstr(err.msg, where) != NULL && strstr(err.msg, "tr_no_such_type") != NULL &&
+                !strstr(err.msg, "building reduce.cl ...");
+    if (!named)
+        fprintf(stderr, "build error does not name %s: %s\n", where, err.msg);
+    CHECK(named);
     if (rc == TR_OK && prog)
         clReleaseProgram(prog);
 }
@@ -431,6 +498,7 @@ int main(void)
         return 1;
     }
     test_build_failure(&ctx);
+    test_build_failure_line(&ctx);
     test_turning_angle(&ctx);
     test_reductions(&ctx);
     tr_cl_ctx_close(&ctx);
