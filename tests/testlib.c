@@ -5,6 +5,8 @@
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
 
 int tr_test_failures = 0;
 
@@ -75,4 +77,10 @@ const char *tr_source_path(char *buf, size_t n, const char *rel)
 {
     snprintf(buf, n, "%s/%s", TR_SOURCE_DIR, rel);
     return buf;
+}
+
+void tr_test_expect_cl_error(const char *function, const char *error)
+{
+    printf("oclgrind-expect: %s %s\n", function, error);
+    fflush(stdout);
 }

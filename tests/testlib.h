@@ -74,6 +74,12 @@ int tr_have_shared(const char *what);
             return;                                                                    \
     } while (0)
 
+/* Announces on stdout an OpenCL error that the test provokes on purpose,
+ * named as Oclgrind's --check-api names it ("clFinish",
+ * "CL_INVALID_COMMAND_QUEUE"): scripts/oclgrind_run.sh accepts exactly the
+ * announced reports, as many as announced, and fails on any other. */
+void tr_test_expect_cl_error(const char *function, const char *error);
+
 /* Writes "dir/name" into buf; dir is TR_SHARED_DIR or TR_SOURCE_DIR. */
 const char *tr_shared_path(char *buf, size_t n, const char *rel);
 const char *tr_source_path(char *buf, size_t n, const char *rel);

@@ -204,6 +204,7 @@ static void test_build_failure(const tr_cl_ctx *ctx)
     setenv("TIGHTROPE_KERNEL_DIR", dir, 1);
     cl_program prog = NULL;
     const char *files[] = {"broken.cl"};
+    tr_test_expect_cl_error("clBuildProgram", "CL_BUILD_PROGRAM_FAILURE");
     int rc = tr_cl_build(ctx, files, 1, "-cl-std=CL1.2", &prog, &err);
     unsetenv("TIGHTROPE_KERNEL_DIR");
     CHECK(rc == TR_EOPENCL && prog == NULL);
@@ -259,6 +260,7 @@ static void test_build_failure_line(const tr_cl_ctx *ctx)
     CHECK(ok);
     setenv("TIGHTROPE_KERNEL_DIR", dir, 1);
     cl_program prog = NULL;
+    tr_test_expect_cl_error("clBuildProgram", "CL_BUILD_PROGRAM_FAILURE");
     int rc = tr_cl_build_all(ctx, &prog, &err);
     unsetenv("TIGHTROPE_KERNEL_DIR");
     CHECK(rc == TR_EOPENCL && prog == NULL);
@@ -345,6 +347,7 @@ static void test_turning_angle(const tr_cl_ctx *ctx)
     CHECK(tr_cl_args_at(&err, __FILE__, __LINE__, k, 0, TR_CL_A(bs), TR_CL_A(bc), TR_CL_A(bo),
                         TR_CL_A(nn), TR_CL_END) == TR_OK);
     /* an argument past the last (angles has four) is named by kernel and index */
+    tr_test_expect_cl_error("clSetKernelArg", "CL_INVALID_ARG_INDEX");
     CHECK(tr_cl_args_at(&err, "here.c", 7, k, 3, TR_CL_A(nn), TR_CL_A(nn), TR_CL_END) == TR_EOPENCL);
     int named = strcmp(err.msg, "kernel angles, argument 4: clSetKernelArg: "
                                 "CL_INVALID_ARG_INDEX (-49) [here.c:7]") == 0;
@@ -481,6 +484,7 @@ int main(void)
     test_names();
     tr_error err;
     int cleaned = 0;
+    tr_test_expect_cl_error("clFinish", "CL_INVALID_COMMAND_QUEUE");
     CHECK(failing_call(&err, &cleaned) == TR_EOPENCL && cleaned);
     CHECK(!strncmp(err.msg, "clFinish: CL_INVALID_COMMAND_QUEUE (-36)", 40));
 
