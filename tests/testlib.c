@@ -79,6 +79,12 @@ const char *tr_source_path(char *buf, size_t n, const char *rel)
     return buf;
 }
 
+int tr_test_small(void)
+{
+    const char *v = getenv("TIGHTROPE_TEST_SMALL");
+    return v && *v && strcmp(v, "0") != 0;
+}
+
 void tr_test_expect_cl_error(const char *function, const char *error)
 {
     printf("oclgrind-expect: %s %s\n", function, error);

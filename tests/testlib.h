@@ -74,6 +74,12 @@ int tr_have_shared(const char *what);
             return;                                                                    \
     } while (0)
 
+/* 1 when TIGHTROPE_TEST_SMALL is set (and not "0"): the OpenCL tests then
+ * run fewer and smaller cases, for a simulator that runs every work-item
+ * one by one (Oclgrind, scripts/test.sh --oclgrind); the same code paths,
+ * multi-group launches included, are kept. */
+int tr_test_small(void);
+
 /* Announces on stdout an OpenCL error that the test provokes on purpose,
  * named as Oclgrind's --check-api names it ("clFinish",
  * "CL_INVALID_COMMAND_QUEUE"): scripts/oclgrind_run.sh accepts exactly the

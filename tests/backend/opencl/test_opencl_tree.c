@@ -248,7 +248,12 @@ int main(void)
     run_case(&ctx, prog, 0, 3, 10.0, 0.0, 2, 16);
     run_case(&ctx, prog, 1, 6, 10.0, 0.0, 2, 16);
     run_case(&ctx, prog, 2, 4, 10.0, 0.0, 2, 16);
-    const size_t sizes[] = {64, 1021, 1024};
+    /* TIGHTROPE_TEST_SMALL (Oclgrind): smaller, still several work-groups,
+     * one size not a multiple of the group size, one past the sums' single
+     * stage (1024) */
+    const int small = tr_test_small();
+    const size_t n1021 = small ? 253 : 1021, n1024 = small ? 256 : 1024, n4099 = small ? 1100 : 4099;
+    const size_t sizes[] = {64, n1021, n1024};
     for (int kind = 0; kind < 3; kind++)
         for (size_t s = 0; s < 3; s++) {
             /* cutoff 2.2 with exclusion of ~pi/e index neighbours, as the engine uses */
@@ -259,11 +264,11 @@ int main(void)
     /* the engine's tilted list: only struts nearly normal to both edges (the
      * slab pruning of the walk in use) */
     for (int kind = 0; kind < 2; kind++)
-        run_case(&ctx, prog, kind, 1024, 2.2, 0.05, (int)ceil(TR_PI / (20.0 / 1024.0)), 8);
-    run_case(&ctx, prog, 0, 1021, 2.5, 0.05, 30, 8);
-    run_case(&ctx, prog, 0, 4099, 2.5, 0.01, 30, 8);
+        run_case(&ctx, prog, kind, n1024, 2.2, 0.05, (int)ceil(TR_PI / (20.0 / (double)n1024)), 8);
+    run_case(&ctx, prog, 0, n1021, 2.5, 0.05, 30, 8);
+    run_case(&ctx, prog, 0, n4099, 2.5, 0.01, 30, 8);
     /* overflow: lists that start too short are grown and the result is the same */
-    run_case(&ctx, prog, 0, 1021, 2.5, 0.0, 30, 1);
+    run_case(&ctx, prog, 0, n1021, 2.5, 0.0, 30, 1);
     clReleaseProgram(prog);
     tr_cl_ctx_close(&ctx);
     return tr_test_finish("test_opencl_tree");
