@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Installs what Tightrope needs on Debian 12 if it is missing (non-interactive).
+#   scripts/deps.sh [MORE-PACKAGES...]   (scripts/test.sh --oclgrind adds oclgrind)
 set -euo pipefail
 pkgs=(build-essential cmake pkg-config ocl-icd-opencl-dev opencl-headers pocl-opencl-icd clinfo
-      clang libclang-rt-14-dev gnuplot-nox libsuitesparse-dev)
+      clang libclang-rt-14-dev gnuplot-nox libsuitesparse-dev "$@")
 missing=()
 for p in "${pkgs[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

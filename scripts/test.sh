@@ -2,8 +2,20 @@
 # Installs missing packages, builds, and runs the whole test suite.
 #   scripts/test.sh              normal build in build/
 #   scripts/test.sh --sanitize   -fsanitize=address,undefined build in build-asan/
+#   scripts/test.sh --oclgrind   the OpenCL tests under Oclgrind (installed if missing) in
+#                                build-oclgrind/: scripts/oclgrind_run.sh fails on any report
 set -euo pipefail
 cd "$(dirname "$0")/.."
+if [ "${1:-}" = "--oclgrind" ]; then
+  bash scripts/deps.sh oclgrind
+  # only what the leg runs: the OpenCL tests (label backend/opencl, at their
+  # small sizes) and the broken kernels it must catch (label oclgrind)
+  cmake -S . -B build-oclgrind -DCMAKE_BUILD_TYPE=RelWithDebInfo -DTIGHTROPE_OCLGRIND=ON
+  cmake --build build-oclgrind -j"$(nproc)" --target test_opencl_backend test_opencl_device \
+    test_opencl_tree oclgrind_broken
+  cd build-oclgrind
+  exec ctest --output-on-failure --no-tests=error -j"$(nproc)" -L '^(backend/opencl|oclgrind)$'
+fi
 bash scripts/deps.sh
 dir=build
 opts=(-DCMAKE_BUILD_TYPE=RelWithDebInfo)

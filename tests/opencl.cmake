@@ -66,9 +66,10 @@ set_tests_properties(cli_bench_bad_contacts PROPERTIES
 # (by default the twisted factorisation on CPU devices such as PoCL, PCR on
 # GPUs), each against the serial reference.
 foreach(_solver pcr-group pcr-levels thomas twisted)
-  add_test(NAME test_opencl_backend_${_solver} COMMAND test_opencl_backend)
+  add_test(NAME test_opencl_backend_${_solver}
+    COMMAND ${TR_CL_TEST_LAUNCH} $<TARGET_FILE:test_opencl_backend>)
   set_tests_properties(test_opencl_backend_${_solver} PROPERTIES SKIP_RETURN_CODE 77
-    ENVIRONMENT "${TR_TEST_ENV};TIGHTROPE_CL_TRIDIAG=${_solver}"
+    ENVIRONMENT "${TR_CL_TEST_ENV};TIGHTROPE_CL_TRIDIAG=${_solver}"
     WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR} LABELS backend/opencl
     PASS_REGULAR_EXPRESSION "\\[${_solver}\\]: pairs.*all checks passed|skipped")
 endforeach()
@@ -76,9 +77,9 @@ endforeach()
 # one index per work-item, as on a GPU, where the default on CPU devices is
 # a block of indices per work-item.
 foreach(_t test_opencl_backend test_opencl_tree)
-  add_test(NAME ${_t}_items_one COMMAND ${_t})
+  add_test(NAME ${_t}_items_one COMMAND ${TR_CL_TEST_LAUNCH} $<TARGET_FILE:${_t}>)
   set_tests_properties(${_t}_items_one PROPERTIES SKIP_RETURN_CODE 77
-    ENVIRONMENT "${TR_TEST_ENV};TIGHTROPE_CL_ITEMS=one" LABELS backend/opencl
+    ENVIRONMENT "${TR_CL_TEST_ENV};TIGHTROPE_CL_ITEMS=one" LABELS backend/opencl
     WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR}
     PASS_REGULAR_EXPRESSION "all checks passed|skipped")
 endforeach()
