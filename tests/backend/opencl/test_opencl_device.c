@@ -104,6 +104,27 @@ static void test_names(void)
     CHECK(!strncmp(err.msg, "clCreateBuffer: CL_INVALID_BUFFER_SIZE (-61)", 44));
 }
 
+/* A build log that counts lines of the whole program (Oclgrind's compiler
+ * ignores #line in its messages) is mapped back to the files; locations
+ * already in a file, or outside every file, stay as they are. */
+static void test_log_locate(void)
+{
+    const char *src[] = {"#line 1 \"kernels/common.clh\"\na\nb\n",
+                         "#line 1 \"/k dir/\\\"q\\\".cl\"\nc\n",
+                         "#line 1 \"kernels/tension.cl\"\nd\ne\nf\n"};
+    /* lines of the whole program: 1 directive, 2-3 common.clh, 4 directive,
+     * 5 the quoted file, 6 directive, 7-9 tension.cl */
+    char *got = tr_kernel_log_locate("input.cl:8:3: error: x | input.cl:5:1: note: y\n"
+                                     "kernels/tension.cl:2:1: error: z (input.cl:4:1, input.cl:99:1)",
+                                     src, 3);
+    const char *want = "kernels/tension.cl:2:3: error: x | /k dir/\"q\".cl:1:1: note: y\n"
+                       "kernels/tension.cl:2:1: error: z (input.cl:4:1, input.cl:99:1)";
+    CHECK(got && !strcmp(got, want));
+    if (got && strcmp(got, want))
+        fprintf(stderr, "located log: %s\n", got);
+    free(got);
+}
+
 /* The macro jumps to the cleanup ladder with the message filled in. */
 static int failing_call(tr_error *err, int *cleaned)
 {
@@ -482,6 +503,7 @@ static void test_reductions(const tr_cl_ctx *ctx)
 int main(void)
 {
     test_names();
+    test_log_locate();
     tr_error err;
     int cleaned = 0;
     tr_test_expect_cl_error("clFinish", "CL_INVALID_COMMAND_QUEUE");
