@@ -16,6 +16,10 @@
 # that number in the program the sources are concatenated into). The first
 # five reports are printed whole, then their count.
 # TIGHTROPE_OCLGRIND_FLAGS replaces the checks (default: --check-api --data-races).
+# Not --uninitialized: Oclgrind 21.10's plugin for it dies (SIGSEGV) on the
+# first shufflevector with an undefined lane, which clang emits for every
+# double3 load and store (Uninitialized.cpp compares the mask element with
+# Value::UndefValueVal, not -1; upstream fixed it for LLVM 21 only).
 set -uo pipefail
 if [ $# -lt 1 ]; then
   echo "usage: $0 PROGRAM [ARGS...]" >&2
