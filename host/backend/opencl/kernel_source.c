@@ -119,7 +119,9 @@ char *tr_kernel_log_locate(const char *log, const char *const *src, int nsrc)
             continue;
         int named = 0, in = -1;
         for (int i = 0; i < nsrc; i++) {
-            named |= names[i][0] && strlen(names[i]) == tlen && !memcmp(names[i], t, tlen);
+            /* the end of a name (the token stops at a space or a quote in it) */
+            size_t nlen = strlen(names[i]);
+            named |= nlen >= tlen && !memcmp(names[i] + nlen - tlen, t, tlen);
             if (line > first[i] && line < first[i + 1])
                 in = i;
         }

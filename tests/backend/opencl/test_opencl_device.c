@@ -106,7 +106,8 @@ static void test_names(void)
 
 /* A build log that counts lines of the whole program (Oclgrind's compiler
  * ignores #line in its messages) is mapped back to the files; locations
- * already in a file, or outside every file, stay as they are. */
+ * already in a file (a name cut short at a space or a quote included), or
+ * outside every file, stay as they are. */
 static void test_log_locate(void)
 {
     const char *src[] = {"#line 1 \"kernels/common.clh\"\na\nb\n",
@@ -115,10 +116,12 @@ static void test_log_locate(void)
     /* lines of the whole program: 1 directive, 2-3 common.clh, 4 directive,
      * 5 the quoted file, 6 directive, 7-9 tension.cl */
     char *got = tr_kernel_log_locate("input.cl:8:3: error: x | input.cl:5:1: note: y\n"
-                                     "kernels/tension.cl:2:1: error: z (input.cl:4:1, input.cl:99:1)",
+                                     "kernels/tension.cl:2:1: error: z (input.cl:4:1, input.cl:99:1)\n"
+                                     "/k dir/\"q\".cl:2:1: error: w",
                                      src, 3);
     const char *want = "kernels/tension.cl:2:3: error: x | /k dir/\"q\".cl:1:1: note: y\n"
-                       "kernels/tension.cl:2:1: error: z (input.cl:4:1, input.cl:99:1)";
+                       "kernels/tension.cl:2:1: error: z (input.cl:4:1, input.cl:99:1)\n"
+                       "/k dir/\"q\".cl:2:1: error: w";
     CHECK(got && !strcmp(got, want));
     if (got && strcmp(got, want))
         fprintf(stderr, "located log: %s\n", got);
