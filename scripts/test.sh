@@ -11,8 +11,7 @@ if [ "${1:-}" = "--oclgrind" ]; then
   # only what the leg runs: the OpenCL tests (label backend/opencl, at their
   # small sizes) and the broken kernels it must catch (label oclgrind)
   cmake -S . -B build-oclgrind -DCMAKE_BUILD_TYPE=RelWithDebInfo -DTIGHTROPE_OCLGRIND=ON
-  cmake --build build-oclgrind -j"$(nproc)" --target test_opencl_backend test_opencl_device \
-    test_opencl_tree oclgrind_broken
+  cmake --build build-oclgrind -j"$(nproc)" --target opencl_tests
   cd build-oclgrind
   exec ctest --output-on-failure --no-tests=error -j"$(nproc)" -L '^(backend/opencl|oclgrind)$'
 fi

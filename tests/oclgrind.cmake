@@ -10,6 +10,7 @@ find_program(OCLGRIND_EXECUTABLE oclgrind)
 if(OCLGRIND_EXECUTABLE AND NOT TIGHTROPE_SANITIZE)
   add_executable(oclgrind_broken ${CMAKE_CURRENT_SOURCE_DIR}/oclgrind/oclgrind_broken.c)
   target_link_libraries(oclgrind_broken PRIVATE tr_testlib tr_backend)
+  add_dependencies(opencl_tests oclgrind_broken)
   set(_og_run bash ${CMAKE_SOURCE_DIR}/scripts/oclgrind_run.sh $<TARGET_FILE:oclgrind_broken>)
   set(_og_file "tests/oclgrind/broken.cl") # as Oclgrind names it: from the source tree
   add_test(NAME oclgrind_passes_fine_kernel COMMAND ${_og_run} fine)
