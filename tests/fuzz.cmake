@@ -17,14 +17,15 @@ if(TIGHTROPE_FUZZ)
   endif()
   if(_fz_ok)
     set(_fz_sources ${CMAKE_SOURCE_DIR}/tests/curve/fuzz_readers.c
-                    ${CMAKE_SOURCE_DIR}/host/curve/curve_io.c ${CMAKE_SOURCE_DIR}/host/curve/curve.c
+                    ${CMAKE_SOURCE_DIR}/host/curve/curve_io.c ${CMAKE_SOURCE_DIR}/host/curve/vect.c
+                    ${CMAKE_SOURCE_DIR}/host/curve/point_list.c ${CMAKE_SOURCE_DIR}/host/curve/curve.c
                     ${CMAKE_SOURCE_DIR}/host/util/error.c ${CMAKE_SOURCE_DIR}/host/util/text_file.c)
     set(_fz_bin ${CMAKE_CURRENT_BINARY_DIR}/fuzz_readers)
     add_custom_command(OUTPUT ${_fz_bin}
       COMMAND ${TR_FUZZ_CLANG} -std=c17 -D_POSIX_C_SOURCE=200809L -g -O1 -Wall -Wextra -Werror
               -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined
               -I${CMAKE_SOURCE_DIR}/host ${_fz_sources} -lm -o ${_fz_bin}
-      DEPENDS ${_fz_sources} ${CMAKE_SOURCE_DIR}/host/curve/curve_io.h
+      DEPENDS ${_fz_sources} ${CMAKE_SOURCE_DIR}/host/curve/curve_io.h ${CMAKE_SOURCE_DIR}/host/curve/curve_io_formats.h
               ${CMAKE_SOURCE_DIR}/host/curve/curve.h ${CMAKE_SOURCE_DIR}/host/util/error.h
               ${CMAKE_SOURCE_DIR}/host/util/text_file.h ${CMAKE_SOURCE_DIR}/host/util/vec3.h
       COMMENT "Building the libFuzzer target fuzz_readers with clang")
