@@ -1,3 +1,5 @@
+/* This file contains the portrait of open ropes: per-rope curvature and
+ * torsion profiles, their tables, summary and report (open_rope.h). */
 #include "analysis/open_rope.h"
 
 #include <math.h>

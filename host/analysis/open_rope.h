@@ -1,4 +1,4 @@
-/* Open ropes in the portrait (issue 23): the inscribed-arc curvature and
+/* Open ropes in the portrait: the inscribed-arc curvature and
  * torsion of each open component along its arclength, with no averaging and
  * no turning angle at the two end vertices, and the tables, summary and report
  * that analyze writes for it (the same file names as a closed component's). */

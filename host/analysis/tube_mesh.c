@@ -1,3 +1,5 @@
+/* This file contains the tube mesh of the rope: rotation-minimising rings
+ * around every vertex, triangulated, written as ASCII PLY (tube_mesh.h). */
 #include "analysis/tube_mesh.h"
 
 #include <math.h>

@@ -1,4 +1,4 @@
-/* The rope as a surface (issue 23): a triangulated tube of a given radius
+/* The rope as a surface: a triangulated tube of a given radius
  * around each component, for ParaView or Blender. A ring of K vertices sits
  * around every polygon vertex in the plane normal to the bisected tangent;
  * the rings' frames are parallel-transported (rotation-minimising, so the

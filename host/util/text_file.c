@@ -1,3 +1,5 @@
+/* This file contains whole-file reading, atomic writing (temporary in the
+ * target's directory, renamed) and the growing text buffer (text_file.h). */
 #include "util/text_file.h"
 
 #include <errno.h>

@@ -1,3 +1,6 @@
+/* This file contains the OpenCL device layer: platform and device enumeration
+ * (FP64, a kernel build before a device is called usable), selection by spec,
+ * the context and queue, and program builds (cl_device.h). */
 #include "backend/opencl/cl_device.h"
 #include "backend/opencl/cl_reduce.h"
 

@@ -1,3 +1,5 @@
+/* This file contains the upload of a curve's chain structure to the device
+ * (successor, predecessor, component and position per vertex; cl_topology.h). */
 #include "backend/opencl/cl_topology.h"
 
 #include <stdlib.h>

@@ -1,3 +1,6 @@
+/* This file contains the loading of the kernel sources: the embedded copies, or
+ * TIGHTROPE_KERNEL_DIR's files, each behind a #line directive naming its file
+ * (kernel_source.h). */
 #include "backend/opencl/kernel_source.h"
 #include "util/text_file.h"
 
