@@ -1,5 +1,6 @@
 /* This file contains `tightrope analyze`: the paper's portrait of a tight knot
  * (docs/physics.md 3-5). */
+#include <dirent.h>
 #include <errno.h>
 #include <math.h>
 #include <stdio.h>
@@ -228,6 +229,51 @@ fail:
     return status;
 }
 
+/* Every name analyze writes into a component's folder. */
+static const char *const analyze_files[] = {
+    "curvature.csv", "torsion.csv", "plateaus.csv", "symmetry.csv", "contacts.csv", "sigma.csv",
+    "fixed_points.csv", "summary.json", "report.txt", "curvature_torsion.png", "plateau_zoom.png",
+    "accumulated_torsion.png", "contact_map.png", "sigma9.png", "plots.gp", "gnuplot.log"};
+#define N_ANALYZE_FILES (sizeof analyze_files / sizeof *analyze_files)
+
+/* Removes DIR/NAME for the names given (files of ours an earlier analyze
+ * left that this run does not write); anything else stays. */
+static void remove_ours(const char *dir, const char *const *names, size_t n)
+{
+    for (size_t i = 0; i < n; i++) {
+        char path[4096];
+        if (snprintf(path, sizeof path, "%s/%s", dir, names[i]) < (int)sizeof path && unlink(path) != 0 &&
+            errno != ENOENT)
+            fprintf(stderr, "tightrope analyze: warning: cannot remove the stale %s: %s\n", path, strerror(errno));
+    }
+}
+
+/* A knot written into a folder that holds an earlier link's compK/ (or a
+ * link into one that holds an earlier knot's files): the other layout's
+ * files of ours go, and a compK/ left empty is removed. */
+static void remove_other_layout(const char *out, int link)
+{
+    if (link) {
+        remove_ours(out, analyze_files, N_ANALYZE_FILES);
+        return;
+    }
+    DIR *d = opendir(out);
+    if (!d)
+        return;
+    struct dirent *e;
+    while ((e = readdir(d)) != NULL) {
+        const char *n = e->d_name;
+        if (strncmp(n, "comp", 4) != 0 || !n[4] || strspn(n + 4, "0123456789") != strlen(n + 4))
+            continue;
+        char sub[4096];
+        if (snprintf(sub, sizeof sub, "%s/%s", out, n) >= (int)sizeof sub)
+            continue;
+        remove_ours(sub, analyze_files, N_ANALYZE_FILES);
+        rmdir(sub); /* only if now empty: a user's file keeps it */
+    }
+    closedir(d);
+}
+
 /* An open rope's tables, summary and report into dir, which exists; the
  * closed-knot files an earlier run left there go (only analyze's names).
  * Returns a process status. */
@@ -254,16 +300,9 @@ static int write_open_rope(comp_result *r, const char *in, const char *dir, cons
             return 2;
         }
     }
-    static const char *const stale[] = {"plateaus.csv", "symmetry.csv", "contacts.csv", "sigma.csv",
-                                        "fixed_points.csv", "curvature_torsion.png", "plateau_zoom.png",
-                                        "accumulated_torsion.png", "contact_map.png", "sigma9.png",
-                                        "plots.gp", "gnuplot.log"};
-    for (size_t i = 0; i < sizeof stale / sizeof *stale; i++) {
-        char path[4096];
-        if (snprintf(path, sizeof path, "%s/%s", dir, stale[i]) < (int)sizeof path && unlink(path) != 0 &&
-            errno != ENOENT)
-            fprintf(stderr, "tightrope analyze: warning: cannot remove the stale %s: %s\n", path, strerror(errno));
-    }
+    /* an open rope writes the first two and the last two of the first nine */
+    remove_ours(dir, analyze_files + 2, 5);
+    remove_ours(dir, analyze_files + 9, N_ANALYZE_FILES - 9);
     if (o->plots)
         fprintf(stderr, "tightrope analyze: %s: component %d is open: no plots for open ropes yet; the CSV files "
                         "are written\n", in, r->k);
@@ -344,15 +383,10 @@ static int write_component(comp_result *r, const char *in, const char *dir, cons
     static const char *const sigma_files[] = {"sigma.csv", "fixed_points.csv", "contact_map.png", "sigma9.png"};
     static const char *const plot_files[] = {"curvature_torsion.png", "plateau_zoom.png", "accumulated_torsion.png",
                                              "contact_map.png", "sigma9.png", "plots.gp", "gnuplot.log"};
-    for (size_t i = 0; i < 4 + 7; i++) {
-        const char *name = i < 4 ? sigma_files[i] : plot_files[i - 4];
-        if (i < 4 ? an->have_sigma : o->plots)
-            continue;
-        char path[4096];
-        if (snprintf(path, sizeof path, "%s/%s", dir, name) < (int)sizeof path && unlink(path) != 0 &&
-            errno != ENOENT)
-            fprintf(stderr, "tightrope analyze: warning: cannot remove the stale %s: %s\n", path, strerror(errno));
-    }
+    if (!an->have_sigma)
+        remove_ours(dir, sigma_files, 4);
+    if (!o->plots)
+        remove_ours(dir, plot_files, 7);
     if (o->plots) {
         rc = draw_plots(dir, an, &err);
         if (rc == TR_EUNSUPPORTED) {
@@ -628,6 +662,8 @@ int tr_cmd_analyze(int argc, char **argv)
         if (s > status)
             status = s;
     }
+    if (status == 0 && ndone == nres)
+        remove_other_layout(out, c.ncomp > 1);
     if (o.mesh && status == 0 && ndone == nres)
         status = write_mesh(res, nres, in, &o);
     else if (o.mesh && ndone)

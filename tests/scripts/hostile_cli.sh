@@ -220,6 +220,27 @@ analyze_stale)
   [ "$(cat a/notes.txt)" = mine ] || fail "notes.txt removed"
   grep -q '"file": ".*c.vect"' a/summary.json || grep -q 'c.vect' a/summary.json || fail "summary.json not the circle's"
   ;;
+analyze_layout)
+  # a knot into a folder that holds an earlier link's comp0/ comp1/, and a
+  # link into one that holds a knot's files: the other layout's files of
+  # ours go (a comp folder left empty too), a file of the user's stays.
+  "$tr" make hopf --n 60 -o h.vect >/dev/null && "$tr" make circle -o c.vect >/dev/null || fail "make"
+  run "$tr" analyze h.vect --out a
+  [ "$rc" = 0 ] && [ -s a/comp0/curvature.csv ] && [ -s a/comp1/summary.json ] || fail "hopf: exit $rc, $(ls -R a)"
+  echo mine >a/comp1/notes.txt
+  run "$tr" analyze c.vect --out a
+  [ "$rc" = 0 ] && [ -s a/summary.json ] || fail "circle: exit $rc: $(cat err)"
+  [ -e a/comp0 ] && fail "comp0 left: $(ls -R a)"
+  [ -e a/comp1/curvature.csv ] || [ -e a/comp1/summary.json ] && fail "comp1's files left: $(ls -R a)"
+  [ "$(cat a/comp1/notes.txt)" = mine ] || fail "the user's comp1/notes.txt removed"
+  echo mine >a/notes.txt
+  run "$tr" analyze h.vect --out a
+  [ "$rc" = 0 ] && [ -s a/comp0/summary.json ] || fail "hopf again: exit $rc"
+  for f in curvature.csv torsion.csv summary.json report.txt; do
+    [ -e "a/$f" ] && fail "the knot's $f left beside the link's comp folders: $(ls a)"
+  done
+  [ "$(cat a/notes.txt)" = mine ] || fail "the user's notes.txt removed"
+  ;;
 *) fail "unknown case $case_" ;;
 esac
 exit 0
