@@ -30,6 +30,7 @@ void tr_newton_params_default(tr_newton_params *p)
     p->skin = 0.08;
     p->max_move = p->skin / 8;
     p->mu0 = 10.0;
+    p->warm_start = getenv("TR_COLD") ? 0 : 1;
     p->mu_max = 1e9;
     p->viol_tol = 1e-11;
     p->stat_tol = 1e-7;
@@ -80,6 +81,20 @@ static void minrad_c(double l, double *c, double *dc, double *d2c)
     *c = 4.0 * u * u / q;
     *dc = dcdu * 2.0 * l;
     *d2c = 128.0 / (q * q * q) * 4.0 * u + 2.0 * dcdu;
+}
+
+/* The MinRad row's pieces at vertex i: w = x_{i+1} - 2 x_i + x_{i-1} and
+ * c(l_k) with its derivatives; 0 at an end of an open rope (no row). */
+static int minrad_row(const solver *s, const double *x, const double *l, size_t i, double w[3], double *c,
+                      double *dc, double *d2c)
+{
+    size_t ip = s->prev[i], in = s->next[i];
+    if (ip == NONE || in == NONE)
+        return 0;
+    minrad_c(l[s->comp[i]], c, dc, d2c);
+    for (int d = 0; d < 3; d++)
+        w[d] = x[3 * in + d] - 2.0 * x[3 * i + d] + x[3 * ip + d];
+    return 1;
 }
 
 static int is_fixed(const solver *s, size_t i)
@@ -208,14 +223,11 @@ static double al_eval(solver *s, const double *y, double *grad, int hess)
     }
     /* MinRad */
     for (size_t i = 0; i < nv; i++) {
-        size_t ip = s->prev[i], in = s->next[i];
-        if (ip == NONE || in == NONE)
-            continue;
-        int k = s->comp[i];
         double c, dc, d2c, w[3];
-        minrad_c(l[k], &c, &dc, &d2c);
-        for (int d = 0; d < 3; d++)
-            w[d] = x[3 * in + d] - 2.0 * x[3 * i + d] + x[3 * ip + d];
+        if (!minrad_row(s, x, l, i, w, &c, &dc, &d2c))
+            continue;
+        size_t ip = s->prev[i], in = s->next[i];
+        int k = s->comp[i];
         double w2 = v3_dot(w, w), S = s->scale_m[k];
         double g = (c - w2) / S, pi;
         f += ineq_term(g, s->lam_m[i], mu, &pi);
@@ -568,6 +580,145 @@ static void update_multipliers(solver *s)
         s->sp[r].lam = s->pi_s[r];
 }
 
+/* ---- warm start ---- */
+
+/* The multipliers that best balance the tension at y: with every edge's
+ * multiplier at -1 (unit tension), least squares min |t - J^T lambda| over
+ * the inequality rows within WARM_BAND of their bound (relative), t the
+ * tension's force sum grad |e|, by conjugate gradients on the normal
+ * equations J J^T lambda = J t (products with J and J^T only: J J^T itself
+ * fills in where many struts share vertices), then clipped at 0. A refined
+ * or polished start has its contacts and MinRad stretches in place; with
+ * multipliers that already hold the tension, the first passes do not let
+ * the rope shrink through them while the multipliers build up. */
+#define WARM_BAND 1e-4
+#define WARM_ITERS 500
+static int warm_multipliers(solver *s, const double *y, tr_error *err)
+{
+    size_t nv = s->nv, nx = 3 * nv;
+    const double *x = y, *l = y + nx;
+    size_t cap = nv + s->nsp;
+    /* J row by row: up to 12 entries each */
+    size_t *col = malloc(12 * (cap + 1) * sizeof *col), *rowp = malloc((cap + 2) * sizeof *rowp);
+    size_t *row_of = malloc((cap + 1) * sizeof *row_of);
+    double *val = malloc(12 * (cap + 1) * sizeof *val);
+    double *t = calloc(nx, sizeof *t), *w = malloc(nx * sizeof *w);
+    double *lam = NULL, *r = NULL, *pd = NULL, *q = NULL;
+    int rc = TR_OK;
+    if (!col || !rowp || !row_of || !val || !t || !w) {
+        rc = tr_fail(err, TR_ENOMEM, "out of memory (warm start)");
+        goto done;
+    }
+    size_t nr = 0, nz = 0;
+    rowp[0] = 0;
+    for (size_t i = 0; i < cap; i++)
+        row_of[i] = NONE;
+    for (size_t i = 0; i < nv; i++) {
+        double c, dc, d2c, wv[3];
+        if (!minrad_row(s, x, l, i, wv, &c, &dc, &d2c))
+            continue;
+        size_t ip = s->prev[i], in = s->next[i];
+        int k = s->comp[i];
+        if ((c - v3_dot(wv, wv)) / c > WARM_BAND)
+            continue;
+        static const double v[3] = {1.0, -2.0, 1.0};
+        size_t vx[3] = {ip, i, in};
+        for (int j = 0; j < 3; j++)
+            for (int d = 0; d < 3; d++) {
+                col[nz] = 3 * vx[j] + (size_t)d;
+                val[nz++] = -2.0 * v[j] * wv[d] / s->scale_m[k];
+            }
+        row_of[i] = nr;
+        rowp[++nr] = nz;
+    }
+    for (size_t qq = 0; qq < s->nsp; qq++) {
+        size_t a = s->sp[qq].a, b = s->sp[qq].b, na = s->next[a], nb = s->next[b];
+        double gr[12];
+        double d = tr_strut_distance_derivs(x + 3 * a, x + 3 * na, x + 3 * b, x + 3 * nb, gr, NULL);
+        if ((d - 2.0) / 2.0 > WARM_BAND)
+            continue;
+        size_t vx[4] = {a, na, b, nb};
+        for (int j = 0; j < 4; j++)
+            for (int dd = 0; dd < 3; dd++) {
+                col[nz] = 3 * vx[j] + (size_t)dd;
+                val[nz++] = gr[3 * j + dd];
+            }
+        row_of[nv + qq] = nr;
+        rowp[++nr] = nz;
+    }
+    /* held coordinates take no part */
+    for (size_t k = 0; k < nz; k++)
+        if (is_fixed(s, col[k]))
+            val[k] = 0.0;
+    for (size_t a = 0; a < nv; a++) {
+        size_t b2 = s->next[a];
+        if (b2 == NONE)
+            continue;
+        double u[3];
+        v3_sub(u, x + 3 * b2, x + 3 * a);
+        double el = v3_norm(u);
+        for (int d = 0; d < 3; d++) {
+            t[3 * a + (size_t)d] -= u[d] / el;
+            t[3 * b2 + (size_t)d] += u[d] / el;
+        }
+    }
+    for (int k = 0; k < s->nfixed; k++)
+        t[s->fixed[k]] = 0.0;
+    if (nr == 0)
+        goto done;
+    lam = calloc(nr, sizeof *lam);
+    r = malloc(nr * sizeof *r);
+    pd = malloc(nr * sizeof *pd);
+    q = malloc(nr * sizeof *q);
+    if (!lam || !r || !pd || !q) {
+        rc = tr_fail(err, TR_ENOMEM, "out of memory (warm start)");
+        goto done;
+    }
+    /* r = J t - J J^T lambda, lambda = 0 */
+    double rr = 0.0;
+    for (size_t i = 0; i < nr; i++) {
+        double a = 0.0;
+        for (size_t k = rowp[i]; k < rowp[i + 1]; k++)
+            a += val[k] * t[col[k]];
+        r[i] = pd[i] = a;
+        rr += a * a;
+    }
+    double rr0 = rr;
+    for (int it = 0; it < WARM_ITERS && rr > 1e-20 * rr0; it++) {
+        memset(w, 0, nx * sizeof *w);
+        for (size_t i = 0; i < nr; i++)
+            for (size_t k = rowp[i]; k < rowp[i + 1]; k++)
+                w[col[k]] += val[k] * pd[i];
+        double pq = 0.0;
+        for (size_t i = 0; i < nr; i++) {
+            double a = 0.0;
+            for (size_t k = rowp[i]; k < rowp[i + 1]; k++)
+                a += val[k] * w[col[k]];
+            q[i] = a;
+            pq += pd[i] * a;
+        }
+        if (!(pq > 0.0))
+            break;
+        double al = rr / pq, rr1 = 0.0;
+        for (size_t i = 0; i < nr; i++) {
+            lam[i] += al * pd[i];
+            r[i] -= al * q[i];
+            rr1 += r[i] * r[i];
+        }
+        for (size_t i = 0; i < nr; i++)
+            pd[i] = r[i] + rr1 / rr * pd[i];
+        rr = rr1;
+    }
+    for (size_t i = 0; i < nv; i++)
+        s->lam_m[i] = row_of[i] != NONE ? fmax(0.0, lam[row_of[i]]) : 0.0;
+    for (size_t qq = 0; qq < s->nsp; qq++)
+        s->sp[qq].lam = row_of[nv + qq] != NONE ? fmax(0.0, lam[row_of[nv + qq]]) : 0.0;
+done:
+    free(col), free(rowp), free(row_of), free(val), free(t), free(w);
+    free(lam), free(r), free(pd), free(q);
+    return rc;
+}
+
 /* The minimisation itself, on y (3 nv + ncomp). */
 static int minimise(solver *s, double *y, tr_newton_stats *st, double t0, tr_error *err)
 {
@@ -604,13 +755,13 @@ static int minimise(solver *s, double *y, tr_newton_stats *st, double t0, tr_err
                 break;
             }
             /* Settled: feasible to viol_tol and the length unchanged to
-             * 1e-12 over three multiplier updates. The unbalanced force can
+             * 1e-11 over three multiplier updates. The unbalanced force can
              * stay O(l0) where a strand wraps a single edge of another
              * (many struts on one edge: the discrete problem's multipliers
              * are then not unique and the force the wrap puts on that edge
              * has no balance within MinRad), while the length no longer
              * moves: bench/RESULTS.md, "Second-order solver". */
-            if (s->viol <= p->viol_tol && fabs(s->length - prev_len) <= 1e-12 * s->length) {
+            if (s->viol <= p->viol_tol && fabs(s->length - prev_len) <= 1e-11 * s->length) {
                 if (++settled >= 3) {
                     st->settled = 1;
                     break;
@@ -748,6 +899,8 @@ int tr_newton(tr_curve *cv, const tr_newton_params *prm, tr_newton_stats *st, tr
     if ((rc = rebuild(&s, y, err)))
         goto done;
     st->t_rebuild += tr_clock_seconds() - tr;
+    if (prm->warm_start && (rc = warm_multipliers(&s, y, err)))
+        goto done;
     if ((rc = minimise(&s, y, st, t0, err)))
         goto done;
     /* the oracle decides: rescale to thickness 1, keep if shorter */
@@ -763,7 +916,11 @@ int tr_newton(tr_curve *cv, const tr_newton_params *prm, tr_newton_stats *st, tr
         s.w.x[i] /= th.thickness;
     if ((rc = tr_thickness_measure(&s.w, NULL, &th, NULL, err)))
         goto done;
-    if (!(th.ropelength < th0.ropelength) || !(th.thickness >= 1.0 - 1e-12)) {
+    /* the oracle's MinRad at a nearly straight vertex carries the rounding
+     * of its turning angle, ~1e-16 / theta^2 relative (4e-12 at N = 4800):
+     * the rescaled curve is at thickness 1 to that, and the ropelength
+     * compared is scale free */
+    if (!(th.ropelength < th0.ropelength) || !(th.thickness >= 1.0 - 1e-10)) {
         st->why_rejected = "the result is not shorter";
         goto done;
     }

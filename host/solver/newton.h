@@ -37,7 +37,7 @@
  * multipliers are updated, lambda <- pi, and mu grows tenfold if the
  * violation did not fall by 4. It stops converged (violation and
  * unbalanced force below their tolerances) or settled (feasible, and the
- * length unchanged to 1e-12 over three updates: where many struts press on
+ * length unchanged to 1e-11 over three updates: where many struts press on
  * one edge the discrete multipliers are far from unique and the unbalanced
  * force stalls while the length has stopped moving).
  *
@@ -96,6 +96,7 @@ typedef struct tr_newton_params {
     double mu_max;     /* largest penalty, likewise */
     double viol_tol;   /* converged: worst relative violation below this ... */
     double stat_tol;   /* ... and relative unbalanced force below this */
+    int warm_start;    /* first multipliers by least squares (newton.c, warm_multipliers); 0: cold */
     volatile sig_atomic_t *stop; /* raised by a signal handler: stop as at the time limit */
     void (*progress)(void *user, const tr_newton_progress *p); /* every step (may be NULL) */
     void *user;
