@@ -41,6 +41,12 @@
  * one edge the discrete multipliers are far from unique and the unbalanced
  * force stalls while the length has stopped moving).
  *
+ * Warm start: the first multipliers are those that best balance the unit
+ * tension with the MinRad and strut rows near their bound (least squares by
+ * conjugate gradients, clipped at 0), so a start whose contacts are in place
+ * keeps them from the first step instead of shrinking through them while
+ * the multipliers build up from 0.
+ *
  * Why it converges: each inner solve is a descent method with Newton steps
  * on a function that is C^1 with a piecewise smooth gradient (semismooth),
  * so it converges, and near a minimiser satisfying second-order sufficiency
