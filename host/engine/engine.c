@@ -11,7 +11,6 @@
 
 #include "curve/curve_io.h"
 #include "engine/polish.h"
-#include "solver/newton.h"
 #include "engine/refine_lowpass.h"
 #include "geometry/struts.h"
 #include "util/clock.h"

@@ -70,10 +70,10 @@ typedef struct tr_engine_params {
     int polish;
     double polish_share;
     int polish_coarse; /* also polish every coarse level before refining it */
-    /* The second-order solver (solver/newton.h) after the polish at the
-     * finest level, on curves without vertex constraints, in the time the
-     * polish left. Kept only if the oracle finds its result shorter at
-     * thickness 1. */
+    /* The second-order solver (solver/newton.h) in the polish's place and
+     * time at the finest level, on curves without vertex constraints (the
+     * polish still ends the coarse levels). Kept only if the oracle finds
+     * its result shorter at thickness 1. */
     int newton;
     /* Coarse levels (all but the last of a run with refine_to) with fewer
      * vertices than this run on the serial reference instead of the chosen

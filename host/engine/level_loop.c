@@ -43,18 +43,12 @@ static int keep_if_settle_lost(tr_engine *e, double polished_rl, double *scratch
     return rc;
 }
 
-/* The polish stage: download, polish on the host, upload and settle onto
- * the engine's exact constraint set (equal edges to 1e-9). The polished
- * curve is at thickness 1 with every constraint satisfied, so settle moves
- * it by no more than its edge deviation. */
-/* The second-order solver on the host curve (the polished one, or the
- * engine's where polish kept it), with its share of the time; reports
- * whether it replaced the curve. */
+/* The second-order solver on the downloaded curve, in the polish's place
+ * and time (curves without vertex constraints); reports whether it
+ * replaced the curve. */
 static int run_newton(tr_engine *e, double seconds, volatile sig_atomic_t *stop, int *accepted, tr_error *err)
 {
     *accepted = 0;
-    if (e->curve.ncst > 0)
-        return TR_OK;
     tr_newton_params np;
     tr_newton_params_default(&np);
     np.time_limit = seconds;
@@ -72,6 +66,11 @@ static int run_newton(tr_engine *e, double seconds, volatile sig_atomic_t *stop,
     return TR_OK;
 }
 
+/* The polish stage: download, polish on the host (or, at the finest level
+ * with prm.newton, the second-order solver), upload and settle onto the
+ * engine's exact constraint set (equal edges to 1e-9). The polished curve
+ * is at thickness 1 with every constraint satisfied, so settle moves it by
+ * no more than its edge deviation. */
 static int run_polish(tr_engine *e, double seconds, double target, int final, volatile sig_atomic_t *stop,
                       tr_error *err)
 {
@@ -86,11 +85,6 @@ static int run_polish(tr_engine *e, double seconds, double target, int final, vo
         return rc;
     }
     memcpy(e->curve.x, keep, nx * sizeof *keep);
-    tr_polish_params pp;
-    tr_polish_params_default(&pp);
-    pp.time_limit = seconds;
-    pp.target = target;
-    pp.stop = stop;
     tr_polish_stats ps;
     memset(&ps, 0, sizeof ps);
     if (newton) {
@@ -109,6 +103,11 @@ static int run_polish(tr_engine *e, double seconds, double target, int final, vo
         e->polish_seconds = e->newton_seconds;
         e->polish_why = nacc ? NULL : "the second-order solver's result is not shorter";
     } else {
+        tr_polish_params pp;
+        tr_polish_params_default(&pp);
+        pp.time_limit = seconds;
+        pp.target = target;
+        pp.stop = stop;
         if ((rc = tr_polish(&e->curve, &pp, &ps, err))) {
             free(keep);
             if (rc != TR_EGEOMETRY)

@@ -6,7 +6,6 @@
 #include <cholmod.h>
 #include <math.h>
 #include <stdint.h>
-#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -592,6 +591,18 @@ static void update_multipliers(solver *s)
  * multipliers that already hold the tension, the first passes do not let
  * the rope shrink through them while the multipliers build up. */
 #define WARM_BAND 1e-4
+
+/* out = J v for J stored by rows (rowp, col, val), nr rows */
+static void rows_times(const size_t *rowp, const size_t *col, const double *val, size_t nr, const double *v,
+                       double *out)
+{
+    for (size_t i = 0; i < nr; i++) {
+        double a = 0.0;
+        for (size_t k = rowp[i]; k < rowp[i + 1]; k++)
+            a += val[k] * v[col[k]];
+        out[i] = a;
+    }
+}
 #define WARM_ITERS 500
 static int warm_multipliers(solver *s, const double *y, tr_error *err)
 {
@@ -676,12 +687,10 @@ static int warm_multipliers(solver *s, const double *y, tr_error *err)
     }
     /* r = J t - J J^T lambda, lambda = 0 */
     double rr = 0.0;
+    rows_times(rowp, col, val, nr, t, r);
     for (size_t i = 0; i < nr; i++) {
-        double a = 0.0;
-        for (size_t k = rowp[i]; k < rowp[i + 1]; k++)
-            a += val[k] * t[col[k]];
-        r[i] = pd[i] = a;
-        rr += a * a;
+        pd[i] = r[i];
+        rr += r[i] * r[i];
     }
     double rr0 = rr;
     for (int it = 0; it < WARM_ITERS && rr > 1e-20 * rr0; it++) {
@@ -689,14 +698,10 @@ static int warm_multipliers(solver *s, const double *y, tr_error *err)
         for (size_t i = 0; i < nr; i++)
             for (size_t k = rowp[i]; k < rowp[i + 1]; k++)
                 w[col[k]] += val[k] * pd[i];
+        rows_times(rowp, col, val, nr, w, q);
         double pq = 0.0;
-        for (size_t i = 0; i < nr; i++) {
-            double a = 0.0;
-            for (size_t k = rowp[i]; k < rowp[i + 1]; k++)
-                a += val[k] * w[col[k]];
-            q[i] = a;
-            pq += pd[i] * a;
-        }
+        for (size_t i = 0; i < nr; i++)
+            pq += pd[i] * q[i];
         if (!(pq > 0.0))
             break;
         double al = rr / pq, rr1 = 0.0;
@@ -739,6 +744,8 @@ static int minimise(solver *s, double *y, tr_newton_stats *st, double t0, tr_err
         double te = tr_clock_seconds();
         s->oom = 0;
         double f = al_eval(s, y, grad, 1);
+        /* the line search's trial evaluations overwrite these */
+        double len_y = s->length, viol_y = s->viol;
         st->t_eval += tr_clock_seconds() - te;
         if (s->oom) {
             rc = tr_fail(err, TR_ENOMEM, "out of memory (Hessian)");
@@ -826,7 +833,7 @@ static int minimise(solver *s, double *y, tr_newton_stats *st, double t0, tr_err
         st->iters++;
         inner++;
         if (p->progress) {
-            tr_newton_progress pr = {.iter = it, .outer = st->outer, .length = s->length, .viol = s->viol,
+            tr_newton_progress pr = {.iter = it, .outer = st->outer, .length = len_y, .viol = viol_y,
                                      .stat = stat, .mu = s->mu * s->l0min, .lm = lm, .step = ok ? alpha : 0.0,
                                      .struts = s->nsp, .active = s->active, .seconds = tr_clock_seconds() - t0};
             p->progress(p->user, &pr);

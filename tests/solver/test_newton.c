@@ -35,6 +35,17 @@ static double ropelength(const tr_curve *c)
     return th.ropelength;
 }
 
+/* Runs the solver with its defaults (one minute at most); the stop's name */
+static const char *solve(tr_curve *c, tr_newton_stats *st)
+{
+    tr_error err = {0};
+    tr_newton_params p;
+    tr_newton_params_default(&p);
+    p.time_limit = 60;
+    CHECK_OK(tr_newton(c, &p, st, &err));
+    return st->converged ? "converged" : st->settled ? "settled" : "stopped";
+}
+
 static void test_unknot(size_t n, double radius, int max_steps)
 {
     tr_curve c = {0};
@@ -44,14 +55,11 @@ static void test_unknot(size_t n, double radius, int max_steps)
     for (size_t i = 0; i < n; i++)
         c.x[3 * i + 2] += 0.05 * radius * sin(3.0 * 2.0 * M_PI * (double)i / (double)n);
     double before = ropelength(&c);
-    tr_newton_params p;
-    tr_newton_params_default(&p);
-    p.time_limit = 60;
     tr_newton_stats st;
-    CHECK_OK(tr_newton(&c, &p, &st, &err));
+    const char *how = solve(&c, &st);
     double want = 2.0 * (double)n * tan(M_PI / (double)n), got = ropelength(&c);
     printf("unknot n=%zu: %.12f -> %.12f (closed form %.12f), %d steps, %d updates, %s\n", n, before, got, want,
-           st.iters, st.outer, st.converged ? "converged" : st.settled ? "settled" : "stopped");
+           st.iters, st.outer, how);
     CHECK(st.accepted);
     CHECK_NEAR(got, want, 1e-8 * want);
     CHECK_NEAR(st.ropelength_after, got, 1e-12 * got);
@@ -68,14 +76,10 @@ static void test_hopf(size_t n)
     tr_error err = {0};
     REQUIRE_OK(tr_make_hopf(&c, n, &err));
     double before = ropelength(&c);
-    tr_newton_params p;
-    tr_newton_params_default(&p);
-    p.time_limit = 60;
     tr_newton_stats st;
-    CHECK_OK(tr_newton(&c, &p, &st, &err));
+    const char *how = solve(&c, &st);
     double got = ropelength(&c);
-    printf("hopf n=%zu: %.12f -> %.12f (8 pi = %.12f), %d steps, %s\n", n, before, got, 8.0 * M_PI, st.iters,
-           st.converged ? "converged" : st.settled ? "settled" : "stopped");
+    printf("hopf n=%zu: %.12f -> %.12f (8 pi = %.12f), %d steps, %s\n", n, before, got, 8.0 * M_PI, st.iters, how);
     CHECK(st.accepted);
     CHECK(got > 8.0 * M_PI);
     CHECK(got < 8.0 * M_PI * (1.0 + 5.0 / ((double)n * (double)n)));
