@@ -2,63 +2,20 @@
  * (analysis_plots.h). */
 #include "analysis/analysis_plots.h"
 
-#include <errno.h>
-#include <fcntl.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
-#include <time.h>
-#include <unistd.h>
 
 #include "curve/curve_io.h"
 #include "analysis/symmetry.h"
 
 /* The plots, the names gnuplot writes them under, and what is in each. */
 enum { PLOT_CT, PLOT_ZOOM, PLOT_ALPHA, PLOT_MAP, PLOT_SIGMA, NPLOTS };
-_Static_assert(NPLOTS == TR_PLOTS_MAX, "tr_plot_script holds every plot");
+_Static_assert(NPLOTS <= TR_PLOTS_MAX, "tr_plot_script holds every plot");
 static const char *const plot_names[NPLOTS] = {"curvature_torsion.png", "plateau_zoom.png",
                                                "accumulated_torsion.png", "contact_map.png",
                                                "sigma9.png"};
-
-/* Reserves a fresh temporary name beside dir/name (same file system, so the
- * final rename is atomic): "name.tmpXXXXXX", created empty with O_EXCL.
- * tmp gets the path, base the part after "dir/". */
-static int reserve_temp(const char *dir, const char *name, unsigned *salt, char *tmp, size_t tmpn,
-                        const char **base)
-{
-    for (int attempt = 0; attempt < 100; attempt++) {
-        *salt = *salt * 1103515245u + 12345u;
-        int m = snprintf(tmp, tmpn, "%s/%s.tmp%06x", dir, name, (*salt >> 8) & 0xffffffu);
-        if (m < 0 || (size_t)m >= tmpn) {
-            errno = ENAMETOOLONG;
-            return -1;
-        }
-        int fd = open(tmp, O_WRONLY | O_CREAT | O_EXCL, 0666);
-        if (fd >= 0) {
-            close(fd);
-            *base = tmp + strlen(dir) + 1;
-            return 0;
-        }
-        if (errno != EEXIST)
-            return -1;
-    }
-    return -1;
-}
-
-/* fsync, then rename over the final name. */
-static int commit_temp(const char *tmp, const char *path)
-{
-    int fd = open(tmp, O_RDONLY);
-    if (fd < 0)
-        return -1;
-    int bad = fsync(fd) != 0;
-    bad |= close(fd) != 0;
-    if (bad || rename(tmp, path) != 0)
-        return -1;
-    return 0;
-}
 
 /* The zoomed window [z0, z1] of the plateau plot, in the plotted coordinate
  * (D3: l reduced to [0, L/6); otherwise l from the origin, where a window
@@ -115,21 +72,13 @@ int tr_analysis_plots_script(const char *dir, const tr_analysis *a, tr_plot_scri
     double zl1 = a->have_l12 && !d3 && a->l1 > a->l2 ? a->l1 - a->L : a->l1;
 
     size_t nplots = a->have_sigma ? NPLOTS : PLOT_MAP;
-    char (*tmp)[sizeof ps->tmp[0]] = ps->tmp;
     const char *base[NPLOTS];
-    size_t ntmp = 0;
-    ps->n = 0;
-    struct timespec ts;
-    clock_gettime(CLOCK_REALTIME, &ts);
-    unsigned salt = (unsigned)getpid() * 2654435761u ^ (unsigned)ts.tv_nsec;
-    int rc = TR_OK;
     char *s = NULL;
-    for (; ntmp < nplots; ntmp++)
-        if (reserve_temp(dir, plot_names[ntmp], &salt, tmp[ntmp], sizeof tmp[ntmp], &base[ntmp])) {
-            rc = tr_fail(err, TR_EIO, "cannot create a temporary file beside %s/%s: %s", dir,
-                         plot_names[ntmp], strerror(errno));
-            goto out;
-        }
+    int rc = tr_plot_reserve(dir, plot_names, nplots, ps, err);
+    if (rc != TR_OK)
+        return rc;
+    for (size_t i = 0; i < nplots; i++)
+        base[i] = tr_plot_tmp_base(ps, dir, i);
 
     /* The D3 plots fold all six sectors onto [0, L/6) and draw sector I as the
      * line; without D3 there is one curve over [0, L). */
@@ -267,36 +216,10 @@ int tr_analysis_plots_script(const char *dir, const tr_analysis *a, tr_plot_scri
         rc = tr_fail(err, TR_EINVAL, "%s: output path too long", dir);
         goto out;
     }
-    if ((rc = tr_write_file_atomic(path, s, len, err)) != TR_OK)
-        goto out;
-    ps->n = ntmp;
-    ntmp = 0; /* the caller's now */
+    rc = tr_write_file_atomic(path, s, len, err);
 out:
-    for (size_t i = 0; i < ntmp; i++)
-        unlink(tmp[i]);
+    if (rc != TR_OK) /* else the temporaries are the caller's now */
+        tr_plot_discard(ps);
     free(s);
     return rc;
-}
-
-int tr_analysis_plots_commit(const char *dir, tr_plot_script *ps, tr_error *err)
-{
-    /* All drawn: now each takes its name. */
-    for (size_t i = 0; i < ps->n; i++) {
-        char fin[4096];
-        int f = snprintf(fin, sizeof fin, "%s/%s", dir, plot_names[i]);
-        if (f < 0 || (size_t)f >= sizeof fin || commit_temp(ps->tmp[i], fin) != 0) {
-            int rc = tr_fail(err, TR_EIO, "cannot write %s/%s: %s", dir, plot_names[i], strerror(errno));
-            tr_analysis_plots_discard(ps);
-            return rc;
-        }
-    }
-    ps->n = 0; /* renamed */
-    return TR_OK;
-}
-
-void tr_analysis_plots_discard(tr_plot_script *ps)
-{
-    for (size_t i = 0; i < ps->n; i++)
-        unlink(ps->tmp[i]);
-    ps->n = 0;
 }

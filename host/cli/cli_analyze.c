@@ -322,10 +322,10 @@ static int draw_plots(const char *dir, const tr_analysis *an, tr_error *err)
         return rc;
     rc = tr_gnuplot_run(dir, "plots.gp", "gnuplot.log", err);
     if (rc != TR_OK) {
-        tr_analysis_plots_discard(&ps);
+        tr_plot_discard(&ps);
         return rc;
     }
-    return tr_analysis_plots_commit(dir, &ps, err);
+    return tr_plot_commit(dir, &ps, err);
 }
 
 /* Writes the tables, the summary and (with --plots) the plots of one
