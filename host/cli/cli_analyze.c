@@ -19,6 +19,9 @@
 #include "analysis/open_rope.h"
 #include "analysis/portrait.h"
 #include "analysis/tube_mesh.h"
+#include "analysis/tube_picture.h"
+#include "analysis/tube_script.h"
+#include "analysis/tube_views.h"
 #include "oracle/thickness.h"
 
 static void usage(FILE *f)
@@ -31,11 +34,14 @@ static void usage(FILE *f)
             "torsion.csv, summary.json, report.txt). The curve is first scaled to thickness 1 (rope radius 1).\n"
             "Writes into DIR (DIR/compK/ for a link): curvature.csv, torsion.csv, plateaus.csv,\n"
             "symmetry.csv, contacts.csv, sigma.csv, fixed_points.csv, summary.json, report.txt;\n"
-            "with --plots also PNG plots drawn by gnuplot.\n"
+            "with --plots also PNG plots drawn by gnuplot, and pictures of the tube (radius 1) shaded:\n"
+            "tube_front.png (along the symmetry axis), tube_top.png, tube_side.png and tube_struts.png\n"
+            "(the struts inside the translucent tube), kappa = 1 stretches (the plateaus) and contacts marked.\n"
             "\n"
             "options:\n"
             "  -m M               averaging block (default 10, the paper's; 1 = raw polygon; at most N/4)\n"
             "  --plots            draw PNGs with gnuplot (CSV files are written regardless)\n"
+            "  --tube-size PX     the tube pictures' width and height, 200 to 4000 pixels (default 720)\n"
             "  --plateau-eps E    plateau = arcs with kappa >= 1 - E, 0 < E < 1 (default 1e-4)\n"
             "  --plateau-min K    plateaus need at least K arcs, an integer >= 1 (default 2)\n"
             "  --jump-window w,W  one-sided fit windows [l-W, l-w], [l+w, l+W] (default 2.5me, w+max(0.03, 8me))\n"
@@ -113,6 +119,7 @@ typedef struct cli_opts {
     int plots, paper, scale;
     const char *mesh;  /* --mesh FILE or NULL */
     size_t mesh_sides;
+    int tube_px;       /* --tube-size, 0: the default */
 } cli_opts;
 
 /* One component, analysed and not yet written. */
@@ -233,7 +240,8 @@ fail:
 static const char *const analyze_files[] = {
     "curvature.csv", "torsion.csv", "plateaus.csv", "symmetry.csv", "contacts.csv", "sigma.csv",
     "fixed_points.csv", "summary.json", "report.txt", "curvature_torsion.png", "plateau_zoom.png",
-    "accumulated_torsion.png", "contact_map.png", "sigma9.png", "plots.gp", "gnuplot.log"};
+    "accumulated_torsion.png", "contact_map.png", "sigma9.png", "plots.gp", "gnuplot.log",
+    "tube_front.png", "tube_top.png", "tube_side.png", "tube_struts.png", "tube.dat", "struts.dat", "tube.gp", "tube_gnuplot.log"};
 #define N_ANALYZE_FILES (sizeof analyze_files / sizeof *analyze_files)
 
 /* Removes DIR/NAME for the names given (files of ours an earlier analyze
@@ -328,6 +336,31 @@ static int draw_plots(const char *dir, const tr_analysis *an, tr_error *err)
     return tr_plot_commit(dir, &ps, err);
 }
 
+/* The tube pictures of one analysed component: DIR/tube.dat,
+ * DIR/struts.dat and DIR/tube.gp, drawn by gnuplot (its output in
+ * DIR/tube_gnuplot.log) into DIR/tube_{front,top,side,struts}.png, px
+ * pixels square. gnuplot is known to be there. */
+static int draw_tube(const char *dir, const comp_result *r, const char *in, int px, tr_error *err)
+{
+    tr_tube_picture tp;
+    int rc = tr_tube_picture_build(r->one.x, r->one.nv, &r->an, 0, 40, &tp, err);
+    if (rc != TR_OK)
+        return rc;
+    tr_tube_views views;
+    tr_tube_views_choose(r->one.x, r->one.nv, &r->an.sym, &views);
+    char title[512];
+    const char *base = strrchr(in, '/');
+    snprintf(title, sizeof title, "%.200s, N = %zu, L = %.6f", base ? base + 1 : in, r->one.nv, r->th.length);
+    tr_plot_script ps;
+    if ((rc = tr_tube_script_write(dir, &tp, &views, title, px, &ps, err)) == TR_OK &&
+        (rc = tr_gnuplot_run(dir, "tube.gp", "tube_gnuplot.log", err)) != TR_OK)
+        tr_plot_discard(&ps);
+    if (rc == TR_OK)
+        rc = tr_plot_commit(dir, &ps, err);
+    tr_tube_picture_free(&tp);
+    return rc;
+}
+
 /* Writes the tables, the summary and (with --plots) the plots of one
  * analysed component into dir, which exists. Returns a process status. */
 static int write_component(comp_result *r, const char *in, const char *dir, const cli_opts *o,
@@ -382,11 +415,13 @@ static int write_component(comp_result *r, const char *in, const char *dir, cons
      * names, which analyze writes, are removed; anything else stays. */
     static const char *const sigma_files[] = {"sigma.csv", "fixed_points.csv", "contact_map.png", "sigma9.png"};
     static const char *const plot_files[] = {"curvature_torsion.png", "plateau_zoom.png", "accumulated_torsion.png",
-                                             "contact_map.png", "sigma9.png", "plots.gp", "gnuplot.log"};
+                                             "contact_map.png", "sigma9.png", "plots.gp", "gnuplot.log",
+                                             "tube_front.png", "tube_top.png", "tube_side.png", "tube_struts.png",
+                                             "tube.dat", "struts.dat", "tube.gp", "tube_gnuplot.log"};
     if (!an->have_sigma)
         remove_ours(dir, sigma_files, 4);
     if (!o->plots)
-        remove_ours(dir, plot_files, 7);
+        remove_ours(dir, plot_files, sizeof plot_files / sizeof *plot_files);
     if (o->plots) {
         rc = draw_plots(dir, an, &err);
         if (rc == TR_EUNSUPPORTED) {
@@ -398,6 +433,15 @@ static int write_component(comp_result *r, const char *in, const char *dir, cons
         } else {
             printf("plots: %s/{curvature_torsion,plateau_zoom,accumulated_torsion%s}.png\n", dir,
                    an->have_sigma ? ",contact_map,sigma9" : "");
+            rc = draw_tube(dir, r, in, o->tube_px ? o->tube_px : TR_TUBE_PX_DEFAULT, &err);
+            if (rc == TR_OK) {
+                printf("tube: %s/tube_{front,top,side,struts}.png\n", dir);
+            } else if (rc == TR_EGEOMETRY) { /* a core no tube can follow: the analysis stands */
+                fprintf(stderr, "tightrope analyze: no tube pictures: %s; the other plots are drawn\n", err.msg);
+            } else {
+                fprintf(stderr, "tightrope analyze: tube pictures: %s\n", err.msg);
+                return 1;
+            }
         }
     }
     return 0;
@@ -433,7 +477,8 @@ static int takes_value(const char *a)
 {
     static const char *const names[] = {"--out",      "-o",          "-m",          "--plateau-eps",
                                         "--plateau-min", "--jump-window", "--jump-at", "--sym-tol",
-                                        "--strut-tol", "--contact-bin", "--power", "--mesh", "--mesh-sides"};
+                                        "--strut-tol", "--contact-bin", "--power", "--mesh", "--mesh-sides",
+                                        "--tube-size"};
     for (size_t i = 0; i < sizeof names / sizeof *names; i++)
         if (!strcmp(a, names[i]))
             return 1;
@@ -490,6 +535,13 @@ int tr_cmd_analyze(int argc, char **argv)
             if (tr_arg_size(v, 3, TR_TUBE_SIDES_MAX, &o.mesh_sides)) {
                 fprintf(stderr, "tightrope analyze: --mesh-sides needs an integer from 3 to %d, got '%s'\n",
                         TR_TUBE_SIDES_MAX, v);
+                return 2;
+            }
+            i++;
+        } else if (!strcmp(a, "--tube-size")) {
+            if (tr_arg_int(v, TR_TUBE_PX_MIN, TR_TUBE_PX_MAX, &o.tube_px)) {
+                fprintf(stderr, "tightrope analyze: --tube-size needs an integer from %d to %d (pixels), got '%s'\n",
+                        TR_TUBE_PX_MIN, TR_TUBE_PX_MAX, v);
                 return 2;
             }
             i++;
@@ -563,6 +615,10 @@ int tr_cmd_analyze(int argc, char **argv)
     }
     if (!out) {
         fprintf(stderr, "tightrope analyze: no output directory (--out DIR)\n");
+        return 2;
+    }
+    if (o.tube_px && !o.plots) {
+        fprintf(stderr, "tightrope analyze: --tube-size needs --plots\n");
         return 2;
     }
     if (o.mesh_sides && !o.mesh) {

@@ -106,6 +106,36 @@ EOS
   done
   ls "$work/out" | grep -q '\.png.' && fail "temporary files left: $(ls "$work/out")"
   ;;
+tube)
+  # The tube pictures of the tight N = 2400 trefoil (bench/data, beside the 5th argument): four
+  # PNGs of the asked size with real content, the grid data with the rows its header announces,
+  # gnuplot silent (no warning in its log), no temporary left; --tube-size out of range or
+  # without --plots refused; a later run without --plots removes the pictures and their files.
+  command -v gnuplot >/dev/null || { echo "gnuplot not installed"; exit 77; }
+  knot24=${5%/*}/trefoil_2400.vect
+  "$tr" analyze "$knot24" --out "$work/out" -m 1 --plateau-eps 3e-3 --plots --tube-size 300 >"$work/stdout" 2>"$work/stderr" || fail "exit $?: $(cat "$work/stderr")"
+  grep -q "^tube: $work/out/tube_{front,top,side,struts}.png" "$work/stdout" || fail "no tube line: $(cat "$work/stdout")"
+  for f in tube_front tube_top tube_side tube_struts; do
+    p=$work/out/$f.png
+    [ "$(head -c 4 "$p" | od -An -c | tr -d ' ')" = '211PNG' ] || fail "$f.png is not a PNG"
+    [ "$(stat -c %s "$p")" -gt 10000 ] || fail "$f.png is nearly empty: $(stat -c %s "$p") bytes"
+    # IHDR: width and height, big-endian, at bytes 16 and 20
+    [ "$(od -An -tu1 -j16 -N8 "$p" | tr -s ' ')" = ' 0 0 1 44 0 0 1 44' ] || fail "$f.png is not 300 x 300"
+  done
+  [ -s "$work/out/tube_gnuplot.log" ] && fail "gnuplot said: $(cat "$work/out/tube_gnuplot.log")"
+  awk '/^# tube of radius 1: / { R = $6; K = $9 } /^[-0-9]/ { rows++ }
+    END { exit !(R > 64 && K > 3 && rows == (R + 1) * (K + 1)) }' "$work/out/tube.dat" || fail "tube.dat rows: $(head -1 "$work/out/tube.dat")"
+  ls -a "$work/out" | grep -q '\.tmp' && fail "temporary files left: $(ls -a "$work/out")"
+  for bad in "--plots --tube-size 100" "--plots --tube-size 4001" "--tube-size 300"; do
+    # shellcheck disable=SC2086
+    "$tr" analyze "$knot24" --out "$work/bad" $bad >/dev/null 2>"$work/err"; rc=$?
+    [ $rc = 2 ] || fail "$bad: exit $rc"
+    grep -q '^tightrope analyze: --tube-size needs' "$work/err" || fail "$bad: $(cat "$work/err")"
+    [ -e "$work/bad" ] && fail "$bad: left $work/bad behind"
+  done
+  "$tr" analyze "$knot24" --out "$work/out" -m 1 >/dev/null 2>&1 || fail "rerun without --plots"
+  ls "$work/out" | grep -q 'tube\|struts' && fail "stale tube files: $(ls "$work/out")"
+  ;;
 cycles)
   # A trefoil tightened by our engine (N = 1600, bench/data) against the paper's published
   # structure: sigma-^9 has 18 fixed points forming two 9-cycles, one stable, and the stable
