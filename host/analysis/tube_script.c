@@ -105,13 +105,14 @@ int tr_tube_struts_text(const tr_tube_picture *tp, char **out)
     return *out ? TR_OK : TR_ENOMEM;
 }
 
-/* Single quotes cannot appear inside a gnuplot '...' string: a title
- * keeps its text with them replaced. */
+/* The title goes into a gnuplot "..." string (for its line break): a
+ * quote or a backslash in it would end or escape the string, so they and
+ * line breaks become spaces. */
 static void quote_safe(char *dst, size_t n, const char *src)
 {
     size_t i = 0;
     for (; src && src[i] && i + 1 < n; i++)
-        dst[i] = src[i] == '\'' || src[i] == '\n' || src[i] == '\r' ? ' ' : src[i];
+        dst[i] = strchr("\"\\\n\r'", src[i]) ? ' ' : src[i];
     dst[i] = '\0';
 }
 
@@ -136,7 +137,7 @@ int tr_tube_script_text(const tr_tube_picture *tp, const tr_tube_views *views, c
         "# far to near, so nearer rope hides farther rope.\n"
         "set terminal pngcairo size %d,%d noenhanced font ',%d'\n"
         "unset border; unset tics; unset colorbox\n"
-        "set view 0,0,1.6\n"
+        "set view 0,0,1.5\n"
         "set view equal xyz\n"
         "set margins 0,0,0,0\n"
         "R = %.6f\n"
@@ -148,7 +149,7 @@ int tr_tube_script_text(const tr_tube_picture *tp, const tr_tube_views *views, c
         "set palette defined (0 '#d8e4f2', 0.999 '#3c6cb4', 1 '#f08c28', 1.999 '#f08c28', 2 '#202040', 2.999 '#202040', \\\n"
         "                     3 '#c01828', 4 '#c01828')\n"
         "set cbrange [0:4]\n"
-        "set key bottom left Left reverse samplen 1.5 font ',12'\n"
+        "set key at screen 0.5, 0.1 center center horizontal maxrows 1 Left reverse samplen 1.5 width 2\n"
         "cx = %.9g; cy = %.9g; cz = %.9g\n"
         "px(x, y, z) = (x - cx) * rx + (y - cy) * ry + (z - cz) * rz\n"
         "py(x, y, z) = (x - cx) * ux + (y - cy) * uy + (z - cz) * uz\n"
@@ -168,12 +169,12 @@ int tr_tube_script_text(const tr_tube_picture *tp, const tr_tube_views *views, c
             "ux = %.12f; uy = %.12f; uz = %.12f\n"
             "tx = %.12f; ty = %.12f; tz = %.12f\n"
             "set output '%s'\n"
-            "set title '%s%s%s view, %s' offset 0,-2\n"
+            "set title \"%s%s%s view, %s\" offset 0,-1\n"
             "splot '%s' using (px($1,$2,$3)):(py($1,$2,$3)):(pz($1,$2,$3)):4 with pm3d notitle, \\\n"
             "  keyentry with boxes fs solid 1.0 lc rgb '#f08c28' title 'kappa = 1 (MinRad active)', \\\n"
             "  keyentry with boxes fs solid 1.0 lc rgb '#202040' title 'contact (strut)'\n",
             what[v], along, w->right[0], w->right[1], w->right[2], w->up[0], w->up[1], w->up[2],
-            w->toward[0], w->toward[1], w->toward[2], outputs[v], t, *t ? ": " : "", what[v], along, data);
+            w->toward[0], w->toward[1], w->toward[2], outputs[v], t, *t ? "\\n" : "", what[v], along, data);
     }
     /* The struts: the front camera again, the tube translucent around the
      * core and the struts (all pm3d, so depthorder sorts them together). */
@@ -184,13 +185,13 @@ int tr_tube_script_text(const tr_tube_picture *tp, const tr_tube_views *views, c
         "ux = %.12f; uy = %.12f; uz = %.12f\n"
         "tx = %.12f; ty = %.12f; tz = %.12f\n"
         "set output '%s'\n"
-        "set title '%s%sstruts (%zu drawn), front view' offset 0,-2\n"
+        "set title \"%s%sstruts (%zu drawn), front view\" offset 0,-1\n"
         "splot '%s' using (px($1,$2,$3)):(py($1,$2,$3)):(pz($1,$2,$3)):4 with pm3d fs transparent solid 0.22 notitle, \\\n"
         "  '%s' using (px($1,$2,$3)):(py($1,$2,$3)):(pz($1,$2,$3)):4 with pm3d notitle, \\\n"
         "  keyentry with boxes fs solid 1.0 lc rgb '#f08c28' title 'kappa = 1 (MinRad active)', \\\n"
         "  keyentry with boxes fs solid 1.0 lc rgb '#c01828' title 'strut'\n",
         tp->nstruts, w->right[0], w->right[1], w->right[2], w->up[0], w->up[1], w->up[2], w->toward[0],
-        w->toward[1], w->toward[2], outputs[TR_TUBE_PNGS - 1], t, *t ? ": " : "", tp->nstruts, data, struts);
+        w->toward[1], w->toward[2], outputs[TR_TUBE_PNGS - 1], t, *t ? "\\n" : "", tp->nstruts, data, struts);
     *out = tr_text_take(&b, NULL);
     return *out ? TR_OK : TR_ENOMEM;
 }

@@ -86,22 +86,31 @@ void tr_tube_views_choose(const double *x, size_t n, const tr_symmetry *sym, tr_
         for (int i = 0; i < 3; i++)
             ev[j][i] = V[i][j]; /* ev[0]: thinnest direction, ev[2]: longest */
 
+    /* Front: along the threefold axis; else along the thinnest direction
+     * (a twofold axis of a knot without a threefold one mostly lies in its
+     * plane: a torus knot seen along it is seen edge-on), called a twofold
+     * axis when one lies within 10 degrees of it. */
     tr_view *f = &out->v[TR_VIEW_FRONT];
     int twofold = sym && sym->n_twofold > 0;
     if (sym && sym->has_c3) {
         memcpy(f->toward, sym->c3.axis, sizeof f->toward);
         out->front_axis = "the threefold axis";
-    } else if (twofold) {
-        memcpy(f->toward, sym->twofold[0].axis, sizeof f->toward);
-        out->front_axis = "a twofold axis";
     } else {
         memcpy(f->toward, ev[0], sizeof f->toward);
         out->front_axis = "the smallest principal axis";
+        for (size_t i = 0; twofold && i < sym->n_twofold; i++)
+            if (fabs(v3_dot(sym->twofold[i].axis, ev[0])) > cos(10.0 * 3.14159265358979323846 / 180.0)) {
+                memcpy(f->toward, sym->twofold[i].axis, sizeof f->toward);
+                out->front_axis = "a twofold axis";
+                break;
+            }
     }
-    v3_scale(f->toward, 1.0 / v3_norm(f->toward), f->toward);
-    /* Up: a twofold axis across the threefold one (the picture shows the
+    /* Up: a twofold axis across the front one (the picture shows the
      * symmetry upright), else the longest principal direction left. */
-    int have_up = sym && sym->has_c3 && twofold && perpendicular(f->up, sym->twofold[0].axis, f->toward);
+    int have_up = 0;
+    for (size_t i = 0; twofold && i < sym->n_twofold && !have_up; i++)
+        have_up = fabs(v3_dot(sym->twofold[i].axis, f->toward)) < 1e-3 &&
+                  perpendicular(f->up, sym->twofold[i].axis, f->toward);
     for (int j = 2; j >= 0 && !have_up; j--)
         have_up = perpendicular(f->up, ev[j], f->toward);
     if (!have_up) { /* a degenerate tensor (all points on one line): any normal */

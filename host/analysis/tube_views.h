@@ -1,10 +1,11 @@
 /* The viewpoints of the tube pictures (tube_script.h): three orthographic
- * cameras at right angles. The front view looks along the knot's symmetry
- * axis when analyze found one (the threefold axis, else a twofold one), so a
- * symmetric knot shows its symmetry; without one, along the direction in
- * which the knot is thinnest (its smallest principal axis of gyration), so
- * it is seen flat and its crossings are readable. The top view looks down
- * on it and the side view from its right. */
+ * cameras at right angles. The front view looks along the knot's threefold
+ * axis when analyze found one, so the trefoil shows its symmetry; else
+ * along the direction in which the knot is thinnest (its smallest principal
+ * axis of gyration, a twofold axis when one is within 10 degrees of it), so
+ * it is seen flat and its crossings are readable. A twofold axis across the
+ * front one points up. The top view looks down on it and the side view
+ * from its right. */
 #ifndef TR_TUBE_VIEWS_H
 #define TR_TUBE_VIEWS_H
 
