@@ -2,7 +2,9 @@
  * curve, optionally spline-resampled to N vertices per component, with one
  * progress line per Newton step: how the solver is measured apart from the
  * engine's route (bench/RESULTS.md, "Second-order solver").
- *   newton_run IN.vect OUT.vect [N] [TIME_LIMIT_S] */
+ *   newton_run IN.vect OUT.vect [N | sN] [TIME_LIMIT_S]
+ * N: the engine's low-pass refinement; sN: the cubic spline tighten --n
+ * uses (tr_resample_smooth). */
 #include <stdio.h>
 #include <stdlib.h>
 
@@ -23,7 +25,7 @@ static void show(void *user, const tr_newton_progress *p)
 int main(int argc, char **argv)
 {
     if (argc < 3) {
-        fprintf(stderr, "usage: newton_run IN OUT [N] [TIME_LIMIT_S]\n");
+        fprintf(stderr, "usage: newton_run IN OUT [N | sN] [TIME_LIMIT_S]\n");
         return 2;
     }
     tr_error err = {0};
@@ -32,9 +34,17 @@ int main(int argc, char **argv)
         fprintf(stderr, "newton_run: %s\n", err.msg);
         return 1;
     }
-    if (argc > 3 && atol(argv[3]) > 0) {
-        /* as the engine refines (tr_engine_refine) */
-        if (tr_refine_lowpass(&c, (size_t)atol(argv[3]), 0.5, 0.5, &r, &err)) {
+    int spline = argc > 3 && argv[3][0] == 's';
+    long nn = argc > 3 ? atol(argv[3] + spline) : 0;
+    if (nn > 0) {
+        /* as the engine refines (tr_engine_refine), or as tighten --n adds
+         * vertices */
+        size_t per = (size_t)nn;
+        if (spline && c.ncomp != 1) {
+            fprintf(stderr, "newton_run: sN is for one component\n");
+            return 2;
+        }
+        if (spline ? tr_resample_smooth(&c, &per, &r, &err) : tr_refine_lowpass(&c, per, 0.5, 0.5, &r, &err)) {
             fprintf(stderr, "newton_run: %s\n", err.msg);
             return 1;
         }
@@ -51,11 +61,11 @@ int main(int argc, char **argv)
         fprintf(stderr, "newton_run: %s\n", err.msg);
         return 1;
     }
-    printf("newton: %s%s, ropelength %.10f -> %.10f, %d steps, %d updates, %d factorizations, %d rebuilds, %.2f s "
-           "(eval %.2f, factor %.2f, solve %.2f, search %.2f, rebuild %.2f), viol %.1e stat %.1e, struts %zu active %zu%s%s\n",
+    printf("newton: %s%s, ropelength %.10f -> %.10f, %d steps, %d updates, %d factorizations, %d analyses, %d rebuilds, %.2f s "
+           "(eval %.2f, factor %.2f, solve %.2f, search %.2f, rebuild %.2f), viol %.1e stat %.1e, struts %zu active %zu, warm residual %.2e%s%s\n",
            st.accepted ? "accepted" : "rejected", st.converged ? " converged" : (st.settled ? " settled" : ""), st.ropelength_before,
-           st.ropelength_after, st.iters, st.outer, st.factorizations, st.rebuilds, st.seconds, st.t_eval,
-           st.t_factor, st.t_solve, st.t_search, st.t_rebuild, st.max_viol, st.stat, st.struts, st.active,
+           st.ropelength_after, st.iters, st.outer, st.factorizations, st.analyses, st.rebuilds, st.seconds, st.t_eval,
+           st.t_factor, st.t_solve, st.t_search, st.t_rebuild, st.max_viol, st.stat, st.struts, st.active, st.warm_residual,
            st.why_rejected ? " - " : "", st.why_rejected ? st.why_rejected : "");
     if (st.accepted && tr_curve_write(argv[2], TR_FORMAT_AUTO, &c, "newton_run", &err)) {
         fprintf(stderr, "newton_run: %s\n", err.msg);

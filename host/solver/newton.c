@@ -4,6 +4,7 @@
 #include "solver/newton.h"
 
 #include <cholmod.h>
+#include <float.h>
 #include <math.h>
 #include <stdint.h>
 #include <stdlib.h>
@@ -20,6 +21,10 @@
 #define NONE SIZE_MAX
 /* a step after which a listed pair is closer than this is cut back */
 #define GUARD_DIST 1.0
+/* the smallest MinRad relative to the struts' half distance at which the
+ * start is scaled to its struts (tr_newton; from 1 - 1e-4 down: closer,
+ * the two scales are the same start) */
+#define MINRAD_SLACK 0.85
 
 void tr_newton_params_default(tr_newton_params *p)
 {
@@ -46,9 +51,10 @@ typedef struct solver {
     int *comp;
     size_t *ne; /* edges per component */
     int *gap;
-    double *l0, *scale_m; /* start edge, 4 l0^2 per component */
+    double *l0, *scale_m; /* start edge, S l0^2 per component (MinRad rows) */
     double l0min;
     double mu;
+    double warm_residual; /* |t - J^T lambda| / |t| after the warm start; 1 without one */
     double *lam_e, *lam_m, *pi_e, *pi_m; /* per edge (by first vertex) / vertex */
     double *pi_s;
     strut_row *sp;
@@ -59,6 +65,11 @@ typedef struct solver {
     SuiteSparse_long *ti, *tj;
     double *tx;
     int oom;
+    /* the symbolic factor of the last pattern, kept while the pattern
+     * (the triplets' rows and columns, in al_eval's order) stays */
+    cholmod_factor *L;
+    SuiteSparse_long *pat_i, *pat_j;
+    size_t pat_nz;
     /* gauge: 6 coordinates held, so that no rigid motion is left in the
      * Hessian's null space (a Levenberg shift there would also damp the
      * knot's soft global modes, which Newton must see) */
@@ -71,6 +82,25 @@ typedef struct solver {
 } solver;
 
 /* ---- the rows ---- */
+
+/* A MinRad row is (c(l) - |w|^2) / (S l0^2): its gradient is then
+ * ~ kappa / S, and a multiplier lambda ~ l0 (the tension it holds) leaves a
+ * violation lambda / mu at the penalty's balance, which relative to the
+ * row's own size c ~ l0^4 is ~ 4 S^2 / (mu l0) (the struts' rows, d - 2,
+ * are already in units of thickness). At S = 4 a first penalty of 10 / l0
+ * lets MinRad rows go 40 % over while the rope shortens: from a tight start
+ * (a converged knot refined) the passes that take them back cost 90 s at
+ * N = 9600; at S = 0.1 the same balance is 2.5e-4, for a Newton matrix 400
+ * times stiffer along those rows. Only there: from a loose start the
+ * stiff rows stall the steps (a wobbled circle's 32-gon did not reach the
+ * regular one in 4000 steps), and from a tight start without the overshoot
+ * (the N = 2400 trefoil as the engine leaves it) they settle 2e-7 longer.
+ * So S = 0.1 when the start was scaled to its struts (tr_newton) and the
+ * warm start's multipliers balance all but TIGHT_RESIDUAL of the tension
+ * (bench/RESULTS.md, "Second-order solver"). */
+#define MINRAD_ROW_SCALE_LOOSE 4.0
+#define MINRAD_ROW_SCALE_TIGHT 0.1
+#define TIGHT_RESIDUAL 0.5
 
 /* c(l) = 4 l^4 / (4 + l^2) and its first two derivatives in l */
 static void minrad_c(double l, double *c, double *dc, double *d2c)
@@ -380,34 +410,50 @@ static int newton_dir(solver *s, const double *grad, double *dir, double *lm, tr
 {
     double t0 = tr_clock_seconds();
     cholmod_common *cm = &s->cm;
-    cholmod_triplet *T = cholmod_l_allocate_triplet(s->n, s->n, s->nz + s->n, 1, CHOLMOD_REAL, cm);
-    if (!T)
-        return tr_fail(err, TR_ENOMEM, "out of memory (Hessian, %zu entries)", s->nz);
-    SuiteSparse_long *ti = T->i, *tj = T->j;
-    double *tx = T->x;
-    memcpy(ti, s->ti, s->nz * sizeof *ti);
-    memcpy(tj, s->tj, s->nz * sizeof *tj);
-    memcpy(tx, s->tx, s->nz * sizeof *tx);
-    /* every diagonal present, so the shift reaches every variable */
     double dmax = 0.0;
     for (size_t k = 0; k < s->nz; k++)
         if (s->ti[k] == s->tj[k])
             dmax = fmax(dmax, fabs(s->tx[k]));
-    for (size_t k = 0; k < s->n; k++) {
-        ti[s->nz + k] = tj[s->nz + k] = (SuiteSparse_long)k;
-        tx[s->nz + k] = is_fixed(s, k) ? 1.0 : 0.0;
+    /* every diagonal present, so the shift reaches every variable; the
+     * triplets are CHOLMOD's without a copy */
+    size_t nz = s->nz;
+    for (size_t k = 0; k < s->n; k++)
+        tri_push(s, k, k, is_fixed(s, k) ? 1.0 : 0.0);
+    if (s->oom) {
+        s->nz = nz;
+        return tr_fail(err, TR_ENOMEM, "out of memory (Hessian, %zu entries)", nz);
     }
-    T->nnz = s->nz + s->n;
-    cholmod_sparse *A = cholmod_l_triplet_to_sparse(T, T->nnz, cm);
-    cholmod_l_free_triplet(&T, cm);
+    cholmod_triplet T = {.nrow = s->n, .ncol = s->n, .nzmax = s->capz, .nnz = s->nz, .i = s->ti, .j = s->tj,
+                         .x = s->tx, .stype = 1, .itype = CHOLMOD_LONG, .xtype = CHOLMOD_REAL,
+                         .dtype = CHOLMOD_DOUBLE};
+    cholmod_sparse *A = cholmod_l_triplet_to_sparse(&T, T.nnz, cm);
+    int same = s->L && s->pat_nz == s->nz && !memcmp(s->pat_i, s->ti, s->nz * sizeof *s->ti) &&
+               !memcmp(s->pat_j, s->tj, s->nz * sizeof *s->tj);
+    size_t full = s->nz;
+    s->nz = nz;
     if (!A)
         return tr_fail(err, TR_ENOMEM, "out of memory (Hessian)");
-    cholmod_factor *L = cholmod_l_analyze(A, cm);
     int rc = TR_OK;
-    if (!L) {
-        rc = tr_fail(err, TR_ENOMEM, "CHOLMOD could not analyse the Hessian (status %d)", cm->status);
-        goto done;
+    if (!same) {
+        cholmod_l_free_factor(&s->L, cm);
+        s->L = cholmod_l_analyze(A, cm);
+        if (!s->L) {
+            rc = tr_fail(err, TR_ENOMEM, "CHOLMOD could not analyse the Hessian (status %d)", cm->status);
+            goto done;
+        }
+        SuiteSparse_long *pi = realloc(s->pat_i, full * sizeof *pi), *pj = pi ? realloc(s->pat_j, full * sizeof *pj) : NULL;
+        if (pi)
+            s->pat_i = pi;
+        if (pj) {
+            s->pat_j = pj;
+            memcpy(s->pat_i, s->ti, full * sizeof *pi);
+            memcpy(s->pat_j, s->tj, full * sizeof *pj);
+            s->pat_nz = full;
+        } else
+            s->pat_nz = 0; /* analysed again next time: slower, as correct */
+        st->analyses++;
     }
+    cholmod_factor *L = s->L;
     /* rounding's share only: the gauge holds the rigid motions */
     double floor_shift = 1e-14 * dmax, shift = fmax(*lm, floor_shift);
     for (int tries = 0;; tries++) {
@@ -443,7 +489,6 @@ static int newton_dir(solver *s, const double *grad, double *dir, double *lm, tr
     cholmod_l_free_dense(&xs, cm);
     st->t_solve += tr_clock_seconds() - t1;
 done:
-    cholmod_l_free_factor(&L, cm);
     cholmod_l_free_sparse(&A, cm);
     return rc;
 }
@@ -468,6 +513,9 @@ static void solver_free(solver *s)
     free(s->ti);
     free(s->tj);
     free(s->tx);
+    free(s->pat_i);
+    free(s->pat_j);
+    cholmod_l_free_factor(&s->L, &s->cm);
     cholmod_l_finish(&s->cm);
 }
 
@@ -540,7 +588,7 @@ static int solver_init(solver *s, const tr_curve *cv, double scale, tr_error *er
         }
         s->ne[k] = tr_comp_ne(&s->w, k);
         s->l0[k] = tr_comp_length(&s->w, k) / (double)s->ne[k];
-        s->scale_m[k] = 4.0 * s->l0[k] * s->l0[k];
+        s->scale_m[k] = MINRAD_ROW_SCALE_LOOSE * s->l0[k] * s->l0[k];
         s->l0min = fmin(s->l0min, s->l0[k]);
         s->gap[k] = tr_exclusion_gap(1.0, s->l0[k]);
     }
@@ -714,6 +762,19 @@ static int warm_multipliers(solver *s, const double *y, tr_error *err)
             pd[i] = r[i] + rr1 / rr * pd[i];
         rr = rr1;
     }
+    /* how much of the tension the clipped multipliers leave unbalanced */
+    for (size_t i = 0; i < nr; i++)
+        lam[i] = fmax(0.0, lam[i]);
+    memset(w, 0, nx * sizeof *w);
+    for (size_t i = 0; i < nr; i++)
+        for (size_t k = rowp[i]; k < rowp[i + 1]; k++)
+            w[col[k]] += val[k] * lam[i];
+    double tt = 0.0, res = 0.0;
+    for (size_t k = 0; k < nx; k++) {
+        tt += t[k] * t[k];
+        res += (t[k] - w[k]) * (t[k] - w[k]);
+    }
+    s->warm_residual = tt > 0.0 ? sqrt(res / tt) : 0.0;
     for (size_t i = 0; i < nv; i++)
         s->lam_m[i] = row_of[i] != NONE ? fmax(0.0, lam[row_of[i]]) : 0.0;
     for (size_t qq = 0; qq < s->nsp; qq++)
@@ -722,6 +783,15 @@ done:
     free(col), free(rowp), free(row_of), free(val), free(t), free(w);
     free(lam), free(r), free(pd), free(q);
     return rc;
+}
+
+/* The largest vertex displacement since the strut list was built. */
+static double moved_since_build(const solver *s, const double *y)
+{
+    double m = 0.0;
+    for (size_t i = 0; i < s->nv; i++)
+        m = fmax(m, v3_dist2(y + 3 * i, s->w.x + 3 * i));
+    return sqrt(m);
 }
 
 /* The minimisation itself, on y (3 nv + ncomp). */
@@ -736,6 +806,15 @@ static int minimise(solver *s, double *y, tr_newton_stats *st, double t0, tr_err
         goto done;
     }
     s->mu = p->mu0 / s->l0min;
+    /* A MinRad row's second difference w ~ l0^2 kappa is computed from
+     * coordinates of size R, so its relative violation carries rounding of
+     * ~eps R / l0^2 (1e-11 at N = 9600): asking for less only drives mu up
+     * against rounding, and the Levenberg shift that mu brings with it
+     * stalls the steps. */
+    double reach = 0.0;
+    for (size_t i = 0; i < 3 * nv; i++)
+        reach = fmax(reach, fabs(y[i]));
+    double viol_tol = fmax(p->viol_tol, 16.0 * DBL_EPSILON * reach / (s->l0min * s->l0min));
     double omega = 1e-2, prev_viol = INFINITY, lm = 0.0, prev_len = INFINITY;
     int inner = 0, settled = 0;
     for (int it = 0; it < p->max_iter; it++) {
@@ -757,7 +836,7 @@ static int minimise(solver *s, double *y, tr_newton_stats *st, double t0, tr_err
         st->active = s->active;
         st->struts = s->nsp;
         if (stat <= omega || inner >= p->max_inner) {
-            if (s->viol <= p->viol_tol && stat <= p->stat_tol) {
+            if (s->viol <= viol_tol && stat <= p->stat_tol) {
                 st->converged = 1;
                 break;
             }
@@ -768,7 +847,7 @@ static int minimise(solver *s, double *y, tr_newton_stats *st, double t0, tr_err
              * are then not unique and the force the wrap puts on that edge
              * has no balance within MinRad), while the length no longer
              * moves: bench/RESULTS.md, "Second-order solver". */
-            if (s->viol <= p->viol_tol && fabs(s->length - prev_len) <= 1e-11 * s->length) {
+            if (s->viol <= viol_tol && fabs(s->length - prev_len) <= 1e-11 * s->length) {
                 if (++settled >= 3) {
                     st->settled = 1;
                     break;
@@ -777,17 +856,23 @@ static int minimise(solver *s, double *y, tr_newton_stats *st, double t0, tr_err
                 settled = 0;
             prev_len = s->length;
             update_multipliers(s);
-            if (s->viol > 0.25 * prev_viol && s->viol > p->viol_tol)
+            if (s->viol > 0.25 * prev_viol && s->viol > viol_tol)
                 s->mu = fmin(10.0 * s->mu, p->mu_max / s->l0min);
             prev_viol = s->viol;
             omega = fmax(0.1 * omega, 0.1 * p->stat_tol);
             inner = 0;
             st->outer++;
-            double tr = tr_clock_seconds();
-            if ((rc = rebuild(s, y, err)))
-                goto done;
-            st->rebuilds++;
-            st->t_rebuild += tr_clock_seconds() - tr;
+            /* the strut list is re-selected between passes only where the
+             * rope has moved a tenth of an edge since it was built: the
+             * local minima it keeps do not move before that, and a rebuild
+             * costs a few factorizations at N = 9600 */
+            if (moved_since_build(s, y) > 0.1 * s->l0min) {
+                double tr = tr_clock_seconds();
+                if ((rc = rebuild(s, y, err)))
+                    goto done;
+                st->rebuilds++;
+                st->t_rebuild += tr_clock_seconds() - tr;
+            }
             continue;
         }
         /* Levenberg-Marquardt: a direction that is no descent (the
@@ -848,10 +933,7 @@ static int minimise(solver *s, double *y, tr_newton_stats *st, double t0, tr_err
         }
         memcpy(y, yt, n * sizeof *y);
         /* the strut list is good while no vertex has moved skin / 4 */
-        double m = 0.0;
-        for (size_t i = 0; i < nv; i++)
-            m = fmax(m, v3_dist2(y + 3 * i, s->w.x + 3 * i));
-        if (sqrt(m) > fmin(0.25 * p->skin, 0.5 * s->l0min)) {
+        if (moved_since_build(s, y) > fmin(0.25 * p->skin, 0.5 * s->l0min)) {
             double tr = tr_clock_seconds();
             if ((rc = rebuild(s, y, err)))
                 goto done;
@@ -864,6 +946,30 @@ done:
     free(dir);
     free(yt);
     return rc;
+}
+
+/* The solver on cv scaled by 1 / unit, its strut list and (if asked) its
+ * warm multipliers; *y the variables (3 nv positions, a length per
+ * component). */
+static int prepare(solver *s, const tr_curve *cv, double unit, double **y, tr_newton_stats *st, tr_error *err)
+{
+    int rc = solver_init(s, cv, 1.0 / unit, err);
+    if (rc)
+        return rc;
+    *y = malloc(s->n * sizeof **y);
+    if (!*y)
+        return tr_fail(err, TR_ENOMEM, "out of memory (Newton solver)");
+    memcpy(*y, s->w.x, 3 * s->nv * sizeof **y);
+    for (int k = 0; k < s->nc; k++)
+        (*y)[3 * s->nv + (size_t)k] = s->l0[k];
+    double tr = tr_clock_seconds();
+    if ((rc = rebuild(s, *y, err)))
+        return rc;
+    st->t_rebuild += tr_clock_seconds() - tr;
+    s->warm_residual = 1.0;
+    if (s->p->warm_start && (rc = warm_multipliers(s, *y, err)))
+        return rc;
+    return TR_OK;
 }
 
 int tr_newton(tr_curve *cv, const tr_newton_params *prm, tr_newton_stats *st, tr_error *err)
@@ -892,22 +998,39 @@ int tr_newton(tr_curve *cv, const tr_newton_params *prm, tr_newton_stats *st, tr
     memset(&s, 0, sizeof s);
     s.p = prm;
     double *y = NULL;
-    if ((rc = solver_init(&s, cv, 1.0 / th0.thickness, err)))
+    /* The solver's unit: thickness 1, except where MinRad alone holds the
+     * start below its struts by a little (a spline through a tight
+     * polygon overshoots its curvature where the curvature jumps: MinRad
+     * 0.93 at the N = 2400 trefoil spline-refined to 9600): scaling by
+     * MinRad would leave every contact 7 % apart, to be closed first order
+     * by Newton steps; at the struts' scale only those few MinRad rows
+     * start violated, which the augmented Lagrangian restores locally. That
+     * holds for a tight start only (the warm start says which): a loose one
+     * started violated just has further to go (the wobbled 32-gon: 208
+     * steps against 76). */
+    double unit = th0.thickness;
+    if (isfinite(th0.dcsd) && th0.minrad < (1.0 - 1e-4) * 0.5 * th0.dcsd && th0.minrad >= MINRAD_SLACK * 0.5 * th0.dcsd)
+        unit = 0.5 * th0.dcsd;
+    if ((rc = prepare(&s, cv, unit, &y, st, err)))
         goto done;
-    y = malloc(s.n * sizeof *y);
-    if (!y) {
-        rc = tr_fail(err, TR_ENOMEM, "out of memory (Newton solver)");
-        goto done;
+    if (unit != th0.thickness && !(s.warm_residual < TIGHT_RESIDUAL)) {
+        solver_free(&s);
+        free(y);
+        y = NULL;
+        memset(&s, 0, sizeof s);
+        s.p = prm;
+        if ((rc = prepare(&s, cv, th0.thickness, &y, st, err)))
+            goto done;
     }
-    memcpy(y, s.w.x, 3 * s.nv * sizeof *y);
-    for (int k = 0; k < s.nc; k++)
-        y[3 * s.nv + (size_t)k] = s.l0[k];
-    double tr = tr_clock_seconds();
-    if ((rc = rebuild(&s, y, err)))
-        goto done;
-    st->t_rebuild += tr_clock_seconds() - tr;
-    if (prm->warm_start && (rc = warm_multipliers(&s, y, err)))
-        goto done;
+    st->warm_residual = s.warm_residual;
+    if (unit != th0.thickness && s.warm_residual < TIGHT_RESIDUAL) {
+        /* the same rows, rescaled: the multipliers scale with them */
+        double f = MINRAD_ROW_SCALE_TIGHT / MINRAD_ROW_SCALE_LOOSE;
+        for (int k = 0; k < s.nc; k++)
+            s.scale_m[k] *= f;
+        for (size_t i = 0; i < s.nv; i++)
+            s.lam_m[i] *= f;
+    }
     if ((rc = minimise(&s, y, st, t0, err)))
         goto done;
     /* the oracle decides: rescale to thickness 1, keep if shorter */

@@ -115,9 +115,10 @@ typedef struct tr_newton_stats {
     int accepted; /* the curve was replaced */
     int converged;
     int settled;  /* stopped: feasible and the length unchanged (1e-12) over three updates */
-    int iters, outer, factorizations, rebuilds;
+    int iters, outer, factorizations, analyses, rebuilds;
     double ropelength_before, ropelength_after;
     double max_viol, stat;
+    double warm_residual; /* the tension the warm start's multipliers leave unbalanced (relative) */
     size_t struts, active;
     /* where the time went */
     double t_eval, t_factor, t_solve, t_search, t_rebuild, seconds;
