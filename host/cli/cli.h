@@ -12,5 +12,31 @@ int tr_cmd_tighten(int argc, char **argv);
 int tr_cmd_devices(int argc, char **argv);
 int tr_cmd_bench(int argc, char **argv);
 int tr_cmd_analyze(int argc, char **argv);
+int tr_cmd_batch(int argc, char **argv);
+
+/* What one tighten came to, for batch, which runs tighten's own steps on
+ * every curve of a manifest rather than a process per curve. written: the
+ * output (with its certificate) was written; interrupted: SIGINT/SIGTERM
+ * stopped the run (the output and the checkpoint hold its last state). */
+typedef struct tr_tighten_report {
+    int written, interrupted;
+    const char *stop; /* tr_stop_reason_name, static */
+    size_t n;         /* vertices of the written curve */
+    double ropelength, thickness, minrad, dcsd;
+    double kkt_residual; /* NAN: not certified */
+    double elapsed;      /* seconds, the runs before a resumed checkpoint included */
+    long steps;
+    int tries;           /* tightenings whose best result was kept (1: one road) */
+} tr_tighten_report;
+
+/* tighten with argv as tr_cmd_tighten takes it (argv[0] the command's
+ * name): the same parsing, run, certificate and output, and the same
+ * messages on stderr; with rep the summary is not printed on stdout but
+ * returned in *rep. Returns tighten's exit status. */
+int tr_tighten_command(int argc, char **argv, tr_tighten_report *rep);
+
+/* Whether SIGINT/SIGTERM has asked the running tighten to stop (the
+ * handler tighten installs stays in place after it returns). */
+int tr_tighten_stop_requested(void);
 
 #endif

@@ -624,8 +624,31 @@ static int final_status(const tighten_opts *o, const tighten_result *r)
     return r->why == TR_STOP_SIGNAL || (goal && !reached) ? 1 : 0;
 }
 
-int tr_cmd_tighten(int argc, char **argv)
+/* The report batch reads: what print_summary prints, as numbers. */
+static void fill_report(const tighten_result *r, tr_tighten_report *rep)
 {
+    rep->written = 1;
+    rep->interrupted = r->why == TR_STOP_SIGNAL;
+    rep->stop = tr_stop_reason_name(r->why);
+    rep->n = r->th.vertices;
+    rep->ropelength = r->th.ropelength;
+    rep->thickness = r->th.thickness;
+    rep->minrad = r->th.minrad;
+    rep->dcsd = r->th.dcsd;
+    rep->kkt_residual = r->certified ? r->kr.residual : NAN;
+    rep->elapsed = r->p.elapsed;
+    rep->steps = r->p.steps;
+    rep->tries = 1;
+}
+
+int tr_tighten_stop_requested(void) { return stop_requested != 0; }
+
+int tr_cmd_tighten(int argc, char **argv) { return tr_tighten_command(argc, argv, NULL); }
+
+int tr_tighten_command(int argc, char **argv, tr_tighten_report *rep)
+{
+    if (rep)
+        *rep = (tr_tighten_report){.kkt_residual = NAN, .stop = ""};
     tighten_opts o;
     int rc = parse_options(argc, argv, &o);
     if (rc >= 0)
@@ -650,7 +673,10 @@ int tr_cmd_tighten(int argc, char **argv)
         tr_engine_destroy(e);
         return 2;
     }
-    print_summary(&o, e, &r);
+    if (rep)
+        fill_report(&r, rep);
+    else
+        print_summary(&o, e, &r);
     rc = final_status(&o, &r);
     tr_curve_free(&r.fin);
     tr_engine_destroy(e);
