@@ -17,6 +17,7 @@ static const subcommand commands[] = {
     {"analyze", tr_cmd_analyze, "curvature, torsion, symmetry and contact portrait of a tight knot"},
     {"devices", tr_cmd_devices, "list the compute devices (serial reference and OpenCL)"},
     {"bench", tr_cmd_bench, "throughput of the tightening step on each device"},
+    {"batch", tr_cmd_batch, "tighten every knot of a manifest or folder into one table (resumable)"},
 };
 
 static void usage(FILE *out)

@@ -1,0 +1,142 @@
+/* The batch table's line of one knot and its record file (batch_row.h). */
+#include <limits.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cli/batch_row.h"
+#include "cli/cli_args.h"
+#include "util/json.h"
+
+#define NCOLS 12
+
+static const char header[] =
+    "knot\tN\tropelength\tthickness\tMinRad\tdcsd\tkkt_residual\ttime_s\ttries\tsteps\tstop\tresumed";
+
+const char *tr_batch_row_header(void) { return header; }
+
+/* A number of the table: the format's digits, or '-' where there is none. */
+static void num(tr_text *t, const char *fmt, double v)
+{
+    if (isfinite(v))
+        tr_text_printf(t, fmt, v);
+    else
+        tr_text_printf(t, "-");
+}
+
+void tr_batch_row_format(tr_text *t, const tr_batch_row *r)
+{
+    /* ropelength to 10 decimals, as the TightKnot table; the record is read
+     * back from this text, so the table shows what the record holds */
+    tr_text_printf(t, "%s\t%zu\t", r->knot, r->n);
+    num(t, "%.10f", r->ropelength);
+    tr_text_printf(t, "\t");
+    num(t, "%.12f", r->thickness);
+    tr_text_printf(t, "\t");
+    num(t, "%.12f", r->minrad);
+    tr_text_printf(t, "\t");
+    num(t, "%.12f", r->dcsd);
+    tr_text_printf(t, "\t");
+    num(t, "%.3e", r->kkt_residual);
+    tr_text_printf(t, "\t");
+    num(t, "%.2f", r->time_s);
+    tr_text_printf(t, "\t%d\t%ld\t%s\t%d", r->tries, r->steps, r->stop, r->resumed);
+}
+
+void tr_batch_row_json_fields(tr_text *t, const tr_batch_row *r)
+{
+    tr_text_printf(t, "\"knot\": ");
+    tr_json_string(t, r->knot);
+    tr_text_printf(t, ", \"N\": %zu, \"ropelength\": ", r->n);
+    tr_json_number(t, "%.10f", r->ropelength);
+    tr_text_printf(t, ", \"thickness\": ");
+    tr_json_number(t, "%.12f", r->thickness);
+    tr_text_printf(t, ", \"MinRad\": ");
+    tr_json_number(t, "%.12f", r->minrad);
+    tr_text_printf(t, ", \"dcsd\": ");
+    tr_json_number(t, "%.12f", r->dcsd);
+    tr_text_printf(t, ", \"kkt_residual\": ");
+    tr_json_number(t, "%.3e", r->kkt_residual);
+    tr_text_printf(t, ", \"time_s\": ");
+    tr_json_number(t, "%.2f", r->time_s);
+    tr_text_printf(t, ", \"tries\": %d, \"steps\": %ld, \"stop\": ", r->tries, r->steps);
+    tr_json_string(t, r->stop);
+    tr_text_printf(t, ", \"resumed\": %s", r->resumed ? "true" : "false");
+}
+
+int tr_batch_row_write(const char *path, const tr_batch_row *r, tr_error *err)
+{
+    tr_text t = {0};
+    tr_text_printf(&t, "%s\n", header);
+    tr_batch_row_format(&t, r);
+    tr_text_printf(&t, "\n");
+    return tr_text_write_atomic(&t, path, err);
+}
+
+/* A number field: '-' is NAN. */
+static int field_double(const char *s, double *v)
+{
+    if (!strcmp(s, "-")) {
+        *v = NAN;
+        return 0;
+    }
+    return tr_arg_double(s, -HUGE_VAL, HUGE_VAL, v);
+}
+
+/* Parses the record's second line (tabs cut into NUL-separated fields). */
+static int parse_fields(char *line, tr_batch_row *r)
+{
+    char *f[NCOLS];
+    int nf = 0;
+    for (char *p = line;;) {
+        if (nf == NCOLS)
+            return -1; /* more fields than columns */
+        f[nf++] = p;
+        char *tab = strchr(p, '\t');
+        if (!tab)
+            break;
+        *tab = '\0';
+        p = tab + 1;
+    }
+    long n, tries, resumed;
+    if (nf != NCOLS || strlen(f[0]) > TR_BATCH_NAME_MAX || strlen(f[10]) >= sizeof r->stop ||
+        tr_arg_long(f[1], 0, 1000000000, &n) || field_double(f[2], &r->ropelength) ||
+        field_double(f[3], &r->thickness) || field_double(f[4], &r->minrad) || field_double(f[5], &r->dcsd) ||
+        field_double(f[6], &r->kkt_residual) || field_double(f[7], &r->time_s) ||
+        tr_arg_long(f[8], 0, 1000000, &tries) || tr_arg_long(f[9], 0, LONG_MAX, &r->steps) ||
+        tr_arg_long(f[11], 0, 1, &resumed))
+        return -1;
+    strcpy(r->knot, f[0]);
+    strcpy(r->stop, f[10]);
+    r->n = (size_t)n;
+    r->tries = (int)tries;
+    r->resumed = (int)resumed;
+    return 0;
+}
+
+int tr_batch_row_read(const char *path, tr_batch_row *r, tr_error *err)
+{
+    char *text;
+    int rc = tr_read_text_file(path, &text, NULL, err);
+    if (rc != TR_OK)
+        return rc;
+    size_t hl = strlen(header);
+    char *line = text + hl + 1;
+    if (strncmp(text, header, hl) || text[hl] != '\n')
+        rc = tr_fail(err, TR_EPARSE, "%s:1: not a batch record (expected the header '%s')", path, header);
+    else {
+        char *nl = strchr(line, '\n');
+        if (!nl || nl[1] != '\0')
+            rc = tr_fail(err, TR_EPARSE, "%s:2: expected one line after the header", path);
+        else {
+            *nl = '\0';
+            *r = (tr_batch_row){0};
+            if (parse_fields(line, r))
+                rc = tr_fail(err, TR_EPARSE, "%s:2: expected %d tab-separated fields as the header names", path,
+                             NCOLS);
+        }
+    }
+    free(text);
+    return rc;
+}

@@ -1,0 +1,43 @@
+/* One knot's line of the batch table, and the record file that holds it in
+ * the output folder (NAME.row.tsv: the table's header and this one line).
+ * The record is written last, after the tight curve, so its presence is
+ * what "this knot is done" means; the table is rebuilt from the records,
+ * whichever process (a GNU parallel job, a SLURM array task) wrote them. */
+#ifndef TR_BATCH_ROW_H
+#define TR_BATCH_ROW_H
+
+#include <stddef.h>
+
+#include "cli/batch_manifest.h"
+#include "util/error.h"
+#include "util/text_file.h"
+
+typedef struct tr_batch_row {
+    char knot[TR_BATCH_NAME_MAX + 1];
+    size_t n;
+    double ropelength, thickness, minrad, dcsd;
+    double kkt_residual; /* NAN: not certified (written '-') */
+    double time_s;       /* the run's seconds, runs before a resume included */
+    int tries;
+    long steps;
+    char stop[32]; /* why the run stopped (tr_stop_reason_name) */
+    int resumed;   /* 1: its last run continued from a checkpoint */
+} tr_batch_row;
+
+/* The table's column names, tab-separated, no newline. */
+const char *tr_batch_row_header(void);
+
+/* Appends r as one tab-separated line (no newline). */
+void tr_batch_row_format(tr_text *t, const tr_batch_row *r);
+
+/* Appends r's members as JSON ("knot": ..., "resumed": ...), without the
+ * braces, so that the table can add its comparison to the object. */
+void tr_batch_row_json_fields(tr_text *t, const tr_batch_row *r);
+
+/* Writes r to path atomically (the header line and its line). */
+int tr_batch_row_write(const char *path, const tr_batch_row *r, tr_error *err);
+
+/* Reads a record; TR_EPARSE "PATH:LINE: ..." for anything else. */
+int tr_batch_row_read(const char *path, tr_batch_row *r, tr_error *err);
+
+#endif

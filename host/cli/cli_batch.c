@@ -1,0 +1,457 @@
+/* tightrope batch SRC -o OUT [options] [-- tighten options]
+ *
+ * Tightens every knot of a manifest or a folder (batch_manifest.h) with
+ * tighten's own code (tr_tighten_command, in this process: the same
+ * checks, certificate and output as `tightrope tighten`), one after the
+ * other, into OUT: NAME.vect (the tight curve, its certificate in
+ * comments), NAME.ckpt while it runs, NAME.row.tsv once it is done
+ * (batch_row.h), and the table of every knot done, table.tsv and
+ * table.json (batch_table.h). A knot with a record is skipped and one with
+ * a checkpoint resumes from it, so a batch killed at any moment is started
+ * again with the same command. Scale-out is left to existing engines:
+ * --only NAME and --job I --jobs J select independent parts, which GNU
+ * parallel or a SLURM array (scripts/slurm_batch.sh) run at once into the
+ * same OUT; each rewrites the table under a lock, and --table-only
+ * rebuilds it from the records. */
+#include <errno.h>
+#include <fcntl.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/file.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "cli/batch_manifest.h"
+#include "cli/batch_row.h"
+#include "cli/batch_table.h"
+#include "cli/cli.h"
+#include "cli/cli_args.h"
+#include "curve/curve.h"
+#include "curve/curve_io.h"
+#include "util/clock.h"
+
+static void usage(FILE *out)
+{
+    fprintf(out,
+            "usage: tightrope batch SRC -o OUT [options] [-- TIGHTEN-OPTIONS...]\n"
+            "  SRC                a folder of curve files (.vect, .tsv, .txt, .dat, .knot; each knot\n"
+            "                     named by its file without the extension) or a manifest: lines\n"
+            "                     name<TAB>file<TAB>N<TAB>options ('#' comments; file relative to\n"
+            "                     the manifest; N the vertices per component of the tight curve,\n"
+            "                     tighten --refine-to N, or --n N for a start with more, '-' none;\n"
+            "                     options: tighten's, space-separated, for this knot)\n"
+            "  -o, --out OUT      output folder: NAME.vect (tight curve and certificate), NAME.ckpt\n"
+            "                     (while it runs), NAME.row.tsv (done), table.tsv and table.json\n"
+            "  --only NAME        this knot only (GNU parallel: one job per name of --list)\n"
+            "  --job I --jobs J   the knots at places I, I+J, I+2J, ... of SRC (0 <= I < J):\n"
+            "                     one of J independent jobs (a SLURM array, scripts/slurm_batch.sh)\n"
+            "  --list             print the selected knots' names, one a line, and tighten nothing\n"
+            "  --table-only       tighten nothing: rebuild the table from the knots done in OUT\n"
+            "  --compare REF      add a reference table's N and ropelength (a TSV with a header: knot\n"
+            "                     name first, a column 'ropelength...'; '.' and '_' match in names)\n"
+            "                     and the difference, ours - reference, absolute and in %%\n"
+            "  --checkpoint-every S  seconds between a knot's checkpoints (default 30)\n"
+            "  --quiet            no progress lines\n"
+            "A knot done (its NAME.row.tsv exists) is skipped; one with a checkpoint resumes from it.\n"
+            "TIGHTEN-OPTIONS go to every knot (before the manifest's own), e.g. -- --scale --time-limit 120;\n"
+            "batch sets -o, --checkpoint, --checkpoint-every, --resume and --json itself.\n"
+            "Exit status: 0 every selected knot done; 1 interrupted (SIGINT/SIGTERM: the running\n"
+            "knot keeps its checkpoint) or a knot's run failed; 2 bad SRC, option or input.\n");
+}
+
+typedef struct batch_opts {
+    const char *src, *out, *only, *compare;
+    long job, jobs; /* jobs 0: all */
+    double ckpt_every;
+    int list, table_only, quiet;
+    char **topts; /* tighten options after -- */
+    int ntopts;
+} batch_opts;
+
+/* Parses the command line; -1 to go on, else the exit status. */
+static int parse_options(int argc, char **argv, batch_opts *o)
+{
+    *o = (batch_opts){.job = -1, .ckpt_every = 30};
+    for (int i = 1; i < argc; i++) {
+        const char *a = argv[i];
+        if (!strcmp(a, "--")) {
+            o->topts = argv + i + 1;
+            o->ntopts = argc - i - 1;
+            break;
+        }
+        if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
+            usage(stdout);
+            return 0;
+        }
+        if (!strcmp(a, "--list") || !strcmp(a, "--table-only") || !strcmp(a, "--quiet")) {
+            *(a[2] == 'l' ? &o->list : a[2] == 't' ? &o->table_only : &o->quiet) = 1;
+            continue;
+        }
+        static const char *valued[] = {"-o", "--out", "--only", "--compare", "--job", "--jobs",
+                                       "--checkpoint-every"};
+        size_t k = 0;
+        while (k < sizeof valued / sizeof valued[0] && strcmp(a, valued[k]))
+            k++;
+        if (k == sizeof valued / sizeof valued[0]) {
+            if (a[0] == '-' && a[1]) {
+                fprintf(stderr, "tightrope batch: unknown option '%s' (tighten's options go after --; "
+                                "see tightrope batch --help)\n", a);
+                return 2;
+            }
+            if (o->src) {
+                fprintf(stderr, "tightrope batch: unexpected argument '%s'\n", a);
+                return 2;
+            }
+            o->src = a;
+            continue;
+        }
+        if (i + 1 >= argc) {
+            fprintf(stderr, "tightrope batch: %s needs a value\n", a);
+            return 2;
+        }
+        const char *v = argv[++i];
+        int bad = 0;
+        if (k <= 1)
+            o->out = v;
+        else if (k == 2)
+            o->only = v;
+        else if (k == 3)
+            o->compare = v;
+        else if (k == 4)
+            bad = tr_arg_long(v, 0, 1000000000, &o->job);
+        else if (k == 5)
+            bad = tr_arg_long(v, 1, 1000000000, &o->jobs);
+        else
+            bad = tr_arg_double(v, 0, 1e9, &o->ckpt_every) || o->ckpt_every <= 0;
+        if (bad) {
+            fprintf(stderr, "tightrope batch: bad %s '%s' (%s)\n", a, v,
+                    k == 4 ? "an integer >= 0" : k == 5 ? "an integer >= 1" : "a number > 0 (seconds)");
+            return 2;
+        }
+    }
+    const char *bad = NULL;
+    if (!o->src)
+        bad = "no SRC (a manifest or a folder of curves; see tightrope batch --help)";
+    else if (!o->out && !o->list)
+        bad = "no output folder (-o OUT)";
+    else if ((o->job >= 0) != (o->jobs > 0))
+        bad = "--job I and --jobs J go together";
+    else if (o->jobs > 0 && o->job >= o->jobs)
+        bad = "--job I needs 0 <= I < J (--jobs J)";
+    else if (o->only && o->jobs > 0)
+        bad = "--only and --job select differently; give one";
+    else if (o->table_only && (o->only || o->jobs > 0 || o->list))
+        bad = "--table-only rebuilds the whole table; it takes no --only, --job or --list";
+    for (int j = 0; !bad && j < o->ntopts; j++)
+        if (tr_batch_reserved_option(o->topts[j])) {
+            fprintf(stderr, "tightrope batch: tighten option %s: %s\n", o->topts[j],
+                    tr_batch_reserved_option(o->topts[j]));
+            return 2;
+        }
+    if (bad) {
+        fprintf(stderr, "tightrope batch: %s\n", bad);
+        return 2;
+    }
+    return -1;
+}
+
+/* Whether the tighten options after -- set the vertex count. */
+static int topts_set_n(const batch_opts *o)
+{
+    for (int j = 0; j < o->ntopts; j++)
+        if (!strcmp(o->topts[j], "--n") || !strcmp(o->topts[j], "--refine-to"))
+            return 1;
+    return 0;
+}
+
+/* OUT/NAME.EXT into buf (sized for the longest name). */
+static void knot_path(char *buf, size_t size, const char *out, const char *name, const char *ext)
+{
+    snprintf(buf, size, "%s/%s.%s", out, name, ext);
+}
+
+#define PATH_SIZE 4400
+
+static int exists(const char *path) { return access(path, F_OK) == 0; }
+
+/* The options of a resumed run: the checkpoint holds the resampled and
+ * scaled start, and tighten refuses --n and --scale with --resume. */
+static int start_only(char **opts, int j)
+{
+    return !strcmp(opts[j], "--scale") ? 1 : !strcmp(opts[j], "--n") ? 2 : 0;
+}
+
+/* Appends the options to args, leaving out the start's when resuming. */
+static void add_opts(char **args, int *na, char **opts, int nopts, int resume)
+{
+    for (int j = 0; j < nopts; j++) {
+        int skip = resume ? start_only(opts, j) : 0;
+        if (skip) {
+            j += skip - 1;
+            continue;
+        }
+        args[(*na)++] = opts[j];
+    }
+}
+
+/* How N reaches tighten: --refine-to N refines the start's components up
+ * to N; a start with more vertices than that is resampled to N (--n N). */
+static const char *n_option(const tr_batch_knot *k, int resume, tr_error *err, int *rc)
+{
+    *rc = TR_OK;
+    if (resume)
+        return "--refine-to";
+    tr_curve c;
+    if ((*rc = tr_curve_read(k->file, TR_FORMAT_AUTO, &c, err)) != TR_OK)
+        return NULL;
+    size_t most = 0;
+    for (int q = 0; q < c.ncomp; q++)
+        if (tr_comp_nv(&c, q) > most)
+            most = tr_comp_nv(&c, q);
+    tr_curve_free(&c);
+    return most > (size_t)k->n ? "--n" : "--refine-to";
+}
+
+/* Runs tighten on knot k (or resumes it) and writes its record. Returns
+ * tighten's exit status, or 2 when the record cannot be written; *rep
+ * says what the run came to. */
+static int run_knot(const batch_opts *o, const tr_batch_knot *k, tr_tighten_report *rep)
+{
+    char vect[PATH_SIZE], ckpt[PATH_SIZE], row[PATH_SIZE], nbuf[32], every[32];
+    knot_path(vect, sizeof vect, o->out, k->name, "vect");
+    knot_path(ckpt, sizeof ckpt, o->out, k->name, "ckpt");
+    knot_path(row, sizeof row, o->out, k->name, "row.tsv");
+    int resume = exists(ckpt);
+    char **args = malloc((size_t)(16 + o->ntopts + k->nopts) * sizeof *args);
+    if (!args) {
+        fprintf(stderr, "tightrope batch: out of memory\n");
+        return 1;
+    }
+    int na = 0;
+    args[na++] = "tighten";
+    if (resume) {
+        args[na++] = "--resume";
+        args[na++] = ckpt;
+    } else {
+        args[na++] = k->file;
+    }
+    snprintf(every, sizeof every, "%g", o->ckpt_every);
+    char *fixed[] = {"-o", vect, "--checkpoint", ckpt, "--checkpoint-every", every, "--quiet"};
+    for (size_t j = 0; j < sizeof fixed / sizeof fixed[0]; j++)
+        args[na++] = fixed[j];
+    tr_error err;
+    int rc = TR_OK;
+    if (k->n > 0) {
+        const char *opt = n_option(k, resume, &err, &rc);
+        if (rc != TR_OK) {
+            fprintf(stderr, "tightrope batch: %s: %s\n", k->name, err.msg);
+            free(args);
+            *rep = (tr_tighten_report){0};
+            return rc == TR_ENOMEM ? 1 : 2;
+        }
+        snprintf(nbuf, sizeof nbuf, "%ld", k->n);
+        args[na++] = (char *)opt;
+        args[na++] = nbuf;
+    }
+    add_opts(args, &na, o->topts, o->ntopts, resume);
+    add_opts(args, &na, k->opts, k->nopts, resume);
+    args[na] = NULL;
+    int status = tr_tighten_command(na, args, rep);
+    free(args);
+    if (!rep->written || rep->interrupted) {
+        if (resume && !rep->written)
+            fprintf(stderr, "tightrope batch: %s: resuming from %s failed; remove it to start the knot afresh\n",
+                    k->name, ckpt);
+        return status;
+    }
+    tr_batch_row r = {.n = rep->n, .ropelength = rep->ropelength, .thickness = rep->thickness,
+                      .minrad = rep->minrad, .dcsd = rep->dcsd, .kkt_residual = rep->kkt_residual,
+                      .time_s = rep->elapsed, .tries = rep->tries, .steps = rep->steps, .resumed = resume};
+    snprintf(r.knot, sizeof r.knot, "%s", k->name);
+    snprintf(r.stop, sizeof r.stop, "%s", rep->stop);
+    /* the record last: with it the knot is done, and its checkpoint is
+     * no longer needed */
+    if (tr_batch_row_write(row, &r, &err)) {
+        fprintf(stderr, "tightrope batch: %s\n", err.msg);
+        return 2;
+    }
+    unlink(ckpt);
+    return status;
+}
+
+/* Rebuilds OUT/table.* from the records of the knots of l (in l's order),
+ * under an exclusive lock on OUT/.batch.lock, so that of several jobs
+ * finishing at once the last to write has read every record. */
+static int write_table(const batch_opts *o, const tr_batch_list *l, const tr_batch_ref *ref, size_t *rows_out)
+{
+    char lock[PATH_SIZE], row[PATH_SIZE];
+    snprintf(lock, sizeof lock, "%s/.batch.lock", o->out);
+    int fd = open(lock, O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+    if (fd < 0 || flock(fd, LOCK_EX)) {
+        fprintf(stderr, "tightrope batch: %s: %s\n", lock, strerror(errno));
+        if (fd >= 0)
+            close(fd);
+        return 2;
+    }
+    tr_batch_row *rows = malloc((l->count + 1) * sizeof *rows);
+    int status = rows ? 0 : 1;
+    size_t n = 0;
+    tr_error err;
+    for (size_t i = 0; status == 0 && i < l->count; i++) {
+        knot_path(row, sizeof row, o->out, l->knots[i].name, "row.tsv");
+        if (!exists(row))
+            continue;
+        if (tr_batch_row_read(row, &rows[n], &err) == TR_OK)
+            n++;
+        else {
+            fprintf(stderr, "tightrope batch: %s\n", err.msg);
+            status = 2;
+        }
+    }
+    if (status == 0 && tr_batch_table_write(o->out, rows, n, ref, &err)) {
+        fprintf(stderr, "tightrope batch: %s\n", err.msg);
+        status = 2;
+    }
+    if (!rows)
+        fprintf(stderr, "tightrope batch: out of memory\n");
+    free(rows);
+    close(fd); /* releases the lock */
+    *rows_out = n;
+    return status;
+}
+
+/* Whether knot i of l is selected by --only or --job/--jobs. */
+static int selected(const batch_opts *o, const tr_batch_list *l, size_t i)
+{
+    if (o->only)
+        return !strcmp(l->knots[i].name, o->only);
+    return o->jobs == 0 || (long)(i % (size_t)o->jobs) == o->job;
+}
+
+/* The counts behind the progress lines. */
+typedef struct batch_progress {
+    size_t total, at, done, skipped, failed;
+    double t0, run_seconds; /* clock at the start; seconds of the knots run here */
+} batch_progress;
+
+static void progress_line(const batch_opts *o, const batch_progress *p, const char *name, const char *fmt,
+                          const char *what)
+{
+    if (o->quiet)
+        return;
+    double el = tr_clock_seconds() - p->t0;
+    fprintf(stderr, "batch [%zu/%zu] %s: ", p->at, p->total, name);
+    fprintf(stderr, fmt, what);
+    fprintf(stderr, " (%zu done, %zu skipped, %zu failed; %.0f s", p->done, p->skipped, p->failed, el);
+    size_t left = p->total - p->at;
+    if (p->done > 0 && left > 0)
+        fprintf(stderr, ", about %.0f s left", p->run_seconds / (double)p->done * (double)left);
+    fprintf(stderr, ")\n");
+}
+
+/* Tightens the selected knots in turn. Returns the exit status. */
+static int run_all(const batch_opts *o, const tr_batch_list *l, const size_t *sel, size_t nsel)
+{
+    batch_progress p = {.total = nsel, .t0 = tr_clock_seconds()};
+    int status = 0;
+    for (size_t s = 0; s < nsel; s++) {
+        const tr_batch_knot *k = &l->knots[sel[s]];
+        char row[PATH_SIZE], ckpt[PATH_SIZE], what[160];
+        knot_path(row, sizeof row, o->out, k->name, "row.tsv");
+        knot_path(ckpt, sizeof ckpt, o->out, k->name, "ckpt");
+        p.at = s + 1;
+        if (exists(row)) {
+            /* a run killed between its record and the checkpoint's removal */
+            unlink(ckpt);
+            p.skipped++;
+            progress_line(o, &p, k->name, "%s", "done before, skipped");
+            continue;
+        }
+        if (tr_tighten_stop_requested())
+            return 1;
+        progress_line(o, &p, k->name, "%s", exists(ckpt) ? "resuming from its checkpoint" : "tightening");
+        double t = tr_clock_seconds();
+        tr_tighten_report rep;
+        int rc = run_knot(o, k, &rep);
+        if (rep.interrupted || tr_tighten_stop_requested()) {
+            if (!o->quiet)
+                fprintf(stderr, "batch: interrupted; %s resumes from its checkpoint when the batch is run again\n",
+                        k->name);
+            return 1;
+        }
+        if (rep.written && rc != 2) {
+            p.done++;
+            p.run_seconds += tr_clock_seconds() - t;
+            snprintf(what, sizeof what, "ropelength %.6f, KKT residual %.1e, %.1f s, stopped: %s", rep.ropelength,
+                     rep.kkt_residual, rep.elapsed, rep.stop);
+            progress_line(o, &p, k->name, "done, %s", what);
+        } else {
+            p.failed++;
+            status = rc == 2 || status == 2 ? 2 : 1;
+            snprintf(what, sizeof what, "%d", rc);
+            progress_line(o, &p, k->name, "FAILED (tighten's exit status %s; its message above)", what);
+        }
+    }
+    return status;
+}
+
+int tr_cmd_batch(int argc, char **argv)
+{
+    batch_opts o;
+    int status = parse_options(argc, argv, &o);
+    if (status >= 0)
+        return status;
+    tr_batch_list l;
+    tr_batch_ref ref = {0};
+    tr_error err;
+    if (tr_batch_read(o.src, &l, &err)) {
+        fprintf(stderr, "tightrope batch: %s\n", err.msg);
+        return 2;
+    }
+    if (o.compare && tr_batch_ref_read(o.compare, &ref, &err)) {
+        fprintf(stderr, "tightrope batch: %s\n", err.msg);
+        tr_batch_list_free(&l);
+        return 2;
+    }
+    size_t *sel = malloc(l.count * sizeof *sel), nsel = 0;
+    for (size_t i = 0; sel && i < l.count; i++)
+        if (selected(&o, &l, i)) {
+            if (l.knots[i].n > 0 && topts_set_n(&o)) {
+                fprintf(stderr, "tightrope batch: %s:%d gives N %ld and the options after -- give --n or "
+                                "--refine-to; give one of them\n", o.src, l.knots[i].line, l.knots[i].n);
+                status = 2;
+                break;
+            }
+            sel[nsel++] = i;
+        }
+    if (!sel) {
+        fprintf(stderr, "tightrope batch: out of memory\n");
+        status = 1;
+    } else if (status < 0 && o.only && nsel == 0) {
+        fprintf(stderr, "tightrope batch: no knot '%s' in %s (tightrope batch %s --list names them)\n", o.only,
+                o.src, o.src);
+        status = 2;
+    } else if (status < 0 && o.list) {
+        for (size_t s = 0; s < nsel; s++)
+            printf("%s\n", l.knots[sel[s]].name);
+        status = 0;
+    } else if (status < 0 && mkdir(o.out, 0777) && errno != EEXIST) {
+        fprintf(stderr, "tightrope batch: cannot make the output folder %s: %s\n", o.out, strerror(errno));
+        status = 2;
+    }
+    if (status < 0) {
+        status = o.table_only ? 0 : run_all(&o, &l, sel, nsel);
+        size_t rows = 0;
+        int ts = write_table(&o, &l, o.compare ? &ref : NULL, &rows);
+        if (ts > status)
+            status = ts;
+        if (!o.quiet)
+            fprintf(stderr, "batch: %s/table.tsv holds %zu of the %zu knots of %s\n", o.out, rows, l.count, o.src);
+    }
+    free(sel);
+    tr_batch_ref_free(&ref);
+    tr_batch_list_free(&l);
+    return status;
+}
