@@ -322,6 +322,27 @@ static int write_table(const batch_opts *o, const tr_batch_list *l, const tr_bat
     return status;
 }
 
+/* Takes the knot's lock (OUT/.NAME.lock, kept: a lock file removed while
+ * another process waits on it would let two hold "the" lock), so that two
+ * batches over one OUT (overlapping --job sets, a SLURM task requeued
+ * while it still runs) never tighten one knot at once. Returns the
+ * descriptor that holds it, -1 when another process holds it, -2 (with
+ * the message printed) when it cannot be taken. */
+static int lock_knot(const char *out, const char *name)
+{
+    char path[PATH_SIZE];
+    snprintf(path, sizeof path, "%s/.%s.lock", out, name);
+    int fd = open(path, O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+    if (fd >= 0 && flock(fd, LOCK_EX | LOCK_NB) == 0)
+        return fd;
+    int busy = fd >= 0 && errno == EWOULDBLOCK;
+    if (!busy)
+        fprintf(stderr, "tightrope batch: %s: %s\n", path, strerror(errno));
+    if (fd >= 0)
+        close(fd);
+    return busy ? -1 : -2;
+}
+
 /* Whether knot i of l is selected by --only or --job/--jobs. */
 static int selected(const batch_opts *o, const tr_batch_list *l, size_t i)
 {
@@ -332,7 +353,7 @@ static int selected(const batch_opts *o, const tr_batch_list *l, size_t i)
 
 /* The counts behind the progress lines. */
 typedef struct batch_progress {
-    size_t total, at, done, skipped, failed;
+    size_t total, at, done, skipped, failed, busy;
     double t0, run_seconds; /* clock at the start; seconds of the knots run here */
 } batch_progress;
 
@@ -344,7 +365,10 @@ static void progress_line(const batch_opts *o, const batch_progress *p, const ch
     double el = tr_clock_seconds() - p->t0;
     fprintf(stderr, "batch [%zu/%zu] %s: ", p->at, p->total, name);
     fprintf(stderr, fmt, what);
-    fprintf(stderr, " (%zu done, %zu skipped, %zu failed; %.0f s", p->done, p->skipped, p->failed, el);
+    fprintf(stderr, " (%zu done, %zu skipped, %zu failed", p->done, p->skipped, p->failed);
+    if (p->busy)
+        fprintf(stderr, ", %zu running elsewhere", p->busy);
+    fprintf(stderr, "; %.0f s", el);
     size_t left = p->total - p->at;
     if (p->done > 0 && left > 0)
         fprintf(stderr, ", about %.0f s left", p->run_seconds / (double)p->done * (double)left);
@@ -362,23 +386,36 @@ static int run_all(const batch_opts *o, const tr_batch_list *l, const size_t *se
         knot_path(row, sizeof row, o->out, k->name, "row.tsv");
         knot_path(ckpt, sizeof ckpt, o->out, k->name, "ckpt");
         p.at = s + 1;
+        if (tr_tighten_stop_requested())
+            return 1;
+        int lock = lock_knot(o->out, k->name);
+        if (lock == -2)
+            return 2;
+        if (lock == -1) {
+            p.busy++;
+            progress_line(o, &p, k->name, "%s", "another batch process is running it, skipped");
+            continue;
+        }
+        /* looked at under the lock: another process may just have finished it */
         if (exists(row)) {
             /* a run killed between its record and the checkpoint's removal */
             unlink(ckpt);
+            close(lock);
             p.skipped++;
             progress_line(o, &p, k->name, "%s", "done before, skipped");
             continue;
         }
-        if (tr_tighten_stop_requested())
-            return 1;
         progress_line(o, &p, k->name, "%s", exists(ckpt) ? "resuming from its checkpoint" : "tightening");
         double t = tr_clock_seconds();
         tr_tighten_report rep;
         int rc = run_knot(o, k, &rep);
+        close(lock);
         if (rep.interrupted || tr_tighten_stop_requested()) {
-            if (!o->quiet)
+            if (!o->quiet && rep.interrupted)
                 fprintf(stderr, "batch: interrupted; %s resumes from its checkpoint when the batch is run again\n",
                         k->name);
+            else if (!o->quiet)
+                fprintf(stderr, "batch: interrupted after %s\n", k->name);
             return 1;
         }
         if (rep.written && rc != 2) {
