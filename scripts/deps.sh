@@ -2,11 +2,13 @@
 # Installs what Tightrope needs on Debian 12 if it is missing (non-interactive).
 #   scripts/deps.sh [MORE-PACKAGES...]   (scripts/test.sh --oclgrind adds oclgrind)
 set -euo pipefail
+# parallel: GNU parallel, which runs the parts of a tightrope batch at once (docs/usage.md) and
+# which its test runs for real
 # libopenblas0-serial: CHOLMOD's dense kernels (the second-order solver's and the KKT
 # certificate's factorisations) through OpenBLAS instead of the reference BLAS; one thread,
 # so the two cores stay the tests' (bench/RESULTS.md, "Second-order solver")
 pkgs=(build-essential cmake pkg-config ocl-icd-opencl-dev opencl-headers pocl-opencl-icd clinfo
-      clang libclang-rt-14-dev gnuplot-nox libsuitesparse-dev libopenblas0-serial "$@")
+      clang libclang-rt-14-dev gnuplot-nox libsuitesparse-dev libopenblas0-serial parallel "$@")
 missing=()
 for p in "${pkgs[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

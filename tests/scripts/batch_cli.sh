@@ -1,0 +1,213 @@
+#!/usr/bin/env bash
+# CLI checks of 'tightrope batch'. Usage: batch_cli.sh CASE TIGHTROPE SOURCE_DIR WORK_DIR
+# Exit 0 pass, 1 fail, 77 skipped. Every case tightens two or three small knots on the
+# serial reference (seconds each); the numbers checked are published bounds or what
+# tightrope measure says of the written curves, never figures taken from our own runs.
+set -u
+case_=$1 tr=$2 src=$3 work=$4
+rm -rf "$work" && mkdir -p "$work" && cd "$work" || exit 1
+fail() { echo "FAIL: $*"; exit 1; }
+export TIGHTROPE_DEVICE=reference
+
+# Three small starts and a manifest of them (N per component, a time limit each).
+make_knots() {
+  "$tr" make torus 2 3 --n 64 -o t23.vect >/dev/null || fail "make trefoil"
+  "$tr" make hopf --n 40 -o hopf.vect >/dev/null || fail "make hopf"
+  "$tr" make torus 2 5 --n 100 -o t25.vect >/dev/null || fail "make T(2,5)"
+  printf 'name\tfile\tN\toptions\n# a comment\ntrefoil\tt23.vect\t%s\t--time-limit 3\nhopf\thopf.vect\t%s\t--time-limit 3\n' \
+    "$1" "$2" >m.tsv
+  printf 't25\tt25.vect\t%s\t--time-limit 3\n' "$3" >>m.tsv
+}
+names() { awk -F'\t' 'NR > 1 { print $1 }' "$1"; }
+col() { # col TABLE KNOT COLUMN: the value in the knot's row under the column's header
+  awk -F'\t' -v k="$2" -v c="$3" 'NR == 1 { for (i = 1; i <= NF; i++) if ($i == c) n = i; next } $1 == k { print $n }' "$1"
+}
+
+# The finished table: one row per knot of the manifest, in its order; every row's numbers are
+# those of its written curve as measure reads it, at thickness 1, above the published lower
+# bounds (any nontrivial knot >= 31.32, Denne, Diao and Sullivan 2006; the Hopf link >= 8 pi,
+# Cantarella, Kusner and Sullivan 2002); no checkpoint or temporary file is left.
+check_table() {
+  local out=$1
+  [ "$(names "$out/table.tsv" | tr '\n' ' ')" = "trefoil hopf t25 " ] || fail "table rows: $(names "$out/table.tsv" | tr '\n' ' ')"
+  for k in trefoil hopf t25; do
+    local rl th
+    rl=$(col "$out/table.tsv" $k ropelength) th=$(col "$out/table.tsv" $k thickness)
+    local m
+    m=$("$tr" measure "$out/$k.vect" --json) || fail "measure $k"
+    local mrl
+    mrl=$(echo "$m" | grep -o '"ropelength": [^,]*' | head -1 | cut -d' ' -f2) # the whole curve's, before per_component
+    awk -v a="$rl" -v b="$mrl" 'BEGIN { exit !(a - b < 1e-8 * b && b - a < 1e-8 * b) }' || fail "$k: table $rl, measure $mrl"
+    awk -v t="$th" 'BEGIN { exit !(t > 1 - 1e-9 && t < 1 + 1e-9) }' || fail "$k: thickness $th"
+    local lo=31.32
+    [ $k = hopf ] && lo=25.1327412
+    awk -v a="$rl" -v lo=$lo 'BEGIN { exit !(a >= lo) }' || fail "$k: ropelength $rl below $lo"
+  done
+  ls "$out"/*.ckpt >/dev/null 2>&1 && fail "checkpoints left: $(ls "$out")"
+  ls -a "$out" | grep -q '^\.tr\.' && fail "temporary files left: $(ls -a "$out")"
+  [ "$(wc -l <"$out/table.tsv")" = 4 ] || fail "table lines"
+  cmake -DCMD="cat;$out/table.json" -DMEMBER="knots;2;ropelength" -DTYPE=NUMBER -P "$src/tests/scripts/json_valid.cmake" \
+    >/dev/null || fail "table.json"
+  # the table is what the records say: rebuilding it changes nothing
+  cp "$out/table.tsv" table.before
+  "$tr" batch m.tsv -o "$out" --table-only 2>/dev/null || fail "--table-only"
+  cmp -s table.before "$out/table.tsv" || fail "--table-only rebuilds another table"
+}
+
+case $case_ in
+kill_resume)
+  # The batch killed (SIGKILL) at random moments and started again: it finishes with every
+  # knot once. A knot done before a kill is not done again (its record and curve stay as they
+  # were); one that had a checkpoint at a kill resumes from it.
+  make_knots 128 80 200
+  seed=${TR_BATCH_SEED:-$RANDOM}
+  echo "seed $seed (TR_BATCH_SEED reruns it)"
+  RANDOM=$seed
+  declare -A had_ckpt done_sum
+  for round in 1 2 3; do
+    "$tr" batch m.tsv -o out --checkpoint-every 0.3 2>>err.log &
+    pid=$!
+    t=$(awk -v r=$RANDOM 'BEGIN { printf "%.2f", 0.2 + 4 * r / 32767 }')
+    echo "round $round: kill after $t s"
+    sleep "$t"
+    kill -9 $pid 2>/dev/null
+    wait $pid
+    st=$?
+    [ $st = 0 ] && echo "round $round: the batch ended before the kill"
+    [ $st = 0 ] || [ $st = 137 ] || fail "round $round: exit $st: $(tail -3 err.log)"
+    for k in trefoil hopf t25; do
+      if [ -f out/$k.row.tsv ]; then
+        [ -n "${done_sum[$k]:-}" ] || done_sum[$k]=$(cat out/$k.row.tsv out/$k.vect | md5sum)
+      elif [ -f out/$k.ckpt ]; then
+        had_ckpt[$k]=1
+      fi
+    done
+  done
+  "$tr" batch m.tsv -o out --checkpoint-every 0.3 2>>err.log || fail "final run: exit $?: $(tail -3 err.log)"
+  for k in "${!done_sum[@]}"; do
+    [ "$(cat out/$k.row.tsv out/$k.vect | md5sum)" = "${done_sum[$k]}" ] || fail "$k was done again after a kill"
+  done
+  for k in "${!had_ckpt[@]}"; do
+    [ "$(col out/table.tsv $k resumed)" = 1 ] || fail "$k had a checkpoint and did not resume from it"
+  done
+  echo "done before a kill: ${!done_sum[*]}; resumed: ${!had_ckpt[*]}"
+  check_table out
+  ;;
+sigterm)
+  # SIGTERM stops the running knot at its next step: exit 1, its checkpoint kept, no record;
+  # the next run resumes it.
+  make_knots 128 80 200
+  "$tr" batch m.tsv -o out --checkpoint-every 0.3 2>err.log &
+  pid=$!
+  for _ in $(seq 100); do [ -f out/hopf.ckpt ] || [ -f out/trefoil.ckpt ] && break; sleep 0.1; done
+  kill -TERM $pid
+  wait $pid
+  st=$?
+  [ $st = 1 ] || fail "exit $st after SIGTERM (want 1): $(cat err.log)"
+  grep -q 'interrupted' err.log || fail "no message: $(cat err.log)"
+  running=$(ls out/*.ckpt 2>/dev/null | head -1)
+  [ -n "$running" ] || fail "no checkpoint after SIGTERM: $(ls out)"
+  k=$(basename "$running" .ckpt)
+  [ -f out/$k.row.tsv ] && fail "$k recorded as done"
+  "$tr" batch m.tsv -o out 2>>err.log || fail "second run: exit $?"
+  [ "$(col out/table.tsv $k resumed)" = 1 ] || fail "$k did not resume"
+  check_table out
+  ;;
+manifest_errors)
+  # A bad manifest line: one line naming FILE:LINE, exit 2, nothing tightened.
+  make_knots - - -
+  bad() { # bad WANT LINE...: a manifest of the lines must fail with WANT
+    local want=$1
+    shift
+    printf '%s\n' "$@" >bad.tsv
+    "$tr" batch bad.tsv -o badout >/dev/null 2>err
+    local st=$?
+    [ $st = 2 ] || fail "exit $st for: $*"
+    [ "$(wc -l <err)" = 1 ] || fail "not one line: $(cat err)"
+    grep -q "^tightrope batch: bad.tsv:$want" err || fail "want '$want', got: $(cat err)"
+    [ -e badout ] && fail "output folder made for a bad manifest"
+    return 0
+  }
+  tab=$'\t'
+  bad "2: bad N 'x'" "a${tab}t23.vect" "b${tab}hopf.vect${tab}x"
+  bad "3: bad N '3'" "# c" "a${tab}t23.vect" "b${tab}hopf.vect${tab}3"
+  bad "3: name 'a' already given on line 1" "a${tab}t23.vect" "" "a${tab}hopf.vect"
+  bad "1: bad name '../x'" "../x${tab}t23.vect"
+  bad "1: start nothere.vect: No such file" "a${tab}nothere.vect"
+  bad "2: option -o: batch sets it" "a${tab}t23.vect" "b${tab}hopf.vect${tab}-${tab}-o x.vect"
+  bad "1: N is 100 and the options give --refine-to" "a${tab}t23.vect${tab}100${tab}--refine-to 200"
+  bad "1: more than 4" "a${tab}t23.vect${tab}100${tab}--scale${tab}x"
+  bad "1: expected name" "a"
+  # a bad tighten option fails its knot (exit 2) and the batch goes on to the next
+  printf 'a\tt23.vect\t-\t--bogus\nb\thopf.vect\t-\t--time-limit 1\n' >opt.tsv
+  "$tr" batch opt.tsv -o optout 2>err
+  [ $? = 2 ] || fail "a bad tighten option: exit not 2"
+  grep -q "unknown option '--bogus'" err || fail "tighten's message: $(cat err)"
+  [ -f optout/b.row.tsv ] && [ ! -f optout/a.row.tsv ] || fail "the knot after the bad one: $(ls optout)"
+  # usage errors
+  "$tr" batch m.tsv -o o2 --job 2 --jobs 2 2>err && fail "--job 2 --jobs 2 accepted"
+  "$tr" batch m.tsv -o o2 --only nosuch 2>err && fail "--only nosuch accepted"
+  grep -q "no knot 'nosuch'" err || fail "--only message: $(cat err)"
+  "$tr" batch m.tsv -o o2 -- --checkpoint x 2>err && fail "-- --checkpoint accepted"
+  true
+  ;;
+folder_compare)
+  # A folder of curves: knots named by file, in name order; --compare adds the reference's
+  # values and ours - reference, matching 3.1 to 3_1 (the reference is made up here).
+  make_knots - - -
+  mkdir starts && cp t23.vect starts/3.1.vect && cp hopf.vect starts/hopf.vect && echo "not a curve" >starts/notes.md
+  printf 'knot\tN\tropelength(L/tau)\n3_1\t400\t30.5\n5_2\t400\t49.5\n' >ref.tsv
+  "$tr" batch starts -o out --compare ref.tsv -- --time-limit 2 2>err.log || fail "exit $?: $(cat err.log)"
+  [ "$(names out/table.tsv | tr '\n' ' ')" = "3.1 hopf " ] || fail "rows: $(names out/table.tsv)"
+  rl=$(col out/table.tsv 3.1 ropelength)
+  [ "$(col out/table.tsv 3.1 ref_ropelength)" = 30.5000000000 ] || fail "ref: $(cat out/table.tsv)"
+  [ "$(col out/table.tsv 3.1 ref_N)" = 400 ] || fail "ref_N"
+  d=$(col out/table.tsv 3.1 diff) p=$(col out/table.tsv 3.1 diff_pct)
+  awk -v r="$rl" -v d="$d" -v p="$p" 'BEGIN { e = r - 30.5; exit !(d - e < 1e-9 && e - d < 1e-9 && (p - 100 * e / 30.5)^2 < 1e-8) }' ||
+    fail "diff $d, pct $p for ropelength $rl"
+  [ "$(col out/table.tsv hopf ref_ropelength)" = - ] || fail "hopf has a reference"
+  cmake -DCMD="cat;out/table.json" -DMEMBER="knots;1;ref_ropelength" -DTYPE=NULL -P "$src/tests/scripts/json_valid.cmake" \
+    >/dev/null || fail "table.json: hopf's reference not null"
+  cmake -DCMD="cat;out/table.json" -DMEMBER="knots;0;diff" -DTYPE=NUMBER -P "$src/tests/scripts/json_valid.cmake" \
+    >/dev/null || fail "table.json: no diff"
+  # a bad reference line names its FILE:LINE
+  printf 'knot\tN\tropelength\n3_1\t400\tlong\n' >badref.tsv
+  "$tr" batch starts -o out --compare badref.tsv 2>err && fail "a bad reference accepted"
+  grep -q "badref.tsv:2:" err || fail "reference error: $(cat err)"
+  ;;
+jobs)
+  # --job I --jobs J: disjoint parts that cover the batch; run one after the other into one
+  # folder, they leave the whole table.
+  make_knots 80 60 120
+  a=$("$tr" batch m.tsv --list --job 0 --jobs 2) b=$("$tr" batch m.tsv --list --job 1 --jobs 2)
+  [ "$(printf '%s\n%s\n' "$a" "$b" | sort | tr '\n' ' ')" = "hopf t25 trefoil " ] || fail "parts: [$a] [$b]"
+  "$tr" batch m.tsv -o out --job 1 --jobs 2 2>err.log || fail "job 1: $(cat err.log)"
+  [ "$(names out/table.tsv | tr '\n' ' ')" = "$(echo $b) " ] || fail "after job 1: $(names out/table.tsv)"
+  "$tr" batch m.tsv -o out --job 0 --jobs 2 2>>err.log || fail "job 0: $(cat err.log)"
+  check_table out
+  ;;
+parallel)
+  # The GNU parallel route, for real: one job per knot, two at once, into one folder.
+  command -v parallel >/dev/null || { echo "GNU parallel not installed (scripts/deps.sh installs it)"; exit 77; }
+  make_knots 80 60 120
+  "$tr" batch m.tsv --list | parallel --will-cite -j2 "$tr" batch m.tsv -o out --quiet --only {} 2>err.log ||
+    fail "parallel: $(cat err.log)"
+  check_table out
+  ;;
+slurm)
+  # scripts/slurm_batch.sh: valid bash; outside an array it refuses; run as the tasks of a
+  # two-task array (0-1) would run it, it fills the table.
+  s=$src/scripts/slurm_batch.sh
+  bash -n "$s" || fail "bash -n"
+  make_knots 80 60 120
+  env -u SLURM_ARRAY_TASK_ID bash "$s" m.tsv out 2>err && fail "ran outside an array"
+  grep -q "not a task of a job array" err || fail "message: $(cat err)"
+  for id in 3 4; do
+    SLURM_ARRAY_TASK_ID=$id SLURM_ARRAY_TASK_MIN=3 SLURM_ARRAY_TASK_COUNT=2 TIGHTROPE=$tr bash "$s" m.tsv out \
+      2>>err.log || fail "task $id: $(cat err.log)"
+  done
+  check_table out
+  ;;
+*) fail "unknown case $case_" ;;
+esac
+echo ok
