@@ -5,7 +5,7 @@
 # to finish leaves the whole table (tightrope batch MANIFEST -o OUT --table-only rebuilds it).
 #
 #   K=$(tightrope batch MANIFEST --list | wc -l)         # one task per knot, or fewer
-#   sbatch --array=0-$((K - 1)) scripts/slurm_batch.sh MANIFEST OUT [-- TIGHTEN-OPTIONS...]
+#   sbatch --array=0-$((K - 1)) scripts/slurm_batch.sh MANIFEST OUT [BATCH-OPTIONS] [-- TIGHTEN-OPTIONS...]
 #   sbatch --array=0-$((K - 1)) --gres=gpu:1 scripts/slurm_batch.sh ...   # a GPU per task
 #
 # A task that is killed or requeued resumes its knot from the checkpoint in OUT when it runs
@@ -19,7 +19,7 @@
 #SBATCH --output=tightrope-batch-%A_%a.out
 set -euo pipefail
 if [ $# -lt 2 ]; then
-  echo "usage: sbatch --array=0-K scripts/slurm_batch.sh MANIFEST OUT [-- TIGHTEN-OPTIONS...]" >&2
+  echo "usage: sbatch --array=0-K scripts/slurm_batch.sh MANIFEST OUT [BATCH-OPTIONS] [-- TIGHTEN-OPTIONS...]" >&2
   exit 2
 fi
 manifest=$1 out=$2

@@ -57,8 +57,9 @@ static void usage(FILE *out)
             "A knot done (its NAME.row.tsv exists) is skipped; one with a checkpoint resumes from it.\n"
             "TIGHTEN-OPTIONS go to every knot (before the manifest's own), e.g. -- --scale --time-limit 120;\n"
             "batch sets -o, --checkpoint, --checkpoint-every, --resume and --json itself.\n"
-            "Exit status: 0 every selected knot done; 1 interrupted (SIGINT/SIGTERM: the running\n"
-            "knot keeps its checkpoint) or a knot's run failed; 2 bad SRC, option or input.\n");
+            "Exit status: 0 every selected knot done (or running in another batch process); 1\n"
+            "interrupted (SIGINT/SIGTERM: the running knot keeps its checkpoint) or a knot's run\n"
+            "failed; 2 bad SRC, option or input.\n");
 }
 
 typedef struct batch_opts {
@@ -85,8 +86,12 @@ static int parse_options(int argc, char **argv, batch_opts *o)
             usage(stdout);
             return 0;
         }
-        if (!strcmp(a, "--list") || !strcmp(a, "--table-only") || !strcmp(a, "--quiet")) {
-            *(a[2] == 'l' ? &o->list : a[2] == 't' ? &o->table_only : &o->quiet) = 1;
+        int *flag = !strcmp(a, "--list") ? &o->list
+                    : !strcmp(a, "--table-only") ? &o->table_only
+                    : !strcmp(a, "--quiet") ? &o->quiet
+                    : NULL;
+        if (flag) {
+            *flag = 1;
             continue;
         }
         static const char *valued[] = {"-o", "--out", "--only", "--compare", "--job", "--jobs",
@@ -474,6 +479,9 @@ int tr_cmd_batch(int argc, char **argv)
         for (size_t s = 0; s < nsel; s++)
             printf("%s\n", l.knots[sel[s]].name);
         status = 0;
+    } else if (status < 0 && o.table_only && access(o.out, F_OK)) {
+        fprintf(stderr, "tightrope batch: --table-only: no output folder %s: %s\n", o.out, strerror(errno));
+        status = 2;
     } else if (status < 0 && mkdir(o.out, 0777) && errno != EEXIST) {
         fprintf(stderr, "tightrope batch: cannot make the output folder %s: %s\n", o.out, strerror(errno));
         status = 2;
