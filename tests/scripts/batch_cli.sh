@@ -115,6 +115,19 @@ sigterm)
   [ "$(col out/table.tsv $k resumed)" = 1 ] || fail "$k did not resume"
   check_table out
   ;;
+lock)
+  # A second batch over the same folder leaves the knot the first is running alone.
+  make_knots 128 80 200
+  "$tr" batch m.tsv -o out --checkpoint-every 0.2 2>err.log &
+  pid=$!
+  for _ in $(seq 100); do [ -f out/trefoil.ckpt ] && break; sleep 0.05; done
+  [ -f out/trefoil.ckpt ] || fail "the first batch never checkpointed the trefoil: $(cat err.log)"
+  "$tr" batch m.tsv -o out --only trefoil 2>err2.log || fail "second batch: exit $?: $(cat err2.log)"
+  wait $pid || fail "first batch: exit $?: $(cat err.log)"
+  grep -q "trefoil: another batch process is running it" err2.log || fail "second batch: $(cat err2.log)"
+  grep -q "trefoil: resuming" err.log err2.log && fail "the trefoil was taken over"
+  check_table out
+  ;;
 manifest_errors)
   # A bad manifest line: one line naming FILE:LINE, exit 2, nothing tightened.
   make_knots - - -
