@@ -378,6 +378,18 @@ static int read_start(const tighten_opts *o, tr_curve *c, tr_error *err)
     return rc;
 }
 
+/* SIGINT/SIGTERM raise stop_requested: the run (and a solver run at the
+ * engine's start) stops at its next step and writes what it has. */
+static void catch_signals(void)
+{
+    struct sigaction sa;
+    memset(&sa, 0, sizeof sa);
+    sa.sa_handler = on_signal;
+    sigemptyset(&sa.sa_mask);
+    sigaction(SIGINT, &sa, NULL);
+    sigaction(SIGTERM, &sa, NULL);
+}
+
 /* Opens the engine on the start (IN or the checkpoint to resume) and
  * checks the outputs before the run. Returns -1 to go on with *e, else the
  * exit status, with the message printed. */
@@ -398,6 +410,12 @@ static int open_start(const tighten_opts *o, tr_engine **e)
         tr_curve c;
         rc = read_start(o, &c, &err);
         if (rc == TR_OK) {
+            /* the start is the finest level: a tight one goes to the
+             * second-order solver first (engine.h, newton_first) */
+            prm.newton_first = o->newton && (o->refine_to <= 0 || c.nv / (size_t)c.ncomp >= (size_t)o->refine_to);
+            prm.newton_first_limit = o->time_limit;
+            prm.newton_first_stop = &stop_requested;
+            catch_signals();
             rc = tr_engine_create(e, &c, o->device, &prm, &err);
             tr_curve_free(&c);
         }
@@ -438,13 +456,7 @@ static int open_start(const tighten_opts *o, tr_engine **e)
  * go on with *why, else the exit status, with the message printed. */
 static int run(const tighten_opts *o, tr_engine *e, tr_stop_reason *why)
 {
-    struct sigaction sa;
-    memset(&sa, 0, sizeof sa);
-    sa.sa_handler = on_signal;
-    sigemptyset(&sa.sa_mask);
-    sigaction(SIGINT, &sa, NULL);
-    sigaction(SIGTERM, &sa, NULL);
-
+    catch_signals();
     progress_ctx pctx = {.tty = !o->quiet && isatty(2), .printed = 0};
     tr_engine_limits lim = {.refine_to = (size_t)o->refine_to,
                             .residual = o->residual,

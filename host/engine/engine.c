@@ -16,6 +16,7 @@
 #include "util/clock.h"
 #include "util/text_file.h"
 #include "oracle/thickness.h"
+#include "solver/newton.h"
 
 void tr_engine_params_default(tr_engine_params *p)
 {
@@ -72,6 +73,8 @@ const char *tr_stop_reason_name(tr_stop_reason r)
         return "time-limit";
     case TR_STOP_SIGNAL:
         return "signal";
+    case TR_STOP_SOLVED:
+        return "solved";
     default:
         return "none";
     }
@@ -184,6 +187,16 @@ int tr_engine_i_settle(tr_engine *e, const char *what, double overlap_ok, tr_err
                    "%s: could not bring the curve to equal edges, MinRad >= 1 and distances >= 2", what);
 }
 
+int tr_engine_i_keep_presettle(tr_engine *e, tr_error *err)
+{
+    free(e->presettle_x);
+    e->presettle_x = malloc(3 * e->curve.nv * sizeof *e->presettle_x);
+    if (!e->presettle_x)
+        return tr_fail(err, TR_ENOMEM, "out of memory");
+    memcpy(e->presettle_x, e->curve.x, 3 * e->curve.nv * sizeof *e->presettle_x);
+    return TR_OK;
+}
+
 int tr_engine_i_open_backend(tr_engine *e, const tr_curve *c, tr_error *err)
 {
     int rc = tr_backend_open(e->coarse_ref ? "reference" : e->device[0] ? e->device : NULL, c, &e->be,
@@ -220,6 +233,39 @@ tr_engine *tr_engine_i_new(const char *device, const tr_engine_params *p)
     return e;
 }
 
+/* The second-order solver on a tight start before the settle
+ * (engine.h, newton_first); a loose one is left to the level loop, which
+ * tries the solver again in the polish's place. */
+static int newton_first(tr_engine *e, tr_error *err)
+{
+    if (!e->prm.newton || !e->prm.newton_first || e->curve.ncst > 0)
+        return TR_OK;
+    tr_newton_params np;
+    tr_newton_params_default(&np);
+    np.tight_only = 1;
+    np.stop = e->prm.newton_first_stop;
+    if (e->prm.newton_first_limit > 0)
+        np.time_limit = fmax(e->prm.newton_first_limit - (tr_clock_seconds() - e->t0), 1e-3);
+    tr_newton_stats ns;
+    int rc = tr_newton(&e->curve, &np, &ns, err);
+    if (rc)
+        return rc == TR_EGEOMETRY ? TR_OK : rc;
+    /* tried once: the level loop does not try a tight start again */
+    e->newton_ran = ns.accepted ? 1 : -1;
+    e->newton_before = ns.ropelength_before;
+    e->newton_after = ns.ropelength_after;
+    e->newton_seconds = ns.seconds;
+    e->newton_iters = ns.iters;
+    e->newton_solved = ns.accepted && (ns.converged || ns.settled);
+    if (ns.accepted) {
+        e->polished = 1;
+        e->polish_before = ns.ropelength_before;
+        e->polish_after = ns.ropelength_after;
+        e->polish_seconds = ns.seconds;
+    }
+    return TR_OK;
+}
+
 int tr_engine_create(tr_engine **out, const tr_curve *c, const char *device,
                      const tr_engine_params *p, tr_error *err)
 {
@@ -231,7 +277,11 @@ int tr_engine_create(tr_engine **out, const tr_curve *c, const char *device,
     if (!rc)
         rc = tr_engine_i_alloc_comp_arrays(e, err);
     if (!rc)
-        rc = tr_engine_i_open_backend(e, c, err);
+        rc = newton_first(e, err);
+    if (!rc)
+        rc = tr_engine_i_open_backend(e, &e->curve, err);
+    if (!rc)
+        rc = tr_engine_i_keep_presettle(e, err);
     if (!rc)
         rc = tr_engine_i_settle(e, "the start curve", 0.0, err);
     if (rc) {
@@ -247,6 +297,7 @@ void tr_engine_destroy(tr_engine *e)
 {
     if (!e)
         return;
+    free(e->presettle_x);
     tr_backend_close(&e->be);
     tr_curve_free(&e->curve);
     free(e->gap);
@@ -379,6 +430,8 @@ int tr_engine_refine(tr_engine *e, size_t n, tr_error *err)
     e->polished = 0;
     free(e->polish_x);
     e->polish_x = NULL;
+    if ((rc = tr_engine_i_keep_presettle(e, err)))
+        return rc;
     rc = tr_engine_i_settle(e, "the refined curve", 0.25, err);
     if (rc == TR_EGEOMETRY)
         return tr_fail_wrap(err, TR_ETOPOLOGY, "refining to %zu vertices", n);

@@ -37,6 +37,15 @@ struct tr_engine {
      * constraint set cost ropelength (the oracle's, which is scale free):
      * until the engine takes another step it is the curve handed out. */
     double *polish_x;
+    /* the level's curve as it came, before the settle put it on the
+     * engine's constraint set: the second-order solver starts from it at
+     * the finest level (a spline through a tight knot overshoots MinRad
+     * where the curvature jumps; the settle removes that by lengthening the
+     * rope, 1.7e-3 at N = 9600, the solver by bending it back in place) */
+    /* the solver's last run was accepted and converged or settled: the
+     * finest level is done (TR_STOP_SOLVED) */
+    int newton_solved;
+    double *presettle_x;
     long polish_steps;
 };
 
@@ -52,6 +61,8 @@ void tr_engine_i_fill_state(tr_engine *e, const tr_measure *m);
 /* Brings a fresh backend state onto the constraint set (equal edges,
  * struts, chords) in damped Newton steps, guarding every one. */
 int tr_engine_i_settle(tr_engine *e, const char *what, double overlap_ok, tr_error *err);
+/* Keeps e->curve.x as the level's presettle_x. */
+int tr_engine_i_keep_presettle(tr_engine *e, tr_error *err);
 /* Opens e->be on c: the device, or the reference for a coarse level. */
 int tr_engine_i_open_backend(tr_engine *e, const tr_curve *c, tr_error *err);
 /* (Re)allocates the per-component arrays gap and ebar. */

@@ -46,12 +46,14 @@ static int keep_if_settle_lost(tr_engine *e, double polished_rl, double *scratch
 /* The second-order solver on the downloaded curve, in the polish's place
  * and time (curves without vertex constraints); reports whether it
  * replaced the curve. */
-static int run_newton(tr_engine *e, double seconds, volatile sig_atomic_t *stop, int *accepted, tr_error *err)
+static int run_newton(tr_engine *e, double seconds, int tight_only, volatile sig_atomic_t *stop, int *accepted,
+                      tr_error *err)
 {
     *accepted = 0;
     tr_newton_params np;
     tr_newton_params_default(&np);
     np.time_limit = seconds;
+    np.tight_only = tight_only;
     np.stop = stop;
     tr_newton_stats ns;
     int rc = tr_newton(&e->curve, &np, &ns, err);
@@ -62,6 +64,7 @@ static int run_newton(tr_engine *e, double seconds, volatile sig_atomic_t *stop,
     e->newton_after = ns.ropelength_after;
     e->newton_seconds = ns.seconds;
     e->newton_iters = ns.iters;
+    e->newton_solved = ns.accepted && (ns.converged || ns.settled);
     *accepted = ns.accepted;
     return TR_OK;
 }
@@ -71,8 +74,8 @@ static int run_newton(tr_engine *e, double seconds, volatile sig_atomic_t *stop,
  * engine's exact constraint set (equal edges to 1e-9). The polished curve
  * is at thickness 1 with every constraint satisfied, so settle moves it by
  * no more than its edge deviation. */
-static int run_polish(tr_engine *e, double seconds, double target, int final, volatile sig_atomic_t *stop,
-                      tr_error *err)
+static int run_polish(tr_engine *e, double seconds, double target, int final, int tight_only,
+                      volatile sig_atomic_t *stop, tr_error *err)
 {
     int newton = final && e->prm.newton && e->curve.ncst == 0;
     size_t nx = 3 * e->curve.nv;
@@ -85,13 +88,17 @@ static int run_polish(tr_engine *e, double seconds, double target, int final, vo
         return rc;
     }
     memcpy(e->curve.x, keep, nx * sizeof *keep);
+    /* the solver at the level's start takes the curve from before the
+     * settle (engine_internal.h, presettle_x) */
+    if (newton && tight_only && e->presettle_x)
+        memcpy(e->curve.x, e->presettle_x, nx * sizeof *keep);
     tr_polish_stats ps;
     memset(&ps, 0, sizeof ps);
     if (newton) {
         /* at the finest level the second-order solver takes the polish's
          * place (bench/RESULTS.md, "Second-order solver") */
         int nacc = 0;
-        if ((rc = run_newton(e, seconds, stop, &nacc, err))) {
+        if ((rc = run_newton(e, seconds, tight_only, stop, &nacc, err))) {
             free(keep);
             return rc;
         }
@@ -122,6 +129,7 @@ static int run_polish(tr_engine *e, double seconds, double target, int final, vo
         e->polished = ps.accepted ? 1 : -1;
     }
     if (!ps.accepted) {
+        memcpy(e->curve.x, keep, nx * sizeof *keep);
         free(keep);
         return TR_OK;
     }
@@ -241,13 +249,31 @@ int tr_engine_run(tr_engine *e, const tr_engine_limits *lim, tr_stop_reason *why
             stop = TR_STOP_RESIDUAL;
         else if (final_level && e->jammed)
             stop = TR_STOP_JAMMED;
+        else if (final_level && e->newton_solved)
+            stop = TR_STOP_SOLVED;
+        /* The route: a tight start at the finest level (a converged knot
+         * refined, or resampled by --n) goes to the second-order solver at
+         * once, which converges there in tens of Newton steps where the
+         * first-order steps need ~N^2; a loose one (the solver's warm start
+         * says which, in a second) takes the first-order steps first and
+         * the solver in the polish's place. */
+        if (final_level && stop == TR_STOP_NONE && e->prm.newton && e->prm.polish && e->curve.ncst == 0 &&
+            e->newton_ran == 0) {
+            double left = lim->time_limit > 0 ? lim->time_limit - p.elapsed : 0.0;
+            if ((rc = run_polish(e, lim->time_limit > 0 ? fmax(left, 1e-3) : 0.0, lim->target, 1, 1, lim->stop,
+                                 err)))
+                return rc;
+            if (e->newton_ran != 1)
+                e->polished = 0;
+            continue;
+        }
         int can_polish = e->prm.polish && e->polished == 0;
         if (final_level && can_polish &&
             (stop == TR_STOP_RESIDUAL || stop == TR_STOP_JAMMED || (stop == TR_STOP_NONE && stalled) ||
              (stop == TR_STOP_NONE && lim->time_limit > 0 &&
               tr_clock_seconds() - level_t0 >= (1.0 - e->prm.polish_share) * time_left_at_level))) {
             double left = lim->time_limit > 0 ? lim->time_limit - p.elapsed : 0.0;
-            if ((rc = run_polish(e, lim->time_limit > 0 ? fmax(left, 1e-3) : 0.0, lim->target, 1,
+            if ((rc = run_polish(e, lim->time_limit > 0 ? fmax(left, 1e-3) : 0.0, lim->target, 1, 0,
                                  lim->stop, err)))
                 return rc;
             continue;
@@ -265,7 +291,7 @@ int tr_engine_run(tr_engine *e, const tr_engine_limits *lim, tr_stop_reason *why
                 level_done = 1;
             if (level_done && pc && e->polished == 0) {
                 double budget = lim->time_limit > 0 ? fmax(0.5 * time_left_at_level - used, 1e-3) : 0.0;
-                if ((rc = run_polish(e, budget, 0.0, 0, lim->stop, err)))
+                if ((rc = run_polish(e, budget, 0.0, 0, 0, lim->stop, err)))
                     return rc;
                 continue;
             }

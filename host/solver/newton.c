@@ -1023,6 +1023,11 @@ int tr_newton(tr_curve *cv, const tr_newton_params *prm, tr_newton_stats *st, tr
             goto done;
     }
     st->warm_residual = s.warm_residual;
+    if (prm->tight_only && !(prm->warm_start && s.warm_residual < TIGHT_RESIDUAL)) {
+        st->loose = 1;
+        st->why_rejected = "the start is not tight (its contacts do not hold the tension)";
+        goto done;
+    }
     if (unit != th0.thickness && s.warm_residual < TIGHT_RESIDUAL) {
         /* the same rows, rescaled: the multipliers scale with them */
         double f = MINRAD_ROW_SCALE_TIGHT / MINRAD_ROW_SCALE_LOOSE;

@@ -103,6 +103,7 @@ typedef struct tr_newton_params {
     double viol_tol;   /* converged: worst relative violation below this ... */
     double stat_tol;   /* ... and relative unbalanced force below this */
     int warm_start;    /* first multipliers by least squares (newton.c, warm_multipliers); 0: cold */
+    int tight_only;    /* give up at once (not accepted) unless the warm start finds the start tight */
     volatile sig_atomic_t *stop; /* raised by a signal handler: stop as at the time limit */
     void (*progress)(void *user, const tr_newton_progress *p); /* every step (may be NULL) */
     void *user;
@@ -112,6 +113,7 @@ void tr_newton_params_default(tr_newton_params *p);
 
 typedef struct tr_newton_stats {
     int skipped;  /* constrained vertices: not handled */
+    int loose;    /* tight_only, and the start was not tight: not run */
     int accepted; /* the curve was replaced */
     int converged;
     int settled;  /* stopped: feasible and the length unchanged (1e-12) over three updates */
