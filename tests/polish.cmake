@@ -15,3 +15,12 @@ tr_engine_test(tighten_no_polish 0 DIR ${_pol_dir}/off ONLY "s.vect;t.vect" OUT 
 tr_engine_test(tighten_newton 0 DIR ${_pol_dir}/newton ONLY "s.vect;t.vect" OUT ${_pol_dir}/newton/t.vect
   MATCH "\n# kkt_residual [0-9]\\.[0-9]+e[-+][0-9]+ [^\n]*\n# newton accepted: ropelength [0-9.]+ -> [0-9.]+ in [0-9.]+ s, [0-9]+ steps\n1 72 0"
   CMD sh -c "'${_tr}' make torus 2 3 --n 72 -o '${_pol_dir}/newton/s.vect' && exec '${_tr}' tighten '${_pol_dir}/newton/s.vect' -o '${_pol_dir}/newton/t.vect' --time-limit 3 --newton --quiet --device reference")
+# The solver's route (tests/scripts/newton_route.sh): a tightened knot
+# resampled finer by --n goes to the solver first and ends shorter; SIGINT
+# while it runs stops the run promptly with a curve written.
+foreach(c refine sigint)
+  add_test(NAME tighten_newton_route_${c}
+    COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/scripts/newton_route.sh ${c} $<TARGET_FILE:tightrope>
+            ${CMAKE_SOURCE_DIR} ${CMAKE_CURRENT_BINARY_DIR}/newton_route_${c})
+  set_tests_properties(tighten_newton_route_${c} PROPERTIES ENVIRONMENT "${TR_TEST_ENV}" LABELS cli)
+endforeach()
