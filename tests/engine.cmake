@@ -67,9 +67,13 @@ tr_engine_test(tighten_upsample 0 DIR ${_eng_dir}/up ONLY "s.vect;t.vect" OUT ${
 tr_engine_test(tighten_scale 0 DIR ${_eng_dir}/scale ONLY "t.vect" OUT ${_eng_dir}/scale/t.vect
   MATCH "\n# N 64\n# length 6[.]2882[34][0-9]*\n"
   CMD ${_tr} tighten ${CMAKE_CURRENT_SOURCE_DIR}/data/circle_r0.5_n64.txt -o ${_eng_dir}/scale/t.vect --scale --steps 1 --quiet --no-kkt --device reference)
-tr_engine_test(tighten_scale_constrained 2 DIR ${_eng_dir}/scalec ONLY "c.vect"
-  ERRMATCH "--scale: .* has constraints"
-  CMD sh -c "'${_tr}' make clasp -o '${_eng_dir}/scalec/c.vect' && exec '${_tr}' tighten '${_eng_dir}/scalec/c.vect' -o '${_eng_dir}/scalec/t.vect' --scale")
+# --scale on a clasp scales its end planes with it; a start too coarse at
+# thickness 1 is resampled, not refused (tests/scripts/scale_cli.sh)
+foreach(c clasp coarse)
+  add_test(NAME tighten_scale_${c}
+    COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/scripts/scale_cli.sh ${c} $<TARGET_FILE:tightrope> ${_eng_dir}/scale_${c})
+  set_tests_properties(tighten_scale_${c} PROPERTIES ENVIRONMENT "${TR_TEST_ENV}" LABELS cli)
+endforeach()
 tr_engine_test(tighten_trefoil_steps 0 DIR ${_eng_dir}/trefoil ONLY "s.vect;t.vect" OUT ${_eng_dir}/trefoil/t.vect
   MATCH "^VECT\n# tightened by tightrope[^\n]*\n# command: tighten [^\n]*--steps 20[^\n]*\n# N 72\n# length [0-9.]+\n# MinRad [0-9.]+\n# dcsd [0-9.]+\n# thickness (1|0[.]99999999)[0-9.]*\n# ropelength [0-9.]+\n# residual [^\n]+\n# steps 20\n# stop steps\n"
   CMD sh -c "'${_tr}' make torus 2 3 --n 72 -o '${_eng_dir}/trefoil/s.vect' && exec '${_tr}' tighten '${_eng_dir}/trefoil/s.vect' -o '${_eng_dir}/trefoil/t.vect' --steps 20 --quiet")

@@ -50,8 +50,10 @@ static void usage(FILE *out)
             "       tightrope tighten --resume CKPT -o OUT [options]\n"
             "  IN                 start curve (.vect, .tsv, KnotPlot list); distances >= 2, MinRad >= 1\n"
             "  -o, --output OUT   tightened curve with its certificate in comments\n"
-            "  --scale            first scale the start (no constraints) to thickness exactly 1:\n"
-            "                     for curves at another scale, e.g. tight knots from other codes\n"
+            "  --scale            first scale the start (and its constraint planes) to thickness\n"
+            "                     exactly 1: for curves at another scale, e.g. tight knots from\n"
+            "                     other codes; one then too coarse (edges >= 0.9) is resampled\n"
+            "                     along a spline to edges of about 0.5 (without --n)\n"
             "  --n N              first resample every component to N vertices (along a\n"
             "                     spline through the vertices where that adds vertices)\n"
             "  --refine-to N      tighten, then refine (doubling, low-pass) and re-tighten up to N\n"
@@ -303,6 +305,58 @@ static int parse_options(int argc, char **argv, tighten_opts *o)
     return -1;
 }
 
+/* A start at thickness 1 (after --scale) whose edges are longer than the
+ * engine takes (a KnotPlot start of 101 vertices: edges of 1.31) is
+ * resampled along a spline through its vertices to edges of about
+ * COARSE_EDGE, and scaled to thickness 1 again (the spline changes it a
+ * little), instead of being refused: the user asked for a rope, not for a
+ * vertex count. --refine-to, if given, caps the count as long as the edges
+ * stay below MAX_COARSE_EDGE. */
+#define COARSE_EDGE 0.5
+#define MAX_COARSE_EDGE 0.9
+static int densify_coarse(const tighten_opts *o, tr_curve *c, tr_error *err)
+{
+    for (int pass = 0; pass < 3; pass++) {
+        int coarse = 0;
+        size_t *per = malloc((size_t)c->ncomp * sizeof *per);
+        if (!per)
+            return tr_fail(err, TR_ENOMEM, "out of memory");
+        for (int k = 0; k < c->ncomp; k++) {
+            size_t nv = tr_comp_nv(c, k), ne = tr_comp_ne(c, k);
+            double len = tr_comp_length(c, k);
+            per[k] = nv;
+            if (len / (double)ne < MAX_COARSE_EDGE)
+                continue;
+            coarse = 1;
+            size_t want = (size_t)ceil(len / COARSE_EDGE), least = (size_t)ceil(len / MAX_COARSE_EDGE) + 1;
+            if (o->refine_to > 0 && want > (size_t)o->refine_to)
+                want = (size_t)o->refine_to > least ? (size_t)o->refine_to : least;
+            per[k] = want > nv ? want : nv + 1;
+        }
+        if (!coarse) {
+            free(per);
+            return TR_OK;
+        }
+        tr_curve r;
+        int rc = tr_resample_smooth(c, per, &r, err);
+        free(per);
+        if (rc)
+            return rc;
+        tr_curve_free(c);
+        *c = r;
+        tr_thickness t;
+        if ((rc = tr_thickness_measure(c, NULL, &t, NULL, err)))
+            return tr_fail_wrap(err, rc, "%s (resampled)", o->in);
+        if (!(t.thickness > 0 && isfinite(t.thickness)))
+            return tr_fail(err, TR_EGEOMETRY, "%s: resampled along a spline, it has thickness %g", o->in,
+                           t.thickness);
+        scale_curve(c, 1.0 / t.thickness);
+        fprintf(stderr, "tightrope tighten: %s: too coarse for thickness 1; resampled along a spline to %zu vertices\n",
+                o->in, c->nv);
+    }
+    return TR_OK;
+}
+
 /* Reads the start curve IN into c, resampled with --n and scaled with
  * --scale, and checks that it can be tightened: its open ends are held and
  * its thickness is at a scale the engine can work in. */
@@ -348,8 +402,9 @@ static int read_start(const tighten_opts *o, tr_curve *c, tr_error *err)
     }
     /* Ropelength is scale free: --scale takes a start at another scale
      * (a tight knot from another code at thickness 0.99995, a file in
-     * its own units) to the rope's radius 1. Constraint planes sit at
-     * fixed places, so a constrained start is not scaled. */
+     * its own units) to the rope's radius 1. Constraint planes and points
+     * are scaled with it about the origin (scale_curve), so a clasp's ends
+     * stay on their planes (KnotPlot's simple_clasp is at thickness 0.5). */
     /* The oracle looks at the start first: a curve through itself has
      * no thickness at all, and one at a scale like 1e+-300 would lose
      * the engine's squared distances to under- or overflow (the oracle
@@ -376,13 +431,13 @@ static int read_start(const tighten_opts *o, tr_curve *c, tr_error *err)
                      "distances would %s); --scale scales a start to thickness 1",
                      in, t0.thickness, tr_curve_scale_exponent(c) > 0 ? "overflow" : "underflow");
     if (rc == TR_OK && o->scale) {
-        if (c->ncst > 0)
-            rc = tr_fail(err, TR_EINVAL, "--scale: %s has constraints, whose planes would move", in);
-        if (rc == TR_OK && !(t0.thickness > 0 && isfinite(t0.thickness)))
+        if (!(t0.thickness > 0 && isfinite(t0.thickness)))
             rc = tr_fail(err, TR_EGEOMETRY, "--scale: %s has thickness %g; no scale makes it a rope", in,
                          t0.thickness);
         if (rc == TR_OK)
             scale_curve(c, 1.0 / t0.thickness);
+        if (rc == TR_OK && o->n <= 0)
+            rc = densify_coarse(o, c, err);
     }
     if (rc != TR_OK)
         tr_curve_free(c);

@@ -6,12 +6,13 @@
  * per component k:
  *   minimise   sum_k n_k l_k                      (n_k edges of component k)
  *   edges      h_a = |x_{a+1} - x_a| - l_k = 0     every edge a of component k
- *   MinRad     g_i = (c(l_k) - |x_{i+1} - 2 x_i + x_{i-1}|^2) / (4 l0_k^2) >= 0
+ *   MinRad     g_i = (c(l_k) - |x_{i+1} - 2 x_i + x_{i-1}|^2) / (S l0_k^2) >= 0
  *              at every vertex with two edges; c(l) = 4 l^4 / (4 + l^2), so
  *              with equal edges g_i >= 0 is exactly Rawdon's MinRad >= 1
  *              (|x_{i+1} - 2x_i + x_{i-1}| = 2 l sin(theta/2) and
  *              MinRad = l / (2 tan(theta/2))); l0_k is the start edge, so
- *              every row's gradient is O(1);
+ *              every row's gradient is O(1 / S); S = 4, or 0.1 for a tight
+ *              start whose MinRad overshoots (newton.c, MINRAD_ROW_SCALE_*);
  *   struts     d(a, b) - 2 >= 0 for every listed edge pair, d the exact
  *              segment distance (strut_hessian.h: closest points recomputed
  *              at every evaluation, so the rope cannot slip between frozen
@@ -45,7 +46,16 @@
  * tension with the MinRad and strut rows near their bound (least squares by
  * conjugate gradients, clipped at 0), so a start whose contacts are in place
  * keeps them from the first step instead of shrinking through them while
- * the multipliers build up from 0.
+ * the multipliers build up from 0. What they leave unbalanced says whether
+ * the start is tight (under 0.7 of the tension's force): tight_only gives up
+ * on a loose start at once, for the engine's first-order route.
+ *
+ * Unit: thickness 1, except for a tight start that a spline through a
+ * converged polygon left with MinRad a little under its struts' half
+ * distance (0.93 at N = 9600 from the N = 2400 trefoil): that one is scaled
+ * to its struts, so only the few overshooting MinRad rows start violated,
+ * and those rows are stiffened (S = 0.1) so the first passes take them back
+ * instead of letting them go 40 % over while the rope shortens.
  *
  * Why it converges: each inner solve is a descent method with Newton steps
  * on a function that is C^1 with a piecewise smooth gradient (semismooth),
