@@ -54,6 +54,11 @@ typedef struct solver {
     double *l0, *scale_m; /* start edge, S l0^2 per component (MinRad rows) */
     double l0min;
     double mu;
+    /* the shortest iterate the oracle has seen at a multiplier update (its
+     * ropelength at thickness 1): the last is not always the best (the
+     * peer drifted away from its best at N = 19 200) */
+    tr_curve probe;
+    double *best_y, best_rl;
     double warm_residual; /* |t - J^T lambda| / |t| after the warm start; 1 without one */
     double *lam_e, *lam_m, *pi_e, *pi_m; /* per edge (by first vertex) / vertex */
     double *pi_s;
@@ -517,6 +522,8 @@ static void solver_free(solver *s)
     free(s->tx);
     free(s->pat_i);
     free(s->pat_j);
+    free(s->best_y);
+    tr_curve_free(&s->probe);
     cholmod_l_free_factor(&s->L, &s->cm);
     cholmod_l_finish(&s->cm);
 }
@@ -787,6 +794,37 @@ done:
     return rc;
 }
 
+/* Measures y's ropelength (the oracle, scale free) and keeps y as the best
+ * iterate if it is the shortest yet. Only near feasibility: further out the
+ * rescaled curve is long anyway and the oracle's time would be wasted. */
+#define BEST_VIOL 1e-3
+static int keep_best(solver *s, const double *y, tr_error *err)
+{
+    if (!(s->viol < BEST_VIOL))
+        return TR_OK;
+    if (!s->probe.x) {
+        int rc = tr_curve_copy(&s->probe, &s->w, err);
+        if (rc)
+            return rc;
+    }
+    if (!s->best_y) {
+        s->best_y = malloc(s->n * sizeof *s->best_y);
+        if (!s->best_y)
+            return tr_fail(err, TR_ENOMEM, "out of memory (Newton solver)");
+        s->best_rl = INFINITY;
+    }
+    memcpy(s->probe.x, y, 3 * s->nv * sizeof *y);
+    tr_thickness th;
+    int rc = tr_thickness_measure(&s->probe, NULL, &th, NULL, err);
+    if (rc)
+        return rc;
+    if (th.thickness > 0 && isfinite(th.ropelength) && th.ropelength < s->best_rl) {
+        s->best_rl = th.ropelength;
+        memcpy(s->best_y, y, s->n * sizeof *y);
+    }
+    return TR_OK;
+}
+
 /* The largest vertex displacement since the strut list was built. */
 static double moved_since_build(const solver *s, const double *y)
 {
@@ -857,6 +895,8 @@ static int minimise(solver *s, double *y, tr_newton_stats *st, double t0, tr_err
             } else
                 settled = 0;
             prev_len = s->length;
+            if ((rc = keep_best(s, y, err)))
+                goto done;
             update_multipliers(s);
             if (s->viol > 0.25 * prev_viol && s->viol > viol_tol)
                 s->mu = fmin(10.0 * s->mu, p->mu_max / s->l0min);
@@ -1040,6 +1080,12 @@ int tr_newton(tr_curve *cv, const tr_newton_params *prm, tr_newton_stats *st, tr
     }
     if ((rc = minimise(&s, y, st, t0, err)))
         goto done;
+    /* the last iterate, or the best one the passes met */
+    al_eval(&s, y, NULL, 0);
+    if ((rc = keep_best(&s, y, err)))
+        goto done;
+    if (s.best_y)
+        memcpy(y, s.best_y, s.n * sizeof *y);
     /* the oracle decides: rescale to thickness 1, keep if shorter */
     memcpy(s.w.x, y, 3 * s.nv * sizeof *y);
     tr_thickness th;
