@@ -73,7 +73,10 @@ static void usage(FILE *out)
             "                     launch outweighs it (default 2048; 0: the device at every level)\n"
             "  --newton           at the finest level, the second-order solver (Newton steps\n"
             "                     on an augmented Lagrangian, exact strut Hessians, CHOLMOD)\n"
-            "                     in the polish's place, on curves without end constraints\n"
+            "                     in the polish's place, on curves without end constraints;\n"
+            "                     without it the solver still takes a tight finest level (a\n"
+            "                     tightened knot refined or resampled by --n) first\n"
+            "  --no-newton        never the second-order solver\n"
             "  --no-polish        skip the polish stage at every level (a serial augmented-\n"
             "                     Lagrangian / L-BFGS minimisation on the host, which ends each\n"
             "                     coarse level and at the finest takes the last 80%% of its time\n"
@@ -159,7 +162,7 @@ typedef struct tighten_opts {
     long n, refine_to, steps, device_from;
     double target, residual, time_limit, ckpt_every;
     int residual_given; /* the default residual is a stopping rule, not a goal */
-    int json, quiet, no_polish, newton, scale, kkt; /* kkt -1: up to KKT_AUTO_MAX_N */
+    int json, quiet, no_polish, newton, no_newton, scale, kkt; /* kkt -1: up to KKT_AUTO_MAX_N */
 } tighten_opts;
 
 /* Parses the command line into o and checks the paths against each other.
@@ -189,6 +192,10 @@ static int parse_options(int argc, char **argv, tighten_opts *o)
         }
         if (!strcmp(a, "--newton")) {
             o->newton = 1;
+            continue;
+        }
+        if (!strcmp(a, "--no-newton")) {
+            o->no_newton = 1;
             continue;
         }
         if (!strcmp(a, "--no-polish")) {
@@ -281,6 +288,10 @@ static int parse_options(int argc, char **argv, tighten_opts *o)
     }
     if (!o->out) {
         fprintf(stderr, "tightrope tighten: no output file (-o OUT)\n");
+        return 2;
+    }
+    if (o->newton && o->no_newton) {
+        fprintf(stderr, "tightrope tighten: --newton and --no-newton contradict each other\n");
         return 2;
     }
     if (o->resume && (o->in || o->n > 0 || o->scale)) {
@@ -466,6 +477,7 @@ static int open_start(const tighten_opts *o, tr_engine **e)
     tr_engine_params_default(&prm);
     prm.polish = !o->no_polish;
     prm.newton = o->newton;
+    prm.newton_tight = !o->no_newton;
     if (o->device_from >= 0)
         prm.device_min_n = (size_t)o->device_from;
     *e = NULL;
@@ -478,7 +490,7 @@ static int open_start(const tighten_opts *o, tr_engine **e)
         if (rc == TR_OK) {
             /* the start is the finest level: a tight one goes to the
              * second-order solver first (engine.h, newton_first) */
-            prm.newton_first = o->newton && (o->refine_to <= 0 || c.nv / (size_t)c.ncomp >= (size_t)o->refine_to);
+            prm.newton_first = !o->no_newton && (o->refine_to <= 0 || c.nv / (size_t)c.ncomp >= (size_t)o->refine_to);
             prm.newton_first_limit = o->time_limit;
             prm.newton_first_stop = &stop_requested;
             catch_signals();

@@ -53,6 +53,7 @@ void tr_engine_params_default(tr_engine_params *p)
     p->proj.cg_rtol = 1e-4;
     p->proj.max_cg = 200;
     p->polish = 1;
+    p->newton_tight = 1;
     p->polish_share = 0.8;
     p->polish_coarse = 1;
     p->device_min_n = 2048;
@@ -238,7 +239,7 @@ tr_engine *tr_engine_i_new(const char *device, const tr_engine_params *p)
  * tries the solver again in the polish's place. */
 static int newton_first(tr_engine *e, tr_error *err)
 {
-    if (!e->prm.newton || !e->prm.newton_first || e->curve.ncst > 0)
+    if (!(e->prm.newton || e->prm.newton_tight) || !e->prm.newton_first || e->curve.ncst > 0)
         return TR_OK;
     tr_newton_params np;
     tr_newton_params_default(&np);
@@ -251,6 +252,9 @@ static int newton_first(tr_engine *e, tr_error *err)
     if (rc)
         return rc == TR_EGEOMETRY ? TR_OK : rc;
     /* tried once: the level loop does not try a tight start again */
+    e->newton_tried = 1;
+    if (ns.loose)
+        return TR_OK;
     e->newton_ran = ns.accepted ? 1 : -1;
     e->newton_before = ns.ropelength_before;
     e->newton_after = ns.ropelength_after;

@@ -82,6 +82,10 @@ typedef struct tr_engine_params {
      * the finest level. The settle would first remove a spline's MinRad
      * overshoot by lengthening the rope (1.7e-3 at N = 9600, in 48 s). */
     int newton_first;
+    /* A tight finest level goes to the solver first even without newton
+     * (newton then adds the solver in the polish's place for loose ones);
+     * 0 keeps the solver out altogether. Default 1. */
+    int newton_tight;
     double newton_first_limit;
     volatile sig_atomic_t *newton_first_stop;
     /* Coarse levels (all but the last of a run with refine_to) with fewer

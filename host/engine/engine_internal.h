@@ -45,6 +45,9 @@ struct tr_engine {
     /* the solver's last run was accepted and converged or settled: the
      * finest level is done (TR_STOP_SOLVED) */
     int newton_solved;
+    /* the solver has had its look at a tight finest level (run, or found
+     * the start loose) */
+    int newton_tried;
     double *presettle_x;
     long polish_steps;
 };

@@ -59,6 +59,9 @@ static int run_newton(tr_engine *e, double seconds, int tight_only, volatile sig
     int rc = tr_newton(&e->curve, &np, &ns, err);
     if (rc)
         return rc == TR_EGEOMETRY ? TR_OK : rc;
+    e->newton_tried = 1;
+    if (ns.loose)
+        return TR_OK; /* not run: nothing to report */
     e->newton_ran = ns.accepted ? 1 : -1;
     e->newton_before = ns.ropelength_before;
     e->newton_after = ns.ropelength_after;
@@ -77,7 +80,7 @@ static int run_newton(tr_engine *e, double seconds, int tight_only, volatile sig
 static int run_polish(tr_engine *e, double seconds, double target, int final, int tight_only,
                       volatile sig_atomic_t *stop, tr_error *err)
 {
-    int newton = final && e->prm.newton && e->curve.ncst == 0;
+    int newton = final && (e->prm.newton || (tight_only && e->prm.newton_tight)) && e->curve.ncst == 0;
     size_t nx = 3 * e->curve.nv;
     double *keep = malloc((nx + (size_t)e->curve.ncomp) * sizeof *keep);
     if (!keep)
@@ -257,8 +260,8 @@ int tr_engine_run(tr_engine *e, const tr_engine_limits *lim, tr_stop_reason *why
          * first-order steps need ~N^2; a loose one (the solver's warm start
          * says which, in a second) takes the first-order steps first and
          * the solver in the polish's place. */
-        if (final_level && stop == TR_STOP_NONE && e->prm.newton && e->prm.polish && e->curve.ncst == 0 &&
-            e->newton_ran == 0) {
+        if (final_level && stop == TR_STOP_NONE && (e->prm.newton || e->prm.newton_tight) && e->prm.polish &&
+            e->curve.ncst == 0 && !e->newton_tried) {
             double left = lim->time_limit > 0 ? lim->time_limit - p.elapsed : 0.0;
             if ((rc = run_polish(e, lim->time_limit > 0 ? fmax(left, 1e-3) : 0.0, lim->target, 1, 1, lim->stop,
                                  err)))
