@@ -270,6 +270,29 @@ static int newton_first(tr_engine *e, tr_error *err)
     return TR_OK;
 }
 
+/* A start whose MinRad alone is a little under 1 while its struts are at 2
+ * (a spline through a tight knot rings where the curvature jumps: MinRad
+ * 0.92 at N = 38 400) can be more than the settle's damped steps take in
+ * their 400 tries; scaled to thickness 1 instead it is feasible and the
+ * run goes on from a start a few per cent loose, rather than ending with
+ * nothing after the solver's time. Anything else stays the settle's error
+ * (rc), and a constrained rope is not rescaled (its planes would have to
+ * move with it). */
+static int settle_scaled(tr_engine *e, int rc, tr_error *err)
+{
+    tr_thickness th;
+    tr_error e2;
+    if (e->curve.ncst > 0 || tr_thickness_measure(&e->curve, NULL, &th, NULL, &e2) || !isfinite(th.dcsd) ||
+        !(th.dcsd >= 2.0 * (1.0 - 1e-6)) || !(th.minrad < 1.0) || !(th.minrad >= 0.85))
+        return rc;
+    for (size_t i = 0; i < 3 * e->curve.nv; i++)
+        e->curve.x[i] /= th.minrad;
+    tr_backend_close(&e->be);
+    if ((rc = tr_engine_i_open_backend(e, &e->curve, err)) || (rc = tr_engine_i_keep_presettle(e, err)))
+        return rc;
+    return tr_engine_i_settle(e, "the start curve (scaled to MinRad 1)", 0.0, err);
+}
+
 int tr_engine_create(tr_engine **out, const tr_curve *c, const char *device,
                      const tr_engine_params *p, tr_error *err)
 {
@@ -288,6 +311,8 @@ int tr_engine_create(tr_engine **out, const tr_curve *c, const char *device,
         rc = tr_engine_i_keep_presettle(e, err);
     if (!rc)
         rc = tr_engine_i_settle(e, "the start curve", 0.0, err);
+    if (rc == TR_EGEOMETRY)
+        rc = settle_scaled(e, rc, err);
     if (rc) {
         tr_engine_destroy(e);
         return rc;

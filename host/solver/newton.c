@@ -750,7 +750,7 @@ static int warm_multipliers(solver *s, const double *y, tr_error *err)
         rr += r[i] * r[i];
     }
     double rr0 = rr;
-    for (int it = 0; it < WARM_ITERS && rr > 1e-20 * rr0; it++) {
+    for (int it = 0; it < WARM_ITERS && rr > 1e-20 * rr0 && !(s->p->stop && *s->p->stop); it++) {
         memset(w, 0, nx * sizeof *w);
         for (size_t i = 0; i < nr; i++)
             for (size_t k = rowp[i]; k < rowp[i + 1]; k++)
@@ -1009,6 +1009,10 @@ static int prepare(solver *s, const tr_curve *cv, double unit, double **y, tr_ne
         return rc;
     st->t_rebuild += tr_clock_seconds() - tr;
     s->warm_residual = 1.0;
+    /* a stop asked for during the list's build: the minimisation stops at
+     * once, so the warm start would be time lost */
+    if (s->p->stop && *s->p->stop)
+        return TR_OK;
     if (s->p->warm_start && (rc = warm_multipliers(s, *y, err)))
         return rc;
     return TR_OK;

@@ -38,7 +38,11 @@ sigint)
   echo "exit $rc after $took s"
   [ "$rc" = 1 ] || fail "exit $rc, want 1: $(cat "$work/err")"
   grep -q 'interrupted; wrote' "$work/err" || fail "no 'interrupted' line: $(cat "$work/err")"
-  awk -v t="$took" 'BEGIN { exit !(t < 6) }' || fail "took $took s to stop"
+  # the signal comes 2 s in; the solver polls it every step and the warm
+  # start every iteration, the strut list's build (~0.3 s here, several
+  # seconds under the sanitizers) not at all
+  limit=6; [ -n "${ASAN_OPTIONS:-}" ] && limit=20
+  awk -v t="$took" -v l="$limit" 'BEGIN { exit !(t < l) }' || fail "took $took s to stop (limit $limit)"
   r=$(ropelength "$work/o.vect")
   [ -n "$r" ] || fail "the written curve does not measure"
   ;;
