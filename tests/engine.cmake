@@ -97,3 +97,7 @@ add_test(NAME tighten_device_levels
   COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/scripts/device_levels.sh $<TARGET_FILE:tightrope>
           ${CMAKE_CURRENT_BINARY_DIR}/cli_tighten/device_levels)
 set_tests_properties(tighten_device_levels PROPERTIES SKIP_RETURN_CODE 77 ENVIRONMENT "${TR_TEST_ENV}")
+# a checkpoint that cannot be written is a warning (tests/scripts/checkpoint_cli.sh)
+add_test(NAME tighten_checkpoint_vanished
+  COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/scripts/checkpoint_cli.sh $<TARGET_FILE:tightrope> ${_eng_dir}/ckpt_vanished)
+set_tests_properties(tighten_checkpoint_vanished PROPERTIES ENVIRONMENT "${TR_TEST_ENV}" LABELS cli)

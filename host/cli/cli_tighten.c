@@ -572,6 +572,8 @@ typedef struct tighten_result {
     int rescaled;  /* fin was scaled to thickness 1 */
     tr_kkt kr;
     int certified; /* kr holds the KKT certificate of fin */
+    int ckpt_failures; /* checkpoints the run could not write */
+    const char *ckpt_why;
 } tighten_result;
 
 /* Takes the engine's curve into r->fin, rescaled to thickness 1 where no
@@ -580,6 +582,7 @@ typedef struct tighten_result {
 static int certify(const tighten_opts *o, tr_engine *e, tighten_result *r, tr_error *err)
 {
     tr_engine_get_progress(e, &r->p);
+    r->ckpt_failures = tr_engine_checkpoint_failures(e, &r->ckpt_why);
     /* no step ever taken (a --target the start already meets): the engine
      * has no residual to report, and 0 would read as converged */
     if (r->p.steps == 0)
@@ -697,6 +700,9 @@ static void print_summary(const tighten_opts *o, tr_engine *e, const tighten_res
  * was interrupted or did not reach a requested ropelength or residual. */
 static int final_status(const tighten_opts *o, const tighten_result *r)
 {
+    if (r->ckpt_failures > 0)
+        fprintf(stderr, "tightrope tighten: warning: %d checkpoint%s could not be written (the run went on): %s\n",
+                r->ckpt_failures, r->ckpt_failures > 1 ? "s" : "", r->ckpt_why);
     if (r->why == TR_STOP_SIGNAL)
         fprintf(stderr, "tightrope tighten: interrupted; %s%s%swrote %s\n", o->ckpt ? "checkpoint " : "",
                 o->ckpt ? o->ckpt : "", o->ckpt ? " and " : "", o->out);

@@ -338,6 +338,13 @@ void tr_engine_destroy(tr_engine *e)
 const char *tr_engine_device(const tr_engine *e) { return e->be.description; }
 const char *tr_engine_warning(const tr_engine *e) { return e->be.warning; }
 
+int tr_engine_checkpoint_failures(const tr_engine *e, const char **why)
+{
+    if (why)
+        *why = e->ckpt_failure;
+    return e->ckpt_failures;
+}
+
 int tr_engine_step(tr_engine *e, int *accepted, tr_error *err)
 {
     const tr_backend_ops *op = e->be.ops;

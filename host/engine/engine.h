@@ -175,6 +175,9 @@ int tr_engine_refine(tr_engine *e, size_t n, tr_error *err);
 void tr_engine_get_progress(const tr_engine *e, tr_engine_progress *p);
 const char *tr_engine_device(const tr_engine *e);
 const char *tr_engine_warning(const tr_engine *e);
+/* Checkpoints of the run that could not be written (it went on without
+ * them); *why the last failure's message (may be NULL). */
+int tr_engine_checkpoint_failures(const tr_engine *e, const char **why);
 
 /* Current coordinates (and constraints) as a curve the caller frees. */
 int tr_engine_get_curve(tr_engine *e, tr_curve *out, tr_error *err);

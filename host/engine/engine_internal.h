@@ -48,6 +48,10 @@ struct tr_engine {
     /* the solver has had its look at a tight finest level (run, or found
      * the start loose) */
     int newton_tried;
+    /* checkpoints that could not be written (the run went on) and why the
+     * last one failed */
+    int ckpt_failures;
+    char ckpt_failure[256];
     double *presettle_x;
     long polish_steps;
 };

@@ -208,6 +208,24 @@ static int level_backend(tr_engine *e, int coarse_ref, tr_error *err)
     return e->be.ops->upload(e->be.state, e->curve.x, e->ebar, err);
 }
 
+/* A checkpoint that cannot be written (the disk full, its folder gone)
+ * costs the run nothing but the checkpoint: the failure is kept for the
+ * caller to report (tr_engine_checkpoint_failures) and the run goes on.
+ * Any other failure (reading the state back from the device) stops it. */
+static int checkpoint(tr_engine *e, const char *path, tr_error *err)
+{
+    tr_error ce = {0};
+    int rc = tr_engine_checkpoint_write(e, path, &ce);
+    if (rc == TR_EIO) {
+        e->ckpt_failures++;
+        snprintf(e->ckpt_failure, sizeof e->ckpt_failure, "%.255s", ce.msg);
+        return TR_OK;
+    }
+    if (rc)
+        *err = ce;
+    return rc;
+}
+
 #define STALL_STEPS 200
 #define STALL_REL 1e-5
 
@@ -305,7 +323,7 @@ int tr_engine_run(tr_engine *e, const tr_engine_limits *lim, tr_stop_reason *why
         }
         if (stop != TR_STOP_NONE) {
             *why = stop;
-            if (lim->checkpoint_path && (rc = tr_engine_checkpoint_write(e, lim->checkpoint_path, err)))
+            if (lim->checkpoint_path && (rc = checkpoint(e, lim->checkpoint_path, err)))
                 return rc;
             return TR_OK;
         }
@@ -323,7 +341,7 @@ int tr_engine_run(tr_engine *e, const tr_engine_limits *lim, tr_stop_reason *why
             continue;
         }
         if (lim->checkpoint_path && lim->checkpoint_every > 0 && tr_clock_seconds() - t_last_ckpt >= lim->checkpoint_every) {
-            if ((rc = tr_engine_checkpoint_write(e, lim->checkpoint_path, err)))
+            if ((rc = checkpoint(e, lim->checkpoint_path, err)))
                 return rc;
             t_last_ckpt = tr_clock_seconds();
         }
