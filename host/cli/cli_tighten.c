@@ -23,6 +23,7 @@
 #include "curve/curve_io.h"
 #include "engine/engine.h"
 #include "curve/generate.h"
+#include "curve/perturb.h"
 #include "util/json.h"
 #include "oracle/kkt.h"
 #include "util/text_file.h"
@@ -77,6 +78,12 @@ static void usage(FILE *out)
             "                     without it the solver still takes a tight finest level (a\n"
             "                     tightened knot refined or resampled by --n) first\n"
             "  --no-newton        never the second-order solver\n"
+            "  --tries K          K roads (default 1): the start as given, then K - 1 times\n"
+            "                     the shortest result so far moved by a smooth random\n"
+            "                     displacement (under half the rope's diameter, so the knot\n"
+            "                     stays the same) and tightened again, each with 1/K of the\n"
+            "                     time limit; the shortest result is written\n"
+            "  --seed S           the displacements' seed (default 1): the same S, the same roads\n"
             "  --no-polish        skip the polish stage at every level (a serial augmented-\n"
             "                     Lagrangian / L-BFGS minimisation on the host, which ends each\n"
             "                     coarse level and at the finest takes the last 80%% of its time\n"
@@ -159,7 +166,9 @@ static void scale_curve(tr_curve *c, double f)
 /* The command line's options. */
 typedef struct tighten_opts {
     const char *in, *out, *ckpt, *resume, *device;
-    long n, refine_to, steps, device_from;
+    long n, refine_to, steps, device_from, tries, seed;
+    int try_index; /* which of --tries this run is (0: the start as given) */
+    const tr_curve *road_from; /* --tries: the shortest result so far, this road's start */
     double target, residual, time_limit, ckpt_every;
     int residual_given; /* the default residual is a stopping rule, not a goal */
     int json, quiet, no_polish, newton, no_newton, scale, kkt; /* kkt -1: up to KKT_AUTO_MAX_N */
@@ -170,15 +179,15 @@ typedef struct tighten_opts {
  * command line, with its message printed). */
 static int parse_options(int argc, char **argv, tighten_opts *o)
 {
-    *o = (tighten_opts){.device_from = -1, .residual = 1e-4, .ckpt_every = 300, .kkt = -1};
+    *o = (tighten_opts){.device_from = -1, .residual = 1e-4, .ckpt_every = 300, .kkt = -1, .tries = 1, .seed = 1};
     static const char *valued[] = {"-o", "--output", "--n", "--refine-to", "--target", "--residual",
                                    "--steps", "--time-limit", "--checkpoint", "--checkpoint-every",
-                                   "--resume", "--device", "--device-from"};
+                                   "--resume", "--device", "--device-from", "--tries", "--seed"};
     /* what a bad value of each should have been, in the order of valued */
     static const char *wants[] = {"", "", "an integer >= 4, vertices per component",
                                   "an integer >= 4, vertices per component", "a number > 0", "a number >= 0",
                                   "an integer >= 1", "a number > 0 (seconds)", "", "a number > 0 (seconds)", "",
-                                  "", "an integer >= 0"};
+                                  "", "an integer >= 0", "an integer from 1 to 1000", "an integer >= 0"};
     unsigned char given[sizeof valued / sizeof valued[0]] = {0};
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
@@ -261,6 +270,10 @@ static int parse_options(int argc, char **argv, tighten_opts *o)
                 o->resume = v;
             else if (!strcmp(a, "--device-from"))
                 bad = tr_arg_long(v, 0, LONG_MAX, &o->device_from);
+            else if (!strcmp(a, "--tries"))
+                bad = tr_arg_long(v, 1, 1000, &o->tries);
+            else if (!strcmp(a, "--seed"))
+                bad = tr_arg_long(v, 0, LONG_MAX, &o->seed);
             else
                 o->device = v;
             if (bad) {
@@ -288,6 +301,10 @@ static int parse_options(int argc, char **argv, tighten_opts *o)
     }
     if (!o->out) {
         fprintf(stderr, "tightrope tighten: no output file (-o OUT)\n");
+        return 2;
+    }
+    if (o->resume && o->tries > 1) {
+        fprintf(stderr, "tightrope tighten: --resume continues one road; --tries starts several\n");
         return 2;
     }
     if (o->newton && o->no_newton) {
@@ -368,13 +385,64 @@ static int densify_coarse(const tighten_opts *o, tr_curve *c, tr_error *err)
     return TR_OK;
 }
 
+/* --tries: road o->try_index starts from the shortest result so far moved
+ * by a smooth displacement of at most TRY_AMPLITUDE of its thickness
+ * (perturb.h) and scaled back to its thickness (basin hopping). Every strand
+ * moves less than half the distance 2t between strands, so along the
+ * straight path from the result no two strands meet: the knot is the same,
+ * only the road differs. */
+#define TRY_AMPLITUDE 0.9
+static int other_road(const tighten_opts *o, tr_curve *c, tr_error *err)
+{
+    if (c->ncst > 0)
+        return tr_fail(err, TR_EINVAL, "--tries: %s has constraints; a clasp's ends on their planes leave it one road",
+                       o->in);
+    tr_thickness t0, t1;
+    int rc = tr_thickness_measure(c, NULL, &t0, NULL, err);
+    if (rc)
+        return rc;
+    tr_curve moved = {0};
+    /* a coarse polygon bends at its vertices under the displacement: the
+     * amplitude is halved until the thickness keeps half its value, so
+     * that scaling back does not stretch the edges past what the engine
+     * takes (a 72-gon trefoil lost 4.8 times its thickness at 0.9) */
+    double amp = TRY_AMPLITUDE;
+    for (int attempt = 0; attempt < 6; attempt++, amp *= 0.5) {
+        tr_curve_free(&moved);
+        uint64_t seed = (uint64_t)o->seed * 1000003u + (uint64_t)o->try_index;
+        if ((rc = tr_curve_copy(&moved, c, err)) || (rc = tr_curve_perturb(&moved, amp * t0.thickness, seed, err)) ||
+            (rc = tr_thickness_measure(&moved, NULL, &t1, NULL, err))) {
+            tr_curve_free(&moved);
+            return rc;
+        }
+        if (t1.thickness >= 0.5 * t0.thickness && isfinite(t1.thickness))
+            break;
+    }
+    if (!(t1.thickness > 0 && isfinite(t1.thickness))) {
+        tr_curve_free(&moved);
+        return tr_fail(err, TR_EGEOMETRY, "--tries: road %d's start has no thickness", o->try_index + 1);
+    }
+    scale_curve(&moved, t0.thickness / t1.thickness);
+    tr_curve_free(c);
+    *c = moved;
+    return TR_OK;
+}
+
 /* Reads the start curve IN into c, resampled with --n and scaled with
  * --scale, and checks that it can be tightened: its open ends are held and
  * its thickness is at a scale the engine can work in. */
 static int read_start(const tighten_opts *o, tr_curve *c, tr_error *err)
 {
     const char *in = o->in;
-    int rc = tr_curve_read(in, TR_FORMAT_AUTO, c, err);
+    int rc;
+    if (o->road_from) {
+        /* a later road of --tries: the shortest result so far, moved off
+         * its local minimum (it is at thickness 1 and at the run's N) */
+        if ((rc = tr_curve_copy(c, o->road_from, err)) || (rc = other_road(o, c, err)))
+            tr_curve_free(c);
+        return rc;
+    }
+    rc = tr_curve_read(in, TR_FORMAT_AUTO, c, err);
     if (rc != TR_OK)
         return rc;
     if (o->n > 0) {
@@ -574,6 +642,7 @@ typedef struct tighten_result {
     int certified; /* kr holds the KKT certificate of fin */
     int ckpt_failures; /* checkpoints the run could not write */
     const char *ckpt_why;
+    int tries, best_try; /* --tries: roads run, the one written (0-based) */
 } tighten_result;
 
 /* Takes the engine's curve into r->fin, rescaled to thickness 1 where no
@@ -641,6 +710,8 @@ static int write_output(const tighten_opts *o, tr_engine *e, const tighten_resul
         tr_text_printf(&cm, "newton %s: ropelength %.9f -> %.9f in %.2f s, %d steps\n",
                        p->newton_ran > 0 ? "accepted" : "rejected", p->newton_before, p->newton_after,
                        p->newton_seconds, p->newton_iters);
+    if (r->tries > 1)
+        tr_text_printf(&cm, "tries %d, seed %ld: the shortest was road %d\n", r->tries, o->seed, r->best_try + 1);
     char *comments = tr_text_take(&cm, NULL);
     if (!comments)
         return tr_fail(err, TR_ENOMEM, "out of memory");
@@ -734,12 +805,36 @@ static void fill_report(const tighten_result *r, tr_tighten_report *rep)
     rep->kkt_residual = r->certified ? r->kr.residual : NAN;
     rep->elapsed = r->p.elapsed;
     rep->steps = r->p.steps;
-    rep->tries = 1;
+    rep->tries = r->tries > 0 ? r->tries : 1;
 }
 
 int tr_tighten_stop_requested(void) { return stop_requested != 0; }
 
 int tr_cmd_tighten(int argc, char **argv) { return tr_tighten_command(argc, argv, NULL); }
+
+/* One road of the run: opens the start (perturbed for try_index > 0),
+ * runs and certifies it. Returns -1 with *e and *r filled, else the exit
+ * status (its message printed). */
+static int one_road(const tighten_opts *o, tr_engine **e, tighten_result *r)
+{
+    int rc = open_start(o, e);
+    if (rc >= 0)
+        return rc;
+    *r = (tighten_result){0};
+    rc = run(o, *e, &r->why);
+    if (rc >= 0) {
+        tr_engine_destroy(*e);
+        return rc;
+    }
+    tr_error err;
+    if ((rc = certify(o, *e, r, &err))) {
+        fprintf(stderr, "tightrope tighten: %s\n", err.msg);
+        tr_curve_free(&r->fin);
+        tr_engine_destroy(*e);
+        return 2;
+    }
+    return -1;
+}
 
 int tr_tighten_command(int argc, char **argv, tr_tighten_report *rep)
 {
@@ -749,20 +844,49 @@ int tr_tighten_command(int argc, char **argv, tr_tighten_report *rep)
     int rc = parse_options(argc, argv, &o);
     if (rc >= 0)
         return rc;
-    tr_engine *e;
-    rc = open_start(&o, &e);
-    if (rc >= 0)
-        return rc;
+    /* --tries: the roads one after the other, each with its share of the
+     * time; the shortest certified one is kept. A road that fails after the
+     * first is skipped (said on stderr); SIGINT ends the series. */
+    tr_engine *e = NULL;
     tighten_result r = {0};
-    rc = run(&o, e, &r.why);
-    if (rc >= 0) {
-        tr_engine_destroy(e);
-        return rc;
+    int have = 0;
+    for (long t = 0; t < o.tries && !(have && stop_requested); t++) {
+        tighten_opts ot = o;
+        ot.try_index = (int)t;
+        ot.road_from = have ? &r.fin : NULL;
+        if (o.time_limit > 0)
+            ot.time_limit = o.time_limit / (double)o.tries;
+        tr_engine *et;
+        tighten_result rt;
+        rc = one_road(&ot, &et, &rt);
+        if (rc >= 0) {
+            if (!have)
+                return rc;
+            fprintf(stderr, "tightrope tighten: road %ld of %ld skipped\n", t + 1, o.tries);
+            continue;
+        }
+        if (o.tries > 1 && !o.quiet)
+            fprintf(stderr, "tightrope tighten: road %ld of %ld: ropelength %.9f\n", t + 1, o.tries, rt.th.ropelength);
+        if (!have || rt.th.ropelength < r.th.ropelength) {
+            if (have) {
+                tr_curve_free(&r.fin);
+                tr_engine_destroy(e);
+            }
+            e = et;
+            r = rt;
+            r.best_try = (int)t;
+            have = 1;
+        } else {
+            tr_curve_free(&rt.fin);
+            tr_engine_destroy(et);
+        }
+        r.tries = (int)t + 1;
     }
+    /* an interrupted series is an interrupted run, whichever road is kept */
+    if (stop_requested)
+        r.why = TR_STOP_SIGNAL;
     tr_error err;
-    rc = certify(&o, e, &r, &err);
-    if (rc == TR_OK)
-        rc = write_output(&o, e, &r, argc, argv, &err);
+    rc = write_output(&o, e, &r, argc, argv, &err);
     if (rc) {
         fprintf(stderr, "tightrope tighten: %s\n", err.msg);
         tr_curve_free(&r.fin);

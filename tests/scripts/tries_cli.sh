@@ -1,0 +1,30 @@
+#!/usr/bin/env bash
+# tighten --tries K --seed S (issue 24 item 1): K roads, the shortest written.
+# Usage: tries_cli.sh TIGHTROPE WORK_DIR. Exit 0 pass, 1 fail.
+set -u
+tr=$1 work=$2
+rm -rf "$work" && mkdir -p "$work"
+fail() { echo "FAIL: $*"; exit 1; }
+"$tr" make torus 2 3 --n 72 -o "$work/s.vect" >/dev/null || fail "make"
+# --steps, not a time limit, so that every road is the same computation twice
+for run in a b; do
+  "$tr" tighten "$work/s.vect" -o "$work/$run.vect" --steps 150 --tries 3 --seed 7 --no-kkt --device reference \
+    >"$work/$run.out" 2>"$work/$run.err" || fail "tighten ($run): $(cat "$work/$run.err")"
+done
+# the written curve is the shortest road, and its comment says which
+grep -c '^tightrope tighten: road [0-9] of 3: ropelength' "$work/a.err" | grep -qx 3 || fail "not 3 roads: $(cat "$work/a.err")"
+best=$(awk '/road [0-9] of 3: ropelength/ { if (m == "" || $NF < m) m = $NF } END { print m }' "$work/a.err")
+got=$("$tr" measure "$work/a.vect" | awk '$1 == "curve" { print $7 }')
+awk -v b="$best" -v g="$got" 'BEGIN { d = b - g; if (d < 0) d = -d; exit !(d < 1e-8 * b) }' ||
+  fail "wrote $got, the shortest road was $best"
+grep -Eq '^# tries 3, seed 7: the shortest was road [1-3]$' "$work/a.vect" || fail "no tries comment"
+# the same seed, the same roads
+cmp -s <(grep -v '^#' "$work/a.vect") <(grep -v '^#' "$work/b.vect") || fail "seed 7 twice gave two curves"
+# bad values and a resumed run are refused
+for bad in 0 1001 x; do
+  "$tr" tighten "$work/s.vect" -o "$work/x.vect" --tries $bad 2>"$work/bad.err" && fail "--tries $bad accepted"
+  grep -q "bad --tries" "$work/bad.err" || fail "--tries $bad: $(cat "$work/bad.err")"
+done
+"$tr" tighten --resume "$work/none.ckpt" -o "$work/x.vect" --tries 2 2>"$work/res.err" && fail "--resume --tries accepted"
+grep -q -- "--tries starts several" "$work/res.err" || fail "--resume --tries: $(cat "$work/res.err")"
+exit 0
