@@ -248,11 +248,11 @@ static int newton_first(tr_engine *e, tr_error *err)
     if (e->prm.newton_first_limit > 0)
         np.time_limit = fmax(e->prm.newton_first_limit - (tr_clock_seconds() - e->t0), 1e-3);
     tr_newton_stats ns;
+    /* tried once: the level loop does not try a tight start again */
+    e->newton_tried = 1;
     int rc = tr_newton(&e->curve, &np, &ns, err);
     if (rc)
         return rc == TR_EGEOMETRY ? TR_OK : rc;
-    /* tried once: the level loop does not try a tight start again */
-    e->newton_tried = 1;
     if (ns.loose)
         return TR_OK;
     e->newton_ran = ns.accepted ? 1 : -1;

@@ -56,10 +56,11 @@ static int run_newton(tr_engine *e, double seconds, int tight_only, volatile sig
     np.tight_only = tight_only;
     np.stop = stop;
     tr_newton_stats ns;
+    /* tried, whatever comes of it: the level loop must not try again */
+    e->newton_tried = 1;
     int rc = tr_newton(&e->curve, &np, &ns, err);
     if (rc)
         return rc == TR_EGEOMETRY ? TR_OK : rc;
-    e->newton_tried = 1;
     if (ns.loose)
         return TR_OK; /* not run: nothing to report */
     e->newton_ran = ns.accepted ? 1 : -1;
