@@ -18,7 +18,7 @@ tr_engine_test(tighten_newton 0 DIR ${_pol_dir}/newton ONLY "s.vect;t.vect" OUT 
 # The solver's route (tests/scripts/newton_route.sh): a tightened knot
 # resampled finer by --n goes to the solver first and ends shorter; SIGINT
 # while it runs stops the run promptly with a curve written.
-foreach(c refine sigint)
+foreach(c refine sigint auto)
   add_test(NAME tighten_newton_route_${c}
     COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/scripts/newton_route.sh ${c} $<TARGET_FILE:tightrope>
             ${CMAKE_SOURCE_DIR} ${CMAKE_CURRENT_BINARY_DIR}/newton_route_${c})

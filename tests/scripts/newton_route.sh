@@ -46,6 +46,18 @@ sigint)
   r=$(ropelength "$work/o.vect")
   [ -n "$r" ] || fail "the written curve does not measure"
   ;;
+auto)
+  # Without route flags a loose start of N >= 200 is tightened from N / 4
+  # and refined back to N (said on stderr); a tight one is left at its N.
+  "$tr" make torus 2 3 --n 240 -o "$work/s.vect" >/dev/null || fail "make"
+  "$tr" tighten "$work/s.vect" -o "$work/t.vect" --time-limit 3 --no-kkt --device reference 2>"$work/err" >/dev/null ||
+    fail "tighten: $(cat "$work/err")"
+  grep -q 'is loose .* tightening from 64 vertices and refining to 240' "$work/err" || fail "no route note: $(cat "$work/err")"
+  "$tr" measure "$work/t.vect" | awk '$1 == "curve" { exit !($2 == 240) }' || fail "the output is not at N = 240"
+  "$tr" tighten "$src/bench/data/trefoil_1600.vect" -o "$work/u.vect" --steps 1 --no-kkt --device reference \
+    2>"$work/err2" >/dev/null || fail "tight start: $(cat "$work/err2")"
+  grep -q 'is loose' "$work/err2" && fail "a tight start was called loose"
+  ;;
 *) fail "unknown case $case_" ;;
 esac
 exit 0
