@@ -234,6 +234,33 @@ tr_engine *tr_engine_i_new(const char *device, const tr_engine_params *p)
     return e;
 }
 
+int tr_engine_i_newton(tr_engine *e, double seconds, int tight_only, volatile sig_atomic_t *stop, int *accepted,
+                       tr_error *err)
+{
+    *accepted = 0;
+    tr_newton_params np;
+    tr_newton_params_default(&np);
+    np.time_limit = seconds;
+    np.tight_only = tight_only;
+    np.stop = stop;
+    tr_newton_stats ns;
+    /* tried, whatever comes of it: the level loop must not try again */
+    e->newton_tried = 1;
+    int rc = tr_newton(&e->curve, &np, &ns, err);
+    if (rc)
+        return rc == TR_EGEOMETRY ? TR_OK : rc;
+    if (ns.loose)
+        return TR_OK; /* not run: nothing to report */
+    e->newton_ran = ns.accepted ? 1 : -1;
+    e->newton_before = ns.ropelength_before;
+    e->newton_after = ns.ropelength_after;
+    e->newton_seconds = ns.seconds;
+    e->newton_iters = ns.iters;
+    e->newton_solved = ns.accepted && (ns.converged || ns.settled);
+    *accepted = ns.accepted;
+    return TR_OK;
+}
+
 /* The second-order solver on a tight start before the settle
  * (engine.h, newton_first); a loose one is left to the level loop, which
  * tries the solver again in the polish's place. */
@@ -241,33 +268,18 @@ static int newton_first(tr_engine *e, tr_error *err)
 {
     if (!(e->prm.newton || e->prm.newton_tight) || !e->prm.newton_first || e->curve.ncst > 0)
         return TR_OK;
-    tr_newton_params np;
-    tr_newton_params_default(&np);
-    np.tight_only = 1;
-    np.stop = e->prm.newton_first_stop;
+    double seconds = 0.0;
     if (e->prm.newton_first_limit > 0)
-        np.time_limit = fmax(e->prm.newton_first_limit - (tr_clock_seconds() - e->t0), 1e-3);
-    tr_newton_stats ns;
-    /* tried once: the level loop does not try a tight start again */
-    e->newton_tried = 1;
-    int rc = tr_newton(&e->curve, &np, &ns, err);
-    if (rc)
-        return rc == TR_EGEOMETRY ? TR_OK : rc;
-    if (ns.loose)
-        return TR_OK;
-    e->newton_ran = ns.accepted ? 1 : -1;
-    e->newton_before = ns.ropelength_before;
-    e->newton_after = ns.ropelength_after;
-    e->newton_seconds = ns.seconds;
-    e->newton_iters = ns.iters;
-    e->newton_solved = ns.accepted && (ns.converged || ns.settled);
-    if (ns.accepted) {
+        seconds = fmax(e->prm.newton_first_limit - (tr_clock_seconds() - e->t0), 1e-3);
+    int accepted;
+    int rc = tr_engine_i_newton(e, seconds, 1, e->prm.newton_first_stop, &accepted, err);
+    if (rc == TR_OK && accepted) {
         e->polished = 1;
-        e->polish_before = ns.ropelength_before;
-        e->polish_after = ns.ropelength_after;
-        e->polish_seconds = ns.seconds;
+        e->polish_before = e->newton_before;
+        e->polish_after = e->newton_after;
+        e->polish_seconds = e->newton_seconds;
     }
-    return TR_OK;
+    return rc;
 }
 
 /* A start whose MinRad alone is a little under 1 while its struts are at 2

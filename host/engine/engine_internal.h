@@ -68,6 +68,11 @@ void tr_engine_i_fill_state(tr_engine *e, const tr_measure *m);
 /* Brings a fresh backend state onto the constraint set (equal edges,
  * struts, chords) in damped Newton steps, guarding every one. */
 int tr_engine_i_settle(tr_engine *e, const char *what, double overlap_ok, tr_error *err);
+/* The second-order solver on e->curve (replaced only if accepted), its
+ * figures kept in the engine; tight_only: give up on a loose start (not
+ * reported as a run). A failure on the geometry is not an error. */
+int tr_engine_i_newton(tr_engine *e, double seconds, int tight_only, volatile sig_atomic_t *stop, int *accepted,
+                       tr_error *err);
 /* Keeps e->curve.x as the level's presettle_x. */
 int tr_engine_i_keep_presettle(tr_engine *e, tr_error *err);
 /* Opens e->be on c: the device, or the reference for a coarse level. */

@@ -12,7 +12,6 @@
 #include "engine/engine_internal.h"
 #include "engine/polish.h"
 #include "oracle/thickness.h"
-#include "solver/newton.h"
 #include "util/clock.h"
 
 /* After a polish was settled: if the settled curve measures longer (oracle
@@ -41,36 +40,6 @@ static int keep_if_settle_lost(tr_engine *e, double polished_rl, double *scratch
     }
     free(px);
     return rc;
-}
-
-/* The second-order solver on the downloaded curve, in the polish's place
- * and time (curves without vertex constraints); reports whether it
- * replaced the curve. */
-static int run_newton(tr_engine *e, double seconds, int tight_only, volatile sig_atomic_t *stop, int *accepted,
-                      tr_error *err)
-{
-    *accepted = 0;
-    tr_newton_params np;
-    tr_newton_params_default(&np);
-    np.time_limit = seconds;
-    np.tight_only = tight_only;
-    np.stop = stop;
-    tr_newton_stats ns;
-    /* tried, whatever comes of it: the level loop must not try again */
-    e->newton_tried = 1;
-    int rc = tr_newton(&e->curve, &np, &ns, err);
-    if (rc)
-        return rc == TR_EGEOMETRY ? TR_OK : rc;
-    if (ns.loose)
-        return TR_OK; /* not run: nothing to report */
-    e->newton_ran = ns.accepted ? 1 : -1;
-    e->newton_before = ns.ropelength_before;
-    e->newton_after = ns.ropelength_after;
-    e->newton_seconds = ns.seconds;
-    e->newton_iters = ns.iters;
-    e->newton_solved = ns.accepted && (ns.converged || ns.settled);
-    *accepted = ns.accepted;
-    return TR_OK;
 }
 
 /* The polish stage: download, polish on the host (or, at the finest level
@@ -102,7 +71,7 @@ static int run_polish(tr_engine *e, double seconds, double target, int final, in
         /* at the finest level the second-order solver takes the polish's
          * place (bench/RESULTS.md, "Second-order solver") */
         int nacc = 0;
-        if ((rc = run_newton(e, seconds, tight_only, stop, &nacc, err))) {
+        if ((rc = tr_engine_i_newton(e, seconds, tight_only, stop, &nacc, err))) {
             free(keep);
             return rc;
         }
