@@ -30,12 +30,12 @@ void tr_newton_params_default(tr_newton_params *p)
 {
     memset(p, 0, sizeof *p);
     p->max_iter = 5000;
-    p->max_inner = 8;
+    p->max_inner = 15;
     p->skin = 0.08;
     p->max_move = p->skin / 8;
     p->mu0 = 10.0;
-    p->warm_start = getenv("TR_COLD") ? 0 : 1;
-    p->mu_max = 1e9;
+    p->warm_start = 1;
+    p->mu_max = 1e5;
     p->viol_tol = 1e-11;
     p->stat_tol = 1e-7;
 }
@@ -54,6 +54,8 @@ typedef struct solver {
     double *l0, *scale_m; /* start edge, S l0^2 per component (MinRad rows) */
     double l0min;
     double mu;
+    /* the near-active band's width, relative to NEAR_ACTIVE: mu0 / mu */
+    double band;
     /* the shortest iterate the oracle has seen at a multiplier update (its
      * ropelength at thickness 1): the last is not always the best (the
      * peer drifted away from its best at N = 19 200) */
@@ -196,7 +198,12 @@ static void row_terms(solver *s, int m, const size_t *idx, const double *gr, con
  * convex addition, so the step is still a descent direction, and it keeps
  * the first steps from a cold start (multipliers 0) from shrinking the rope
  * straight through its contacts, along the scaling mode that nothing else
- * stiffens while no row is active. */
+ * stiffens while no row is active. The band narrows as mu grows (width
+ * NEAR_ACTIVE mu0 / mu): the true L_A is flat along an inactive row, and
+ * a spring of stiffness mu on every row within 1e-6 of its bound froze the
+ * rows that had yet to close, so the solver settled 1.2e-6 above the
+ * converged ropelength at N = 9600 (bench/RESULTS.md, "Second-order
+ * solver"); at mu0 the band is as before. */
 #define NEAR_ACTIVE 1e-6
 
 /* The PHR term of an inequality row g >= 0: value; *pi = max(0, lam - mu g) */
@@ -271,7 +278,7 @@ static double al_eval(solver *s, const double *y, double *grad, int hess)
         if (!grad)
             continue;
         s->pi_m[i] = pi;
-        if (pi == 0.0 && !(hess && g < NEAR_ACTIVE * s->l0[k] * s->l0[k]))
+        if (pi == 0.0 && !(hess && g < s->band * NEAR_ACTIVE * s->l0[k] * s->l0[k]))
             continue;
         static const double v[3] = {1.0, -2.0, 1.0};
         size_t vx[3] = {ip, i, in};
@@ -302,7 +309,7 @@ static double al_eval(solver *s, const double *y, double *grad, int hess)
         if (!grad)
             continue;
         s->pi_s[r] = pi;
-        if (pi == 0.0 && !(hess && d - 2.0 < NEAR_ACTIVE))
+        if (pi == 0.0 && !(hess && d - 2.0 < s->band * NEAR_ACTIVE))
             continue;
         active += pi > 0.0;
         double gr[12], H[144];
@@ -846,6 +853,7 @@ static int minimise(solver *s, double *y, tr_newton_stats *st, double t0, tr_err
         goto done;
     }
     s->mu = p->mu0 / s->l0min;
+    s->band = 1.0;
     /* A MinRad row's second difference w ~ l0^2 kappa is computed from
      * coordinates of size R, so its relative violation carries rounding of
      * ~eps R / l0^2 (1e-11 at N = 9600): asking for less only drives mu up
@@ -900,6 +908,7 @@ static int minimise(solver *s, double *y, tr_newton_stats *st, double t0, tr_err
             update_multipliers(s);
             if (s->viol > 0.25 * prev_viol && s->viol > viol_tol)
                 s->mu = fmin(10.0 * s->mu, p->mu_max / s->l0min);
+            s->band = fmin(1.0, p->mu0 / (s->mu * s->l0min));
             prev_viol = s->viol;
             omega = fmax(0.1 * omega, 0.1 * p->stat_tol);
             inner = 0;
