@@ -864,7 +864,7 @@ static int minimise(solver *s, double *y, tr_newton_stats *st, double t0, tr_err
         reach = fmax(reach, fabs(y[i]));
     double viol_tol = fmax(p->viol_tol, 16.0 * DBL_EPSILON * reach / (s->l0min * s->l0min));
     double omega = 1e-2, prev_viol = INFINITY, lm = 0.0, prev_len = INFINITY;
-    int inner = 0, settled = 0;
+    int inner = 0, settled = 0, last_full = 0;
     for (int it = 0; it < p->max_iter; it++) {
         if ((p->time_limit > 0 && tr_clock_seconds() - t0 > p->time_limit) || (p->stop && *p->stop))
             break;
@@ -906,7 +906,14 @@ static int minimise(solver *s, double *y, tr_newton_stats *st, double t0, tr_err
             if ((rc = keep_best(s, y, err)))
                 goto done;
             update_multipliers(s);
-            if (s->viol > 0.25 * prev_viol && s->viol > viol_tol)
+            /* mu grows only when the pass was solved (small gradient, or
+             * the last step a full Newton step): after max_inner damped
+             * steps a violation that did not fall says the inner solve is
+             * unfinished, not that the penalty is too weak, and raising
+             * mu then made the next passes stiffer still (at N = 9600 with
+             * 8 or 12 steps per pass mu ran to its cap and the solve ended
+             * 1e-5 long) */
+            if (s->viol > 0.25 * prev_viol && s->viol > viol_tol && (stat <= omega || last_full))
                 s->mu = fmin(10.0 * s->mu, p->mu_max / s->l0min);
             s->band = fmin(1.0, p->mu0 / (s->mu * s->l0min));
             prev_viol = s->viol;
@@ -980,8 +987,10 @@ static int minimise(solver *s, double *y, tr_newton_stats *st, double t0, tr_err
             /* no descent along the Newton direction (rounding at the
              * bottom): the inner problem is as solved as it gets */
             inner = p->max_inner;
+            last_full = 0;
             continue;
         }
+        last_full = alpha == 1.0;
         memcpy(y, yt, n * sizeof *y);
         /* the strut list is good while no vertex has moved skin / 4 */
         if (moved_since_build(s, y) > fmin(0.25 * p->skin, 0.5 * s->l0min)) {
