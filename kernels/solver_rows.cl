@@ -41,20 +41,28 @@ __kernel void strut_rows_value(__global const real *x, __global const int *quad,
 
 /* Every pair's distance, and whether the Newton matrix takes its block
  * (pi > 0, or within band of the bound): flag[p] 1 or 0, scanned into the
- * blocks' places. */
+ * blocks' places. And the partials of strut_rows_value, summed in the same
+ * order over the same items (the launch depends on np only), so that the
+ * value here and at the line search's points is the same sum: the solver
+ * compares them to rounding at the bottom of a solve. */
 __kernel void strut_rows_select(__global const real *x, __global const int *quad,
                                 __global const real *lam, const int np, const real mu,
                                 const real dist, const real band, __global real *dout,
-                                __global int *flag)
+                                __global int *flag, __global real *part_sum,
+                                __global real *part_min)
 {
+    real f = 0.0, m = INFINITY;
     TR_ITEMS(p, np) {
         real x12[12], pi;
         sr_gather(x, quad, p, x12);
         real d = tr_strut_row_derivs(x12, 0, 0, 0, 0);
         dout[p] = d;
-        tr_phr_ineq_term(d - dist, lam[p], mu, &pi);
+        m = fmin(m, d);
+        f += tr_phr_ineq_term(d - dist, lam[p], mu, &pi);
         flag[p] = pi > 0.0 || d - dist < band;
     }
+    part_sum[get_global_id(0)] = f;
+    part_min[get_global_id(0)] = m;
 }
 
 /* The selected pairs' blocks: pair p, selected when off[p + 1] > off[p],

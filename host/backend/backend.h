@@ -193,8 +193,12 @@
  *     g + 12 k = grad d_p (the four vertices' coordinates in quad order) and,
  *     for TR_ROWS_HESS, h + 144 k = its Hessian, row major (the body above,
  *     so the reference's blocks are the serial solver's to the bit);
- *     nsel = the number selected. sum and dmin are not computed (the caller
- *     has every d). The selection keeps the output to the rows the Newton
+ *     nsel = the number selected. sum and dmin as in VALUE, summed as
+ *     there: a solver compares the value at its point with those at the
+ *     line search's trial points, and at the bottom of a solve the
+ *     difference is rounding, so both must come from the same sum (a
+ *     device's order for one and the serial order for the other stalled
+ *     the PoCL solve at N = 2400). The selection keeps the output to the rows the Newton
  *     matrix takes (a tenth of the list on a tight knot) and a port decides
  *     it itself, so it needs no second launch; where its rounding puts a
  *     pair on the other side of the test, the caller computes that block.

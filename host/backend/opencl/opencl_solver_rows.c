@@ -87,6 +87,31 @@ cleanup:
     return rc;
 }
 
+/* Room for the per-item partials of np pairs; their number. */
+static int partials(cl_state *s, int np, size_t *g, tr_error *err)
+{
+    clb_rows *r = &s->rows;
+    int rc = TR_OK;
+    *g = tr_cl_items_global(&s->ctx, (size_t)np);
+    TR_TRY(dev_room(s, &r->psum, &r->partcap, *g, sizeof(double), err));
+    TR_TRY(dev_room(s, &r->pmin, &r->pmcap, *g, sizeof(double), err));
+    TR_TRY(dev_room(s, &r->sc, &r->sccap, 3, sizeof(double), err));
+    TR_TRY(tr_cl_reduce_reserve(&s->red, &s->ctx, *g, err));
+cleanup:
+    return rc;
+}
+
+/* Queues the folds of g per-item partials: sc = (sum, min, max). */
+static int fold(cl_state *s, size_t g, tr_error *err)
+{
+    clb_rows *r = &s->rows;
+    int rc = TR_OK;
+    TR_TRY(tr_cl_reduce_sum(&s->red, &s->ctx, r->psum, (int)g, r->sc, 0, err));
+    TR_TRY(tr_cl_reduce_minmax(&s->red, &s->ctx, r->pmin, (int)g, r->sc, 1, err));
+cleanup:
+    return rc;
+}
+
 /* TR_ROWS_VALUE: per-item partial sums and minima, folded by the reductions. */
 static int rows_value(cl_state *s, tr_strut_rows *q, tr_error *err)
 {
@@ -95,16 +120,12 @@ static int rows_value(cl_state *s, tr_strut_rows *q, tr_error *err)
     int np = (int)q->np;
     double sc[3] = {0.0, INFINITY, INFINITY};
     if (np > 0) {
-        size_t g = tr_cl_items_global(&s->ctx, (size_t)np);
-        TR_TRY(dev_room(s, &r->psum, &r->partcap, g, sizeof(double), err));
-        TR_TRY(dev_room(s, &r->pmin, &r->pmcap, g, sizeof(double), err));
-        TR_TRY(dev_room(s, &r->sc, &r->sccap, 3, sizeof(double), err));
-        TR_TRY(tr_cl_reduce_reserve(&s->red, &s->ctx, g, err));
+        size_t g;
+        TR_TRY(partials(s, np, &g, err));
         double mu = q->mu, dist = q->dist;
         TR_TRY(clb_run(s, K_strut_rows_value, (size_t)np, err, A(r->x), A(r->quad), A(r->lam), A(np), A(mu),
                        A(dist), A(r->psum), A(r->pmin), END));
-        TR_TRY(tr_cl_reduce_sum(&s->red, &s->ctx, r->psum, (int)g, r->sc, 0, err));
-        TR_TRY(tr_cl_reduce_minmax(&s->red, &s->ctx, r->pmin, (int)g, r->sc, 1, err));
+        TR_TRY(fold(s, g, err));
         TR_CL_CHECK(clEnqueueReadBuffer(s->ctx.queue, r->sc, CL_TRUE, 0, sizeof sc, sc, 0, NULL, NULL));
     } else
         TR_CL_CHECK(clFinish(s->ctx.queue)); /* the position write done before the caller moves on */
@@ -121,6 +142,7 @@ static int rows_blocks(cl_state *s, tr_strut_rows *q, tr_error *err)
     int rc = TR_OK;
     int np = (int)q->np, hess = q->mode == TR_ROWS_HESS, nsel = 0;
     size_t n = (size_t)np;
+    double sc[3] = {0.0, INFINITY, INFINITY};
     TR_TRY(host_room((void **)&r->hd, &r->hdcap, n, sizeof(double), err));
     TR_TRY(host_room((void **)&r->hoff, &r->hocap, n + 1, sizeof(int), err));
     TR_TRY(host_room((void **)&r->hsel, &r->hscap, n, sizeof(int), err));
@@ -129,9 +151,13 @@ static int rows_blocks(cl_state *s, tr_strut_rows *q, tr_error *err)
         TR_TRY(dev_room(s, &r->flag, &r->fcap, n, sizeof(int), err));
         TR_TRY(dev_room(s, &r->off, &r->ocap, n + 1, sizeof(int), err));
         TR_TRY(tr_cl_reduce_reserve(&s->red, &s->ctx, n, err));
+        size_t g;
+        TR_TRY(partials(s, np, &g, err));
         double mu = q->mu, dist = q->dist, band = q->band;
         TR_TRY(clb_run(s, K_strut_rows_select, n, err, A(r->x), A(r->quad), A(r->lam), A(np), A(mu), A(dist),
-                       A(band), A(r->d), A(r->flag), END));
+                       A(band), A(r->d), A(r->flag), A(r->psum), A(r->pmin), END));
+        TR_TRY(fold(s, g, err));
+        TR_CL_CHECK(clEnqueueReadBuffer(s->ctx.queue, r->sc, CL_FALSE, 0, sizeof sc, sc, 0, NULL, NULL));
         TR_TRY(tr_cl_reduce_scan(&s->red, &s->ctx, r->flag, np, r->off, err));
         TR_CL_CHECK(clEnqueueReadBuffer(s->ctx.queue, r->off, CL_TRUE, n * sizeof(int), sizeof nsel, &nsel, 0, NULL,
                                         NULL));
@@ -165,6 +191,8 @@ static int rows_blocks(cl_state *s, tr_strut_rows *q, tr_error *err)
     } else
         TR_CL_CHECK(clFinish(s->ctx.queue));
     q->nsel = (size_t)nsel;
+    q->sum = q->sum0 + sc[0];
+    q->dmin = sc[1];
     q->d = r->hd;
     q->sel = r->hsel;
     q->g = r->hg;

@@ -80,11 +80,13 @@ int rb_strut_rows(void *sp, tr_strut_rows *r, tr_error *err)
     if (rc)
         return rc;
     size_t k = 0;
+    double f = r->sum0, dmin = INFINITY;
     for (size_t p = 0; p < r->np; p++) {
         gather(r, p, x12);
         double d = tr_strut_row_derivs(x12, NULL, NULL, 0, 0), pi;
         s->sr_d[p] = d;
-        tr_phr_ineq_term(d - r->dist, r->lam[p], r->mu, &pi);
+        dmin = fmin(dmin, d);
+        f += tr_phr_ineq_term(d - r->dist, r->lam[p], r->mu, &pi);
         if (!(pi > 0.0 || d - r->dist < r->band)) {
             s->sr_sel[p] = -1;
             continue;
@@ -95,6 +97,8 @@ int rb_strut_rows(void *sp, tr_strut_rows *r, tr_error *err)
         s->sr_sel[p] = (int)k++;
     }
     r->nsel = k;
+    r->sum = f;
+    r->dmin = dmin;
     r->d = s->sr_d;
     r->sel = s->sr_sel;
     r->g = s->sr_g;

@@ -174,6 +174,7 @@ static void check_reference(const tr_backend *b, const rows_case *k)
         }
         CHECK(bad == 0);
         CHECK(r.nsel == sel);
+        CHECK(r.sum == f && r.dmin == dmin);
         CHECK(sel >= SPECIAL && sel < k->np); /* both sides of the selection */
     }
 }
@@ -213,6 +214,9 @@ static void check_opencl(const tr_backend *ref, const tr_backend *cl, const rows
         REQUIRE_OK(ref->ops->strut_rows(ref->state, &rr, &err));
         REQUIRE_OK(cl->ops->strut_rows(cl->state, &rc, &err));
         CHECK(rc.nsel == rr.nsel);
+        /* the value the same sum as at a line-search point, to the bit */
+        CHECK(rc.sum == vc.sum && rc.dmin == vc.dmin);
+        CHECK(rr.sum == vr.sum);
         worst_d = fmax(worst_d, rel_diff(rc.d, rr.d, k->np));
         size_t same = 0;
         for (size_t p = 0; p < k->np; p++) {
