@@ -315,7 +315,7 @@ static double al_eval(solver *s, const double *y, double *grad, int hess)
     if (on_dev) {
         int mode = !grad ? TR_ROWS_VALUE : hess ? TR_ROWS_HESS : TR_ROWS_GRAD;
         s->dev_rc = tr_solver_rows_eval(s->p->backend, &s->rows, x, nv, s->sp, s->nsp, s->next, mu, mode,
-                                        hess ? NEAR_ACTIVE : -INFINITY, f, &dev, &s->dev_err);
+                                        hess ? s->band * NEAR_ACTIVE : -INFINITY, f, &dev, &s->dev_err);
         on_dev = !s->dev_rc;
         if (grad)
             s->t_rows += tr_clock_seconds() - tr;
