@@ -2,12 +2,17 @@
  * curve, optionally spline-resampled to N vertices per component, with one
  * progress line per Newton step: how the solver is measured apart from the
  * engine's route (bench/RESULTS.md, "Second-order solver").
- *   newton_run IN.vect OUT.vect [N | sN] [TIME_LIMIT_S]
+ *   newton_run [--device SPEC] IN.vect OUT.vect [N | sN] [TIME_LIMIT_S]
  * N: the engine's low-pass refinement; sN: the cubic spline tighten --n
- * uses (tr_resample_smooth). */
+ * uses (tr_resample_smooth). --device: the strut rows by that backend
+ * (backend.h strut_rows; "reference", "opencl", "pocl", ...), exactly the
+ * device named (no fallback); without it the solver's own host path. */
 #include <stdio.h>
 #include <stdlib.h>
 
+#include <string.h>
+
+#include "backend/backend.h"
 #include "curve/curve_io.h"
 #include "curve/generate.h"
 #include "engine/refine_lowpass.h"
@@ -24,8 +29,14 @@ static void show(void *user, const tr_newton_progress *p)
 
 int main(int argc, char **argv)
 {
+    const char *device = NULL;
+    if (argc > 2 && !strcmp(argv[1], "--device")) {
+        device = argv[2];
+        argv += 2;
+        argc -= 2;
+    }
     if (argc < 3) {
-        fprintf(stderr, "usage: newton_run IN OUT [N | sN] [TIME_LIMIT_S]\n");
+        fprintf(stderr, "usage: newton_run [--device SPEC] IN OUT [N | sN] [TIME_LIMIT_S]\n");
         return 2;
     }
     tr_error err = {0};
@@ -56,16 +67,28 @@ int main(int argc, char **argv)
     p.progress = show;
     if (argc > 4)
         p.time_limit = atof(argv[4]);
+    tr_backend be = {0};
+    if (device) {
+        if (tr_backend_open_device(device, &c, 0, &be, &err)) {
+            fprintf(stderr, "newton_run: %s\n", err.msg);
+            return 1;
+        }
+        printf("strut rows on %s\n", be.description);
+        p.backend = &be;
+    }
     tr_newton_stats st;
-    if (tr_newton(&c, &p, &st, &err)) {
+    int rc = tr_newton(&c, &p, &st, &err);
+    if (device)
+        tr_backend_close(&be);
+    if (rc) {
         fprintf(stderr, "newton_run: %s\n", err.msg);
         return 1;
     }
     printf("newton: %s%s, ropelength %.10f -> %.10f, %d steps, %d updates, %d factorizations, %d analyses, %d rebuilds, %.2f s "
-           "(eval %.2f, factor %.2f, solve %.2f, search %.2f, rebuild %.2f), viol %.1e stat %.1e, struts %zu active %zu, warm residual %.2e%s%s\n",
+           "(eval %.2f [strut rows %.2f], factor %.2f, solve %.2f, search %.2f [evaluations %.2f], rebuild %.2f), viol %.1e stat %.1e, struts %zu active %zu, warm residual %.2e%s%s\n",
            st.accepted ? "accepted" : "rejected", st.converged ? " converged" : (st.settled ? " settled" : ""), st.ropelength_before,
-           st.ropelength_after, st.iters, st.outer, st.factorizations, st.analyses, st.rebuilds, st.seconds, st.t_eval,
-           st.t_factor, st.t_solve, st.t_search, st.t_rebuild, st.max_viol, st.stat, st.struts, st.active, st.warm_residual,
+           st.ropelength_after, st.iters, st.outer, st.factorizations, st.analyses, st.rebuilds, st.seconds, st.t_eval, st.t_rows,
+           st.t_factor, st.t_solve, st.t_search, st.t_value, st.t_rebuild, st.max_viol, st.stat, st.struts, st.active, st.warm_residual,
            st.why_rejected ? " - " : "", st.why_rejected ? st.why_rejected : "");
     if (st.accepted && tr_curve_write(argv[2], TR_FORMAT_AUTO, &c, "newton_run", &err)) {
         fprintf(stderr, "newton_run: %s\n", err.msg);

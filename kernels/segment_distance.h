@@ -116,6 +116,104 @@ static inline int tr_segment_nearly_normal(const double *p0, const double *p1, c
 }
 #endif
 
+/* The exact strut distance as a smooth function of its four vertices, with
+ * gradient and Hessian: the second-order solver's strut row d(a, b) >= 2
+ * (host/solver/strut_hessian.h has the derivation; host/solver/strut_hessian.c
+ * and the kernels of kernels/solver_rows.cl both call this one body, so the
+ * serial path, the reference backend and the device do the same arithmetic).
+ * x: p0, p1, q0, q1 (12 reals, private); writes g[12] = grad d when want_g
+ * and h[144] = the Hessian of d, row major, when want_h (g, h in global
+ * memory on the device: the rows' output buffers). d must be > 0.
+ * The Hessian is written entry by entry, phi_xx's entry minus the Schur
+ * complement's, over 2 d, minus grad F grad F^T / (4 d^3): the same
+ * operations in the same order as a 144-entry scratch block would take,
+ * without the 1.1 KiB of private memory per work-item. */
+#ifdef TR_OPENCL_C
+#define TR_SHARED_OUT __global
+#else
+#define TR_SHARED_OUT
+#endif
+/* interior test for a closest-point parameter: away from the clamp by more
+ * than rounding */
+#define TR_STRUT_PARAM_EPS 1e-12
+/* (nearly) parallel: sin^2 of the angle below this, as the distance decides */
+#define TR_STRUT_PARALLEL_SIN2 1e-10
+TR_SHARED_FN double tr_strut_row_derivs(const double *x, TR_SHARED_OUT double *g,
+                                        TR_SHARED_OUT double *h, int want_g, int want_h)
+{
+    double s, t;
+    double d = tr_segment_distance_xyz(x[0], x[1], x[2], x[3], x[4], x[5], x[6], x[7], x[8], x[9],
+                                       x[10], x[11], &s, &t);
+    if (!want_g && !want_h)
+        return d;
+    double d1[3], d2[3], D[3];
+    for (int k = 0; k < 3; k++) {
+        d1[k] = x[3 + k] - x[k];
+        d2[k] = x[9 + k] - x[6 + k];
+        D[k] = x[k] + s * d1[k] - x[6 + k] - t * d2[k];
+    }
+    /* weights of the four points in D */
+    const double W[4] = {1.0 - s, s, -(1.0 - t), -t};
+    /* grad F = 2 W_k D on point k */
+    double gF[12];
+    for (int k = 0; k < 4; k++)
+        for (int c = 0; c < 3; c++)
+            gF[3 * k + c] = 2.0 * W[k] * D[c];
+    if (want_g)
+        for (int i = 0; i < 12; i++)
+            g[i] = gF[i] / (2.0 * d);
+    if (!want_h)
+        return d;
+    /* phi_xs = 2 (dW/ds)_k D + 2 W_k d1;  phi_xt = 2 (dW/dt)_k D - 2 W_k d2 */
+    const double Ws[4] = {-1.0, 1.0, 0.0, 0.0}, Wt[4] = {0.0, 0.0, 1.0, -1.0};
+    double gs[12], gt[12];
+    for (int k = 0; k < 4; k++)
+        for (int c = 0; c < 3; c++) {
+            gs[3 * k + c] = 2.0 * (Ws[k] * D[c] + W[k] * d1[c]);
+            gt[3 * k + c] = 2.0 * (Wt[k] * D[c] - W[k] * d2[c]);
+        }
+    double a11 = 2.0 * (d1[0] * d1[0] + d1[1] * d1[1] + d1[2] * d1[2]);
+    double a22 = 2.0 * (d2[0] * d2[0] + d2[1] * d2[1] + d2[2] * d2[2]);
+    double a12 = -2.0 * (d1[0] * d2[0] + d1[1] * d2[1] + d1[2] * d2[2]);
+    int fs = s > TR_STRUT_PARAM_EPS && s < 1.0 - TR_STRUT_PARAM_EPS;
+    int ft = t > TR_STRUT_PARAM_EPS && t < 1.0 - TR_STRUT_PARAM_EPS;
+    if (fs && ft && a11 * a22 - a12 * a12 <= TR_STRUT_PARALLEL_SIN2 * a11 * a22)
+        ft = 0;
+    double i11 = 0.0, i22 = 0.0, i12 = 0.0;
+    if (fs && ft) {
+        double det = a11 * a22 - a12 * a12;
+        i11 = a22 / det;
+        i22 = a11 / det;
+        i12 = -a12 / det;
+    } else if (fs)
+        i11 = 1.0 / a11;
+    else if (ft)
+        i22 = 1.0 / a22;
+    for (int i = 0; i < 12; i++)
+        for (int j = 0; j < 12; j++) {
+            /* phi_xx = 2 (W W^T) (x) I3, less the Schur complement */
+            double H = i % 3 == j % 3 ? 2.0 * W[i / 3] * W[j / 3] : 0.0;
+            H -= i11 * gs[i] * gs[j] + i22 * gt[i] * gt[j] + i12 * (gs[i] * gt[j] + gt[i] * gs[j]);
+            /* d = sqrt(F) */
+            h[i * 12 + j] = H / (2.0 * d) - gF[i] * gF[j] / (4.0 * d * d * d);
+        }
+    return d;
+}
+
+/* The augmented Lagrangian's term of an inequality row g >= 0 with
+ * multiplier lam and penalty mu (host/solver/newton.h, PHR): its value;
+ * *pi = max(0, lam - mu g), the multiplier estimate. */
+TR_SHARED_FN double tr_phr_ineq_term(double g, double lam, double mu, double *pi)
+{
+    if (lam - mu * g > 0.0) {
+        *pi = lam - mu * g;
+        return -lam * g + 0.5 * mu * g * g;
+    }
+    *pi = 0.0;
+    return -lam * lam / (2.0 * mu);
+}
+#undef TR_SHARED_OUT
+
 #undef TR_SHARED_FN
 #undef TR_OPENCL_C
 #endif

@@ -174,6 +174,37 @@
  *   Stats: newton_iters, cg_iters (total), active_rows (last iteration),
  *   viol_before, viol_after.
  *
+ * strut_rows(r)  -- the second-order solver's strut rows (host/solver/newton.h)
+ *   Reads only what the call brings (the solver's positions and pair list,
+ *   not the uploaded curve; the backend's state is only where it computes):
+ *   for every pair p, in list order, with vertices quad[4p .. 4p+3] = (a,
+ *   next a, b, next b) of the positions x (3 nv):
+ *       d_p = tr_strut_row_derivs(x[a], x[next a], x[b], x[next b])
+ *             (kernels/segment_distance.h, the one body all backends share)
+ *       c_p = d_p - dist,  term_p = tr_phr_ineq_term(c_p, lam[p], mu, &pi_p)
+ *   TR_ROWS_VALUE (the line search's trial points): sum = sum0 + term_0 +
+ *     term_1 + ... (the reference adds in list order onto sum0, so a caller
+ *     that summed its other rows first gets its own serial sum back; a port
+ *     sums the terms in its order, then adds sum0), dmin = min_p d_p
+ *     (INFINITY for no pairs). Nothing per pair.
+ *   TR_ROWS_GRAD / TR_ROWS_HESS (the Newton matrix): d[p] for every pair;
+ *     p is selected iff lam[p] - mu c_p > 0 (pi_p > 0) or c_p < band;
+ *     sel[p] = its number k among the selected in list order, or -1;
+ *     g + 12 k = grad d_p (the four vertices' coordinates in quad order) and,
+ *     for TR_ROWS_HESS, h + 144 k = its Hessian, row major (the body above,
+ *     so the reference's blocks are the serial solver's to the bit);
+ *     nsel = the number selected. sum and dmin as in VALUE, summed as
+ *     there: a solver compares the value at its point with those at the
+ *     line search's trial points, and at the bottom of a solve the
+ *     difference is rounding, so both must come from the same sum (a
+ *     device's order for one and the serial order for the other stalled
+ *     the PoCL solve at N = 2400). The selection keeps the output to the rows the Newton
+ *     matrix takes (a tenth of the list on a tight knot) and a port decides
+ *     it itself, so it needs no second launch; where its rounding puts a
+ *     pair on the other side of the test, the caller computes that block.
+ *   d, sel, g and h point into the backend's memory, valid until its next
+ *   strut_rows or destroy.
+ *
  * measure()  -- the reductions
  *   length = sum over edges |e_a| (per component into comp_length[k] when
  *   given, ebar_k into comp_ebar[k]); edge_dev = max_a | |e_a| - ebar_k | / ebar_k;
@@ -261,6 +292,25 @@ typedef struct tr_measure {
     double max_disp;   /* since save() */
 } tr_measure;
 
+/* The second-order solver's strut rows (strut_rows above). */
+enum { TR_ROWS_VALUE = 0, TR_ROWS_GRAD = 1, TR_ROWS_HESS = 2 };
+typedef struct tr_strut_rows {
+    /* in */
+    int mode;           /* TR_ROWS_VALUE, _GRAD or _HESS */
+    size_t nv, np;      /* positions, pairs */
+    const double *x;    /* 3 nv */
+    const size_t *quad; /* 4 np vertex indices: a, next a, b, next b */
+    const double *lam;  /* np multipliers */
+    double mu, dist;    /* penalty; the bound (2) */
+    double band;        /* GRAD / HESS: also select rows with c < band (-INFINITY: none) */
+    double sum0;        /* VALUE: the sum starts here */
+    /* out */
+    double sum, dmin;   /* VALUE */
+    size_t nsel;        /* GRAD / HESS */
+    const double *d, *g, *h;
+    const int *sel;
+} tr_strut_rows;
+
 /* Device time per kernel function of a profiled backend (profile). */
 #define TR_BACKEND_PROFILE_MAX 128
 typedef struct tr_kernel_time {
@@ -292,6 +342,9 @@ typedef struct tr_backend_ops {
     /* reductions; comp_length, comp_ebar may be NULL (else ncomp entries) */
     int (*measure)(void *state, tr_measure *out, double *comp_length, double *comp_ebar,
                    tr_error *err);
+    /* the second-order solver's strut rows (tr_strut_rows); may be NULL
+     * (the solver then evaluates them itself) */
+    int (*strut_rows)(void *state, tr_strut_rows *r, tr_error *err);
     /* What the description does not say and a benchmark should: how this
      * instance solves (e.g. "edge block twisted"); writes "" when nothing. */
     void (*describe)(void *state, char *out, size_t size);

@@ -246,7 +246,22 @@ int tr_engine_i_newton(tr_engine *e, double seconds, int tight_only, volatile si
     tr_newton_stats ns;
     /* tried, whatever comes of it: the level loop must not try again */
     e->newton_tried = 1;
+    /* The solver's strut rows on the run's device (backend.h strut_rows):
+     * the open backend, or, for the solve before the settle (newton_first,
+     * before the engine opens one), one opened for the solve on the same
+     * spec; a device that cannot be opened leaves the rows to the solver,
+     * as does the serial reference, whose rows are the solver's own. */
+    tr_backend own;
+    memset(&own, 0, sizeof own);
+    if (!e->be.ops) {
+        tr_error e2;
+        if (tr_backend_open(e->device[0] ? e->device : NULL, &e->curve, &own, &e2) != TR_OK)
+            memset(&own, 0, sizeof own);
+    }
+    const tr_backend *be = e->be.ops ? &e->be : own.ops ? &own : NULL;
+    np.backend = be && !be->ops->serial ? be : NULL;
     int rc = tr_newton(&e->curve, &np, &ns, err);
+    tr_backend_close(&own);
     if (rc)
         return rc == TR_EGEOMETRY ? TR_OK : rc;
     if (ns.loose)

@@ -13,6 +13,7 @@
 #include "geometry/neighbour_search.h"
 #include "geometry/struts.h"
 #include "segment_distance.h"
+#include "solver/solver_rows.h"
 #include "solver/strut_hessian.h"
 #include "oracle/thickness.h"
 #include "util/clock.h"
@@ -86,6 +87,14 @@ typedef struct solver {
     double viol, dmin, length;
     size_t active;
     cholmod_common cm;
+    /* the strut rows by p->backend (solver_rows.h): the list as it takes
+     * it; its first failure (the rows are then evaluated here, and the
+     * minimisation returns the error); time in its calls for the Newton
+     * matrix and in the line search's evaluations */
+    tr_solver_rows rows;
+    int dev_rc;
+    tr_error dev_err;
+    double t_rows, t_value;
 } solver;
 
 /* ---- the rows ---- */
@@ -224,6 +233,7 @@ static double al_eval(solver *s, const double *y, double *grad, int hess)
     size_t nv = s->nv;
     const double *x = y, *l = y + 3 * nv;
     double mu = s->mu, f = 0.0, viol = 0.0, dmin = INFINITY, len = 0.0;
+    double tv = tr_clock_seconds();
     if (grad)
         memset(grad, 0, s->n * sizeof *grad);
     if (hess)
@@ -299,12 +309,35 @@ static double al_eval(solver *s, const double *y, double *grad, int hess)
     }
     /* struts */
     size_t active = 0;
-    for (size_t r = 0; r < s->nsp; r++) {
+    double tr = tr_clock_seconds();
+    tr_strut_rows dev;
+    int on_dev = s->p->backend && !s->dev_rc;
+    if (on_dev) {
+        int mode = !grad ? TR_ROWS_VALUE : hess ? TR_ROWS_HESS : TR_ROWS_GRAD;
+        s->dev_rc = tr_solver_rows_eval(s->p->backend, &s->rows, x, nv, s->sp, s->nsp, s->next, mu, mode,
+                                        hess ? s->band * NEAR_ACTIVE : -INFINITY, f, &dev, &s->dev_err);
+        on_dev = !s->dev_rc;
+        if (grad)
+            s->t_rows += tr_clock_seconds() - tr;
+    }
+    /* the value as the backend sums it, here and at the line search's
+     * points alike (backend.h); without the gradient also the closest pair
+     * and so the worst strut violation (the largest 0.5 (2 - d) is at the
+     * smallest d) */
+    if (on_dev)
+        f = dev.sum;
+    if (on_dev && !grad) {
+        dmin = fmin(dmin, dev.dmin);
+        viol = fmax(viol, 0.5 * (2.0 - dev.dmin));
+    }
+    for (size_t r = 0; r < s->nsp && !(on_dev && !grad); r++) {
         size_t a = s->sp[r].a, b = s->sp[r].b, na = s->next[a], nb = s->next[b];
-        double d = tr_strut_distance_derivs(x + 3 * a, x + 3 * na, x + 3 * b, x + 3 * nb, NULL, NULL);
+        double d = on_dev ? dev.d[r]
+                          : tr_strut_distance_derivs(x + 3 * a, x + 3 * na, x + 3 * b, x + 3 * nb, NULL, NULL);
         dmin = fmin(dmin, d);
-        double pi;
-        f += ineq_term(d - 2.0, s->sp[r].lam, mu, &pi);
+        double pi, term = ineq_term(d - 2.0, s->sp[r].lam, mu, &pi);
+        if (!on_dev)
+            f += term;
         viol = fmax(viol, 0.5 * (2.0 - d));
         if (!grad)
             continue;
@@ -313,13 +346,22 @@ static double al_eval(solver *s, const double *y, double *grad, int hess)
             continue;
         active += pi > 0.0;
         double gr[12], H[144];
-        tr_strut_distance_derivs(x + 3 * a, x + 3 * na, x + 3 * b, x + 3 * nb, gr, hess ? H : NULL);
+        const double *pg = gr, *pH = H;
+        /* the backend's block, or (not selected there: its rounding put
+         * the row on the other side of the test) this one */
+        if (on_dev && dev.sel[r] >= 0) {
+            pg = dev.g + 12 * (size_t)dev.sel[r];
+            pH = hess ? dev.h + 144 * (size_t)dev.sel[r] : NULL;
+        } else
+            tr_strut_distance_derivs(x + 3 * a, x + 3 * na, x + 3 * b, x + 3 * nb, gr, hess ? H : NULL);
         size_t vx[4] = {a, na, b, nb}, idx[12];
         for (int j = 0; j < 4; j++)
             for (int d = 0; d < 3; d++)
                 idx[3 * j + d] = 3 * vx[j] + (size_t)d;
-        row_terms(s, 12, idx, gr, hess ? H : NULL, mu, -pi, pi, grad, hess);
+        row_terms(s, 12, idx, pg, hess ? pH : NULL, mu, -pi, pi, grad, hess);
     }
+    if (!grad)
+        s->t_value += tr_clock_seconds() - tv;
     if (grad)
         for (int k = 0; k < s->nfixed; k++)
             grad[s->fixed[k]] = 0.0;
@@ -531,6 +573,7 @@ static void solver_free(solver *s)
     free(s->pat_j);
     free(s->best_y);
     tr_curve_free(&s->probe);
+    tr_solver_rows_free(&s->rows);
     cholmod_l_free_factor(&s->L, &s->cm);
     cholmod_l_finish(&s->cm);
 }
@@ -878,6 +921,11 @@ static int minimise(solver *s, double *y, tr_newton_stats *st, double t0, tr_err
             rc = tr_fail(err, TR_ENOMEM, "out of memory (Hessian)");
             goto done;
         }
+        if (s->dev_rc) {
+            *err = s->dev_err;
+            rc = s->dev_rc;
+            goto done;
+        }
         double stat = stationarity(s, grad);
         st->stat = stat;
         st->max_viol = s->viol;
@@ -1134,6 +1182,8 @@ int tr_newton(tr_curve *cv, const tr_newton_params *prm, tr_newton_stats *st, tr
     st->ropelength_after = th.ropelength;
 done:
     st->seconds = tr_clock_seconds() - t0;
+    st->t_rows = s.t_rows;
+    st->t_value = s.t_value;
     free(y);
     solver_free(&s);
     return rc;

@@ -102,6 +102,8 @@ typedef struct tr_newton_progress {
     double seconds;
 } tr_newton_progress;
 
+struct tr_backend;
+
 typedef struct tr_newton_params {
     double time_limit; /* seconds (0: none) */
     int max_iter;      /* Newton steps */
@@ -115,6 +117,11 @@ typedef struct tr_newton_params {
     int warm_start;    /* first multipliers by least squares (newton.c, warm_multipliers); 0: cold */
     int tight_only;    /* give up at once (not accepted) unless the warm start finds the start tight */
     volatile sig_atomic_t *stop; /* raised by a signal handler: stop as at the time limit */
+    /* NULL: every row evaluated here. Else the strut rows (the distances, the
+     * Newton matrix's 12 x 12 blocks, the line search's sums) by this
+     * backend's strut_rows (backend.h), the open backend of the run; the
+     * reference takes the same steps to the bit */
+    const struct tr_backend *backend;
     void (*progress)(void *user, const tr_newton_progress *p); /* every step (may be NULL) */
     void *user;
 } tr_newton_params;
@@ -134,6 +141,10 @@ typedef struct tr_newton_stats {
     size_t struts, active;
     /* where the time went */
     double t_eval, t_factor, t_solve, t_search, t_rebuild, seconds;
+    /* with a backend: of t_eval, the strut rows' evaluation (the backend's
+     * call, transfers included); the line search's evaluations (part of
+     * t_search, which also holds the factorisations it asks for) */
+    double t_rows, t_value;
     const char *why_rejected; /* static text */
 } tr_newton_stats;
 

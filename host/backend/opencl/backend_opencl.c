@@ -42,6 +42,7 @@ static void cl_destroy(void *sp)
                    &s->aaoff, &s->acoef, &s->agrad, &s->sab, &s->sw, &s->dist, &s->nbr, &s->blkf};
     for (size_t i = 0; i < sizeof m / sizeof m[0]; i++)
         clb_release(m[i]);
+    clb_rows_free(&s->rows);
     for (int i = 0; i < K_COUNT; i++)
         if (s->k[i])
             clReleaseKernel(s->k[i]);
@@ -327,6 +328,7 @@ static const tr_backend_ops opencl_ops = {
     .find_contacts = clb_find_contacts,
     .tension_step = clb_tension_step,
     .correct = clb_correct,
+    .strut_rows = clb_strut_rows,
     .measure = cl_measure,
     .describe = cl_describe,
     .profile = cl_profile,

@@ -33,7 +33,7 @@ int tr_cl_build_all(const tr_cl_ctx *ctx, cl_program *prog, tr_error *err)
 {
     static const char *const files[] = {"reduce.cl",   "tree.cl",    "tension.cl",
                                         "contacts.cl", "correct.cl", "tridiag.cl",  "twisted.cl",
-                                        "measure.cl"};
+                                        "measure.cl",  "solver_rows.cl"};
     return tr_cl_build(ctx, files, (int)(sizeof files / sizeof files[0]), "", prog, err);
 }
 

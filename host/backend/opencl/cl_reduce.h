@@ -54,7 +54,7 @@ int tr_cl_edge_lengths(tr_cl_reduce *r, const tr_cl_ctx *ctx, cl_mem x, cl_mem n
 
 /* The one program every Tightrope kernel lives in (common.clh, then
  * reduce.cl, tree.cl, tension.cl, contacts.cl, correct.cl, tridiag.cl,
- * measure.cl): built once per context, ~0.8 s cold on PoCL. */
+ * measure.cl, solver_rows.cl): built once per context, ~0.8 s cold on PoCL. */
 int tr_cl_build_all(const tr_cl_ctx *ctx, cl_program *prog, tr_error *err);
 
 #endif

@@ -30,11 +30,26 @@
     X(twist_factor_mid) X(twist_sweep_rows) X(twist_back_rows) X(twist_ring_fact)              \
     X(twist_ring_fix) X(adj_active_count) X(adj_active_write) X(act_count) X(act_scan)         \
     X(act_write) X(act_gather) X(adj_active_sort) X(pairs_neighbours) X(rows_strut_min)     \
-    X(cg_p_ring) X(block_flags) X(jjt_rows) X(j_struts)
+    X(cg_p_ring) X(block_flags) X(jjt_rows) X(j_struts)                                       \
+    X(strut_rows_value) X(strut_rows_select) X(strut_rows_blocks)
 #define ENUM(k) K_##k,
 #define NAME(k) #k,
 enum { KERNELS(ENUM) K_COUNT };
 extern const char *const clb_kernel_names[K_COUNT];
+
+/* strut_rows (opencl_solver_rows.c): on the device the solver's positions,
+ * pair list (as ints) and multipliers as the call brings them, per pair its
+ * distance, selection flag and the flags' scan (its block's place), the
+ * selected blocks, per-item partials and three scalars (sum, min, max); on
+ * the host the list as ints and what the call's results point into. Each
+ * buffer's capacity in elements beside it. */
+typedef struct clb_rows {
+    cl_mem x, quad, lam, d, flag, off, g, h, psum, pmin, sc;
+    size_t xcap, qcap, lcap, dcap, fcap, ocap, gcap, hcap, partcap, pmcap, sccap;
+    int *hquad, *hoff, *hsel;
+    double *hd, *hg, *hh;
+    size_t hqcap, hocap, hscap, hdcap, hgcap, hhcap;
+} clb_rows;
 
 typedef struct cl_state {
     tr_cl_ctx ctx;
@@ -112,6 +127,7 @@ typedef struct cl_state {
     cl_mem ebar_part;
     size_t tri_group;
     cl_mem pcr_set0, pcr_p, pcr_q, pcr_uu;
+    clb_rows rows;
 } cl_state;
 
 /* Strut rows per item when the CG's row list is built (act_count, act_write). */
@@ -164,6 +180,13 @@ size_t clb_jrows_units(const cl_state *s, int nl);
 int clb_cg_iterate(cl_state *s, const tr_correct_params *prm, int *iters, tr_error *err);
 /* backend.h correct. */
 int clb_correct(void *sp, const tr_correct_params *prm, tr_correct_stats *out, tr_error *err);
+
+/* ---- opencl_solver_rows.c ---- */
+
+/* backend.h strut_rows. */
+int clb_strut_rows(void *sp, tr_strut_rows *q, tr_error *err);
+/* Releases strut_rows' buffers. */
+void clb_rows_free(clb_rows *r);
 
 /* ---- opencl_tension.c ---- */
 

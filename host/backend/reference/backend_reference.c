@@ -24,7 +24,8 @@ static void ref_destroy(void *sp)
                     s->ebar_s, s->pj, s->pu, s->vcst, s->cst, s->pa, s->pb, s->adj_start, s->adj,
                     s->F, s->G, s->H, s->dx, s->debar, s->rC, s->rgrad, s->rs, s->rt, s->ract,
                     s->y, s->r, s->p, s->q, s->b, s->cgq, s->cdeb, s->pd, s->z, s->po,
-                    s->tri_w, s->tri_ib, s->tri_uu, s->act, s->aadj_start, s->aadj};
+                    s->tri_w, s->tri_ib, s->tri_uu, s->act, s->aadj_start, s->aadj,
+                    s->sr_d, s->sr_g, s->sr_h, s->sr_sel};
     for (size_t i = 0; i < sizeof ptrs / sizeof ptrs[0]; i++)
         free(ptrs[i]);
     if (s->ns_built)
@@ -223,6 +224,7 @@ static const tr_backend_ops reference_ops = {
     .find_contacts = rb_find_contacts,
     .tension_step = rb_tension_step,
     .correct = rb_correct,
+    .strut_rows = rb_strut_rows,
     .measure = ref_measure,
 };
 

@@ -61,6 +61,12 @@ typedef struct ref_state {
     tr_curve view;
     tr_nsearch ns;
     int ns_built;
+    /* strut_rows' output (reference_solver_rows.c): per pair its distance
+     * and block number (room for sr_np), the selected rows' gradients and
+     * Hessians (room for sr_gcap and sr_hcap blocks) */
+    double *sr_d, *sr_g, *sr_h;
+    int *sr_sel;
+    size_t sr_np, sr_gcap, sr_hcap;
 } ref_state;
 
 /* Puts a constrained vertex i back on its set (tr_constraint_project). */
@@ -83,5 +89,6 @@ int rb_cg_solve(ref_state *s, const tr_correct_params *prm);
 int rb_find_contacts(void *sp, const tr_contact_params *prm, tr_contact_stats *out, tr_error *err);
 int rb_tension_step(void *sp, const tr_tension_params *prm, tr_tension_stats *out, tr_error *err);
 int rb_correct(void *sp, const tr_correct_params *prm, tr_correct_stats *out, tr_error *err);
+int rb_strut_rows(void *sp, tr_strut_rows *r, tr_error *err);
 
 #endif
