@@ -226,8 +226,9 @@ static double ineq_term(double g, double lam, double mu, double *pi)
     return -lam * lam / (2.0 * mu);
 }
 
-/* L_A at y; with grad != NULL also its gradient, the multiplier estimates
- * pi and (hess) the Hessian's triplets. Sets viol, dmin, length, active. */
+/* L_A at y less its length term sum_k n_k l_k; with grad != NULL also the
+ * gradient of the whole L_A, the multiplier estimates pi and (hess) the
+ * Hessian's triplets. Sets viol, dmin, length, active. */
 static double al_eval(solver *s, const double *y, double *grad, int hess)
 {
     size_t nv = s->nv;
@@ -238,11 +239,13 @@ static double al_eval(solver *s, const double *y, double *grad, int hess)
         memset(grad, 0, s->n * sizeof *grad);
     if (hess)
         s->nz = 0;
-    for (int k = 0; k < s->nc; k++) {
-        f += (double)s->ne[k] * l[k];
+    /* the length sum_k n_k l_k is left out of the value (its gradient is
+     * in): the line search adds its change from the change in l_k, exact,
+     * where the difference of two sums of size 32.7 carries a rounding of
+     * 7e-15 that hid the last decreases (minimise) */
+    for (int k = 0; k < s->nc; k++)
         if (grad)
             grad[3 * nv + (size_t)k] += (double)s->ne[k];
-    }
     /* edges */
     for (size_t a = 0; a < nv; a++) {
         size_t b = s->next[a];
@@ -907,7 +910,7 @@ static int minimise(solver *s, double *y, tr_newton_stats *st, double t0, tr_err
         reach = fmax(reach, fabs(y[i]));
     double viol_tol = fmax(p->viol_tol, 16.0 * DBL_EPSILON * reach / (s->l0min * s->l0min));
     double omega = 1e-2, prev_viol = INFINITY, lm = 0.0, prev_len = INFINITY;
-    int inner = 0, settled = 0, last_full = 0;
+    int inner = 0, settled = 0, last_full = 0, moved = 0, stuck = 0;
     for (int it = 0; it < p->max_iter; it++) {
         if ((p->time_limit > 0 && tr_clock_seconds() - t0 > p->time_limit) || (p->stop && *p->stop))
             break;
@@ -943,8 +946,13 @@ static int minimise(solver *s, double *y, tr_newton_stats *st, double t0, tr_err
              * are then not unique and the force the wrap puts on that edge
              * has no balance within MinRad), while the length no longer
              * moves: bench/RESULTS.md, "Second-order solver". */
-            if (s->viol <= viol_tol && fabs(s->length - prev_len) <= 1e-11 * s->length) {
-                if (++settled >= 3) {
+            /* or no step accepted over three passes: the line search
+             * finds no decrease left to resolve, and the multiplier
+             * updates alone do not move the rope */
+            stuck = moved ? 0 : stuck + 1;
+            moved = 0;
+            if (stuck >= 3 || (s->viol <= viol_tol && fabs(s->length - prev_len) <= 1e-11 * s->length)) {
+                if (++settled >= 3 || stuck >= 3) {
                     st->settled = 1;
                     break;
                 }
@@ -988,7 +996,7 @@ static int minimise(solver *s, double *y, tr_newton_stats *st, double t0, tr_err
          * tension's stiffness 1 / l0 */
         double alpha = 0.0, ft = f, slope = 0.0, mv = 0.0, cap = 1.0;
         int ok = 0;
-        double ts = tr_clock_seconds();
+        double ts = tr_clock_seconds(), lm_in = lm;
         for (int lmtry = 0; lmtry < 6 && !ok; lmtry++) {
             if (lmtry > 0)
                 lm = fmax(100.0 * lm, 1e-6 / s->l0min);
@@ -1013,7 +1021,10 @@ static int minimise(solver *s, double *y, tr_newton_stats *st, double t0, tr_err
                 for (size_t k = 0; k < n; k++)
                     yt[k] = y[k] + alpha * dir[k];
                 ft = al_eval(s, yt, NULL, 0);
-                if (s->dmin > GUARD_DIST && ft <= f + 1e-4 * alpha * slope) {
+                double dlen = 0.0;
+                for (int k = 0; k < s->nc; k++)
+                    dlen += (double)s->ne[k] * (yt[3 * nv + (size_t)k] - y[3 * nv + (size_t)k]);
+                if (s->dmin > GUARD_DIST && (ft - f) + dlen <= 1e-4 * alpha * slope) {
                     ok = 1;
                     break;
                 }
@@ -1029,8 +1040,11 @@ static int minimise(solver *s, double *y, tr_newton_stats *st, double t0, tr_err
                                      .struts = s->nsp, .active = s->active, .seconds = tr_clock_seconds() - t0};
             p->progress(p->user, &pr);
         }
-        /* next time, start from a tenth of the shift that worked */
-        lm *= 0.1;
+        /* next time, start from a tenth of the shift that worked; after
+         * a failure from the shift tried first (the escalation found
+         * nothing, and carried on it grew 1e12 per step until the
+         * directions vanished) */
+        lm = 0.1 * (ok ? lm : lm_in);
         if (!ok) {
             /* no descent along the Newton direction (rounding at the
              * bottom): the inner problem is as solved as it gets */
@@ -1039,6 +1053,7 @@ static int minimise(solver *s, double *y, tr_newton_stats *st, double t0, tr_err
             continue;
         }
         last_full = alpha == 1.0;
+        moved = 1;
         memcpy(y, yt, n * sizeof *y);
         /* the strut list is good while no vertex has moved skin / 4 */
         if (moved_since_build(s, y) > fmin(0.25 * p->skin, 0.5 * s->l0min)) {
