@@ -101,6 +101,11 @@ set_tests_properties(tighten_device_levels PROPERTIES SKIP_RETURN_CODE 77 ENVIRO
 add_test(NAME tighten_checkpoint_vanished
   COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/scripts/checkpoint_cli.sh $<TARGET_FILE:tightrope> ${_eng_dir}/ckpt_vanished)
 set_tests_properties(tighten_checkpoint_vanished PROPERTIES ENVIRONMENT "${TR_TEST_ENV}" LABELS cli)
+# the second-order solver checkpoints; --resume goes on from it (tests/scripts/solver_checkpoint.sh)
+add_test(NAME tighten_solver_checkpoint
+  COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/scripts/solver_checkpoint.sh $<TARGET_FILE:tightrope>
+          ${PROJECT_SOURCE_DIR}/bench/data/trefoil_2400.vect ${_eng_dir}/solver_ckpt)
+set_tests_properties(tighten_solver_checkpoint PROPERTIES ENVIRONMENT "${TR_TEST_ENV}" LABELS cli)
 # --tries K --seed S: the shortest of K roads, reproducible (tests/scripts/tries_cli.sh)
 add_test(NAME tighten_tries
   COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/scripts/tries_cli.sh $<TARGET_FILE:tightrope> ${_eng_dir}/tries)

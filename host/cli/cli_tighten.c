@@ -602,6 +602,8 @@ static int open_start(const tighten_opts *o, tr_engine **e)
             prm.newton_first = !o->no_newton && (o->refine_to <= 0 || c.nv / (size_t)c.ncomp >= (size_t)o->refine_to);
             prm.newton_first_limit = o->time_limit;
             prm.newton_first_stop = &stop_requested;
+            prm.newton_first_checkpoint = o->ckpt;
+            prm.newton_first_checkpoint_every = o->ckpt ? o->ckpt_every : 0;
             catch_signals();
             rc = tr_engine_create(e, &c, o->device, &prm, &err);
             tr_curve_free(&c);

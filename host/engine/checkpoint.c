@@ -16,15 +16,23 @@ int tr_engine_checkpoint_write(tr_engine *e, const char *path, tr_error *err)
     int rc = e->be.ops->download(e->be.state, e->curve.x, e->ebar, err);
     if (rc)
         return rc;
+    return tr_engine_i_checkpoint_curve(e, &e->curve, e->ebar, e->gap, path, err);
+}
+
+int tr_engine_i_checkpoint_curve(tr_engine *e, const tr_curve *c, const double *ebar, const int *gap,
+                                 const char *path, tr_error *err)
+{
+    int rc;
     tr_engine_progress p;
     tr_engine_get_progress(e, &p);
-    const tr_curve *c = &e->curve;
     tr_text b = {0};
     tr_text_printf(&b, "tightrope-checkpoint 1\n");
     tr_text_printf(&b, "ncomp %d\n", c->ncomp);
     for (int k = 0; k < c->ncomp; k++)
-        tr_text_printf(&b, "comp %zu %d %a %d\n", tr_comp_nv(c, k), c->closed[k], e->ebar[k], e->gap[k]);
-    tr_text_printf(&b, "state %ld %ld %a %a %a %a %a %d\n", e->steps, e->rejected, e->h, e->disp_est,
+        tr_text_printf(&b, "comp %zu %d %a %d\n", tr_comp_nv(c, k), c->closed[k], ebar[k], gap[k]);
+    /* before the engine's first step (the solver's checkpoints at the
+     * start) h is not set yet: the step it would begin with */
+    tr_text_printf(&b, "state %ld %ld %a %a %a %a %a %d\n", e->steps, e->rejected, e->h > 0 ? e->h : ebar[0], e->disp_est,
               p.elapsed, e->residual, e->length, e->jammed);
     tr_text_printf(&b, "ncst %d\n", c->ncst);
     for (int q = 0; q < c->ncst; q++) {

@@ -234,6 +234,34 @@ tr_engine *tr_engine_i_new(const char *device, const tr_engine_params *p)
     return e;
 }
 
+/* The solver's checkpoint: its shortest iterate so far at thickness 1,
+ * with the edge targets and gaps of that curve, in the engine's format, so
+ * that --resume goes on from it. A failure is counted as the level loop's
+ * are (tr_engine_checkpoint_failures); the solve goes on. */
+static int newton_checkpoint(void *user, const tr_curve *best, tr_error *err)
+{
+    tr_engine *e = user;
+    int nc = best->ncomp, rc;
+    double *ebar = malloc((size_t)nc * sizeof *ebar);
+    int *gap = malloc((size_t)nc * sizeof *gap);
+    if (!ebar || !gap)
+        rc = tr_fail(err, TR_ENOMEM, "out of memory writing a checkpoint");
+    else {
+        for (int k = 0; k < nc; k++) {
+            ebar[k] = tr_comp_length(best, k) / (double)tr_comp_ne(best, k);
+            gap[k] = tr_exclusion_gap(1.0, ebar[k]);
+        }
+        rc = tr_engine_i_checkpoint_curve(e, best, ebar, gap, e->ckpt_path, err);
+    }
+    free(ebar);
+    free(gap);
+    if (rc) {
+        e->ckpt_failures++;
+        snprintf(e->ckpt_failure, sizeof e->ckpt_failure, "%.255s", err->msg);
+    }
+    return rc;
+}
+
 int tr_engine_i_newton(tr_engine *e, double seconds, int tight_only, volatile sig_atomic_t *stop, int *accepted,
                        tr_error *err)
 {
@@ -243,6 +271,11 @@ int tr_engine_i_newton(tr_engine *e, double seconds, int tight_only, volatile si
     np.time_limit = seconds;
     np.tight_only = tight_only;
     np.stop = stop;
+    if (e->ckpt_path && e->ckpt_every > 0) {
+        np.checkpoint = newton_checkpoint;
+        np.checkpoint_every = e->ckpt_every;
+        np.user = e;
+    }
     tr_newton_stats ns;
     /* tried, whatever comes of it: the level loop must not try again */
     e->newton_tried = 1;
@@ -330,6 +363,8 @@ int tr_engine_create(tr_engine **out, const tr_curve *c, const char *device,
     int rc = tr_curve_copy(&e->curve, c, err);
     if (!rc)
         rc = tr_engine_i_alloc_comp_arrays(e, err);
+    e->ckpt_path = p->newton_first_checkpoint;
+    e->ckpt_every = p->newton_first_checkpoint_every;
     if (!rc)
         rc = newton_first(e, err);
     if (!rc)

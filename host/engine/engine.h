@@ -88,6 +88,11 @@ typedef struct tr_engine_params {
     int newton_tight;
     double newton_first_limit;
     volatile sig_atomic_t *newton_first_stop;
+    /* where that solve writes its checkpoints (the shortest iterate so far,
+     * in the checkpoint format, every newton_first_checkpoint_every
+     * seconds; NULL: none): tr_engine_run's limits come too late for it */
+    const char *newton_first_checkpoint;
+    double newton_first_checkpoint_every;
     /* Coarse levels (all but the last of a run with refine_to) with fewer
      * vertices than this run on the serial reference instead of the chosen
      * device: there an OpenCL device's cost per kernel launch outweighs its

@@ -48,6 +48,10 @@ struct tr_engine {
     /* the solver has had its look at a tight finest level (run, or found
      * the start loose) */
     int newton_tried;
+    /* where the second-order solver writes its checkpoints (newton_first:
+     * the params; the level loop: its limits) */
+    const char *ckpt_path;
+    double ckpt_every;
     /* checkpoints that could not be written (the run went on) and why the
      * last one failed */
     int ckpt_failures;
@@ -73,6 +77,11 @@ int tr_engine_i_settle(tr_engine *e, const char *what, double overlap_ok, tr_err
  * reported as a run). A failure on the geometry is not an error. */
 int tr_engine_i_newton(tr_engine *e, double seconds, int tight_only, volatile sig_atomic_t *stop, int *accepted,
                        tr_error *err);
+/* Writes a checkpoint of e's state with curve c (its edge targets ebar,
+ * exclusion gaps gap) in place of e's own (tr_engine_checkpoint_write
+ * downloads e's). */
+int tr_engine_i_checkpoint_curve(tr_engine *e, const tr_curve *c, const double *ebar, const int *gap,
+                                 const char *path, tr_error *err);
 /* Keeps e->curve.x as the level's presettle_x. */
 int tr_engine_i_keep_presettle(tr_engine *e, tr_error *err);
 /* Opens e->be on c: the device, or the reference for a coarse level. */

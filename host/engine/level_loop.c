@@ -210,6 +210,8 @@ int tr_engine_run(tr_engine *e, const tr_engine_limits *lim, tr_stop_reason *why
      * (the 2 x 100 clasp: 8800 steps, 100 s, where polish then needs 2 s). */
     long stall_step = e->steps;
     double stall_len = INFINITY;
+    e->ckpt_path = lim->checkpoint_path;
+    e->ckpt_every = lim->checkpoint_every;
     double time_left_at_level = lim->time_limit > 0 ? lim->time_limit - (e->elapsed_base + tr_clock_seconds() - e->t0) : 0;
     *why = TR_STOP_NONE;
     rc = level_backend(e, wants_coarse_ref(e, e->curve.nv, is_final_level(lim, e->curve.nv / (size_t)e->curve.ncomp)),

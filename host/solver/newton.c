@@ -62,6 +62,7 @@ typedef struct solver {
      * peer drifted away from its best at N = 19 200) */
     tr_curve probe;
     double *best_y, best_rl;
+    double t_ckpt; /* when the last checkpoint went out (or the solve began) */
     double warm_residual; /* |t - J^T lambda| / |t| after the warm start; 1 without one */
     double *lam_e, *lam_m, *pi_e, *pi_m; /* per edge (by first vertex) / vertex */
     double *pi_s;
@@ -874,6 +875,17 @@ static int keep_best(solver *s, const double *y, tr_error *err)
     if (th.thickness > 0 && isfinite(th.ropelength) && th.ropelength < s->best_rl) {
         s->best_rl = th.ropelength;
         memcpy(s->best_y, y, s->n * sizeof *y);
+        const tr_newton_params *p = s->p;
+        /* a checkpoint is a valid rope (equal edges to 1e-6, as --resume
+         * asks), so only a nearly feasible iterate goes out */
+        if (p->checkpoint && p->checkpoint_every > 0 && s->viol <= 1e-7 &&
+            tr_clock_seconds() - s->t_ckpt >= p->checkpoint_every) {
+            for (size_t i = 0; i < 3 * s->nv; i++)
+                s->probe.x[i] /= th.thickness;
+            tr_error ce = {0};
+            p->checkpoint(p->user, &s->probe, &ce);
+            s->t_ckpt = tr_clock_seconds();
+        }
     }
     return TR_OK;
 }
@@ -899,6 +911,7 @@ static int minimise(solver *s, double *y, tr_newton_stats *st, double t0, tr_err
         goto done;
     }
     s->mu = p->mu0 / s->l0min;
+    s->t_ckpt = t0;
     s->band = 1.0;
     /* A MinRad row's second difference w ~ l0^2 kappa is computed from
      * coordinates of size R, so its relative violation carries rounding of

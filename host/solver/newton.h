@@ -35,8 +35,11 @@
  * than 4 max_move (a soft mode nothing holds yet: the whole rope shrinking
  * before any contact is active) is computed again with a 100 times larger
  * shift. When the inner gradient is small (or after max_inner steps) the
- * multipliers are updated, lambda <- pi, and mu grows tenfold if the
- * violation did not fall by 4. It stops converged (violation and
+ * multipliers are updated, lambda <- pi, and mu grows tenfold (up to
+ * mu_max) if the violation did not fall by 4 in a solved pass (newton.c:
+ * an unfinished pass says nothing about mu). Inactive rows near their
+ * bound enter the Newton matrix in a band that narrows as mu grows
+ * (newton.c, NEAR_ACTIVE). It stops converged (violation and
  * unbalanced force below their tolerances) or settled (feasible, and the
  * length unchanged to 1e-11 over three updates: where many struts press on
  * one edge the discrete multipliers are far from unique and the unbalanced
@@ -124,6 +127,12 @@ typedef struct tr_newton_params {
     const struct tr_backend *backend;
     void (*progress)(void *user, const tr_newton_progress *p); /* every step (may be NULL) */
     void *user;
+    /* Long runs: every checkpoint_every seconds (0: never) the shortest
+     * iterate so far, rescaled to thickness 1 by the oracle (a curve the
+     * run could end with), goes to checkpoint; its error is the caller's
+     * to weigh (it does not stop the solve). */
+    double checkpoint_every;
+    int (*checkpoint)(void *user, const tr_curve *best, tr_error *err);
 } tr_newton_params;
 
 void tr_newton_params_default(tr_newton_params *p);
