@@ -85,10 +85,10 @@ int main(int argc, char **argv)
         return 1;
     }
     printf("newton: %s%s, ropelength %.10f -> %.10f, %d steps, %d updates, %d factorizations, %d analyses, %d rebuilds, %.2f s "
-           "(eval %.2f [strut rows %.2f], factor %.2f, solve %.2f, search %.2f [evaluations %.2f], rebuild %.2f), viol %.1e stat %.1e, struts %zu active %zu, warm residual %.2e%s%s\n",
+           "(eval %.2f [strut rows %.2f], factor %.2f [analyses %.2f], solve %.2f, search %.2f [evaluations %.2f], rebuild %.2f), viol %.1e stat %.1e, struts %zu active %zu, warm residual %.2e%s%s\n",
            st.accepted ? "accepted" : "rejected", st.converged ? " converged" : (st.settled ? " settled" : ""), st.ropelength_before,
            st.ropelength_after, st.iters, st.outer, st.factorizations, st.analyses, st.rebuilds, st.seconds, st.t_eval, st.t_rows,
-           st.t_factor, st.t_solve, st.t_search, st.t_value, st.t_rebuild, st.max_viol, st.stat, st.struts, st.active, st.warm_residual,
+           st.t_factor, st.t_analyze, st.t_solve, st.t_search, st.t_value, st.t_rebuild, st.max_viol, st.stat, st.struts, st.active, st.warm_residual,
            st.why_rejected ? " - " : "", st.why_rejected ? st.why_rejected : "");
     if (st.accepted && tr_curve_write(argv[2], TR_FORMAT_AUTO, &c, "newton_run", &err)) {
         fprintf(stderr, "newton_run: %s\n", err.msg);

@@ -150,6 +150,7 @@ typedef struct tr_newton_stats {
     size_t struts, active;
     /* where the time went */
     double t_eval, t_factor, t_solve, t_search, t_rebuild, seconds;
+    double t_analyze; /* of t_factor: CHOLMOD's symbolic analyses */
     /* with a backend: of t_eval, the strut rows' evaluation (the backend's
      * call, transfers included); the line search's evaluations (part of
      * t_search, which also holds the factorisations it asks for) */
