@@ -363,8 +363,8 @@ int tr_engine_create(tr_engine **out, const tr_curve *c, const char *device,
     int rc = tr_curve_copy(&e->curve, c, err);
     if (!rc)
         rc = tr_engine_i_alloc_comp_arrays(e, err);
-    e->ckpt_path = p->newton_first_checkpoint;
-    e->ckpt_every = p->newton_first_checkpoint_every;
+    e->ckpt_path = e->prm.newton_first_checkpoint;
+    e->ckpt_every = e->prm.newton_first_checkpoint_every;
     if (!rc)
         rc = newton_first(e, err);
     if (!rc)
