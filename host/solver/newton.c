@@ -89,6 +89,8 @@ typedef struct solver {
      * knot's soft global modes, which Newton must see) */
     size_t fixed[6];
     int nfixed;
+    /* the vertices with a constraint (clasp ends), in order */
+    size_t *cv, ncv;
     /* results of the last evaluation */
     double viol, dmin, length;
     size_t active;
@@ -158,6 +160,90 @@ static int is_fixed(const solver *s, size_t i)
     return 0;
 }
 
+/* ---- vertex constraints (clasp ends on planes) ----
+ *
+ * A constrained vertex moves only within its constraint: P_i, the
+ * projector onto the motions it allows (curve.h: the plane's directions,
+ * the line's, none for a fixed point). The constraints are linear, so they
+ * are eliminated rather than written as rows of L_A: every row's gradient
+ * and Hessian are taken on the allowed motions (g_i <- P_i g_i, the row's
+ * block Q^T H Q with Q = diag(P_i): exact for the reduced problem, since Q
+ * is block diagonal per vertex), and I - P_i goes on the vertex's diagonal
+ * block so the matrix stays nonsingular. The Newton system then has
+ * (I - P_i) dir_i = 0, so a vertex on its plane stays there to rounding at
+ * every step, and no multiplier or penalty is involved. Equality rows
+ * n.x_i - d = 0 in L_A would instead need their own multipliers to
+ * converge (linearly, at a rate 1 / mu) and leave the ends lambda / mu off
+ * their planes at every pass, to be projected back at the end at some cost
+ * in thickness; the elimination is also what the reference backend's P_i
+ * and the KKT oracle (kkt.h) do, so the three agree on what "held" means. */
+static const tr_constraint *vertex_cst(const solver *s, size_t v)
+{
+    return s->w.vcst && s->w.vcst[v] >= 0 ? &s->w.cst[s->w.vcst[v]] : NULL;
+}
+
+/* P (3 x 3, symmetric): the projector onto the motions k allows */
+static void allowed_projector(const tr_constraint *k, double P[9])
+{
+    for (int c = 0; c < 3; c++) {
+        double e[3] = {c == 0, c == 1, c == 2};
+        tr_constraint_project_motion(k, e);
+        for (int r = 0; r < 3; r++)
+            P[3 * r + c] = e[r];
+    }
+}
+
+/* v (3 nv + ncomp) with every constrained vertex's part on its allowed motions */
+static void project_allowed(const solver *s, double *v)
+{
+    for (size_t q = 0; q < s->ncv; q++) {
+        size_t i = s->cv[q];
+        tr_constraint_project_motion(vertex_cst(s, i), v + 3 * i);
+    }
+}
+
+/* A row's gradient gr and Hessian H (m x m, or NULL) over idx, whose vertex
+ * coordinates come in triples (3 i, 3 i + 1, 3 i + 2) from position 0, on
+ * the allowed motions: gr <- Q gr, H <- Q H Q. Returns 0 (nothing copied)
+ * when the row touches no constrained vertex. */
+static int project_row(const solver *s, int m, const size_t *idx, const double *gr, const double *H, double *gq,
+                       double *Hq)
+{
+    int any = 0;
+    for (int a = 0; a + 2 < m && !any; a += 3)
+        any = idx[a] < 3 * s->nv && idx[a] % 3 == 0 && vertex_cst(s, idx[a] / 3);
+    if (!any)
+        return 0;
+    memcpy(gq, gr, (size_t)m * sizeof *gq);
+    if (H)
+        memcpy(Hq, H, (size_t)m * (size_t)m * sizeof *Hq);
+    for (int a = 0; a + 2 < m; a += 3) {
+        const tr_constraint *k = idx[a] < 3 * s->nv && idx[a] % 3 == 0 ? vertex_cst(s, idx[a] / 3) : NULL;
+        if (!k)
+            continue;
+        double P[9], t[3];
+        allowed_projector(k, P);
+        for (int r = 0; r < 3; r++)
+            t[r] = P[3 * r] * gq[a] + P[3 * r + 1] * gq[a + 1] + P[3 * r + 2] * gq[a + 2];
+        memcpy(gq + a, t, sizeof t);
+        if (!H)
+            continue;
+        for (int c = 0; c < m; c++) { /* rows a..a+2: P H */
+            for (int r = 0; r < 3; r++)
+                t[r] = P[3 * r] * Hq[a * m + c] + P[3 * r + 1] * Hq[(a + 1) * m + c] + P[3 * r + 2] * Hq[(a + 2) * m + c];
+            for (int r = 0; r < 3; r++)
+                Hq[(a + r) * m + c] = t[r];
+        }
+        for (int r = 0; r < m; r++) { /* columns a..a+2: H P */
+            for (int c = 0; c < 3; c++)
+                t[c] = Hq[r * m + a] * P[c] + Hq[r * m + a + 1] * P[3 + c] + Hq[r * m + a + 2] * P[6 + c];
+            for (int c = 0; c < 3; c++)
+                Hq[r * m + a + c] = t[c];
+        }
+    }
+    return 1;
+}
+
 static void tri_push(solver *s, size_t i, size_t j, double v)
 {
     if (s->nz == s->capz) {
@@ -191,6 +277,11 @@ static void tri_push(solver *s, size_t i, size_t j, double v)
 static void row_terms(solver *s, int m, const size_t *idx, const double *gr, const double *H, double cg,
                       double cH, double pi, double *grad, int hess)
 {
+    double gq[16], Hq[256];
+    if (project_row(s, m, idx, gr, hess ? H : NULL, gq, Hq)) {
+        gr = gq;
+        H = hess && H ? Hq : NULL;
+    }
     for (int a = 0; a < m; a++)
         grad[idx[a]] -= pi * gr[a];
     if (!hess)
@@ -374,6 +465,18 @@ static double al_eval(solver *s, const double *y, double *grad, int hess)
     if (grad)
         for (int k = 0; k < s->nfixed; k++)
             grad[s->fixed[k]] = 0.0;
+    /* a constrained vertex's forbidden motions: I - P_i on its diagonal
+     * block (the rows above have none there), so dir_i has none of them */
+    for (size_t q = 0; hess && q < s->ncv; q++) {
+        double P[9];
+        allowed_projector(vertex_cst(s, s->cv[q]), P);
+        for (int r = 0; r < 3; r++)
+            for (int c = r; c < 3; c++) {
+                double v = (r == c) - P[3 * r + c];
+                if (v != 0.0)
+                    tri_push(s, 3 * s->cv[q] + (size_t)r, 3 * s->cv[q] + (size_t)c, v);
+            }
+    }
     s->viol = viol;
     s->dmin = dmin;
     s->length = len;
@@ -587,6 +690,9 @@ static int newton_dir(solver *s, const double *grad, double *dir, double *lm, tr
     }
     memcpy(dir, xs->x, s->n * sizeof *dir);
     cholmod_l_free_dense(&xs, cm);
+    /* the solve leaves a constrained vertex's forbidden part at rounding;
+     * none at all, so the ends do not drift off their planes over the steps */
+    project_allowed(s, dir);
     st->t_solve += tr_clock_seconds() - t1;
 done:
     cholmod_l_free_sparse(&A, cm);
@@ -617,17 +723,142 @@ static void solver_free(solver *s)
     free(s->pat_j);
     free(s->perm);
     free(s->best_y);
+    free(s->cv);
     tr_curve_free(&s->probe);
     tr_solver_rows_free(&s->rows);
     cholmod_l_free_factor(&s->L, &s->cm);
     cholmod_l_finish(&s->cm);
 }
 
+/* Gram-Schmidt of v (len entries) against the n orthonormal rows of B
+ * (stride len); returns the norm of what is left (v is left normalised
+ * when that is above 0). */
+static double orthogonalise(double *v, const double *B, int n, int len)
+{
+    for (int pass = 0; pass < 2; pass++) /* twice is enough (Kahan) */
+        for (int r = 0; r < n; r++) {
+            double d = 0.0;
+            for (int c = 0; c < len; c++)
+                d += v[c] * B[r * len + c];
+            for (int c = 0; c < len; c++)
+                v[c] -= d * B[r * len + c];
+        }
+    double nn = 0.0;
+    for (int c = 0; c < len; c++)
+        nn += v[c] * v[c];
+    nn = sqrt(nn);
+    for (int c = 0; c < len && nn > 0.0; c++)
+        v[c] /= nn;
+    return nn;
+}
+
+/* Below this (relative to unit rows) a direction counts as dependent. */
+#define GAUGE_TOL 1e-6
+/* vertices tried for the held coordinates, spread along the curve */
+#define GAUGE_CANDIDATES 24
+
+/* The gauge of a curve with vertex constraints. A rigid motion
+ * v_i = a + w x x_i is a gauge (L_A unchanged) only if every constrained
+ * vertex may make it: (I - P_i) v_i = 0. The forbidden motions are spanned
+ * by the rows q.(a + w x x_i) = q.a + w.(x_i x q) over q = (I - P_i) e_c;
+ * the free ones are what Gram-Schmidt leaves of the six unit motions
+ * against them (in units of the curve's size R about its centroid, so
+ * translations and rotations weigh alike). For the simple clasp (ends on
+ * z = +H and z = -H) that is the translations in x and y and the rotation
+ * about z; a coordinate the constraints already fix (z of an end) must not
+ * be held, and neither must a coordinate a forbidden motion alone moves
+ * (it would pin the rope where nothing pins it). So as many coordinates as
+ * there are free motions are held, at unconstrained vertices, each chosen
+ * greedily as the one whose velocity under the free motions is the most
+ * independent of those already held: every free motion then moves a held
+ * coordinate, and the Hessian has no null space left. */
+static void set_gauge_constrained(solver *s)
+{
+    size_t nv = s->nv;
+    const double *x = s->w.x;
+    double o[3] = {0, 0, 0}, R = 0.0;
+    for (size_t i = 0; i < nv; i++)
+        v3_axpy(o, 1.0 / (double)nv, x + 3 * i);
+    for (size_t i = 0; i < nv; i++)
+        R = fmax(R, sqrt(v3_dist2(x + 3 * i, o)));
+    s->nfixed = 0;
+    if (!(R > 0.0))
+        return;
+    /* the forbidden motions' span (at most 6 independent rows) */
+    double B[36], F[36];
+    int nb = 0, nf = 0;
+    for (size_t q = 0; q < s->ncv && nb < 6; q++) {
+        size_t i = s->cv[q];
+        double xr[3];
+        v3_sub(xr, x + 3 * i, o);
+        v3_scale(xr, 1.0 / R, xr);
+        for (int c = 0; c < 3 && nb < 6; c++) {
+            double e[3] = {c == 0, c == 1, c == 2}, f[3] = {c == 0, c == 1, c == 2};
+            tr_constraint_project_motion(vertex_cst(s, i), f);
+            double qv[3], row[6];
+            v3_sub(qv, e, f);
+            if (!(v3_norm(qv) > GAUGE_TOL))
+                continue;
+            memcpy(row, qv, sizeof qv);
+            v3_cross(row + 3, xr, qv);
+            if (orthogonalise(row, B, nb, 6) > GAUGE_TOL)
+                memcpy(B + 6 * nb++, row, sizeof row);
+        }
+    }
+    /* the free motions */
+    for (int c = 0; c < 6; c++) {
+        double row[6] = {0};
+        row[c] = 1.0;
+        double both[72];
+        memcpy(both, B, (size_t)nb * 6 * sizeof *B);
+        memcpy(both + 6 * nb, F, (size_t)nf * 6 * sizeof *F);
+        if (orthogonalise(row, both, nb + nf, 6) > GAUGE_TOL)
+            memcpy(F + 6 * nf++, row, sizeof row);
+    }
+    /* held coordinates: velocities (one entry per free motion) made
+     * independent greedily */
+    double held[36];
+    for (int pick = 0; pick < nf; pick++) {
+        double best = GAUGE_TOL, bv[6];
+        size_t bi = NONE;
+        for (int q = 0; q < GAUGE_CANDIDATES; q++) {
+            size_t i = (size_t)((double)nv * (double)q / GAUGE_CANDIDATES);
+            if (i >= nv || vertex_cst(s, i))
+                continue;
+            double xr[3];
+            v3_sub(xr, x + 3 * i, o);
+            v3_scale(xr, 1.0 / R, xr);
+            for (int c = 0; c < 3; c++) {
+                /* e_c.(a + w x xr) = e_c.a + w.(xr x e_c) for each free motion (a, w) */
+                double e[3] = {c == 0, c == 1, c == 2}, xe[3], v[6];
+                v3_cross(xe, xr, e);
+                for (int t = 0; t < nf; t++)
+                    v[t] = v3_dot(e, F + 6 * t) + v3_dot(xe, F + 6 * t + 3);
+                double nn = orthogonalise(v, held, pick, nf);
+                if (nn > best && !is_fixed(s, 3 * i + (size_t)c)) {
+                    best = nn;
+                    bi = 3 * i + (size_t)c;
+                    memcpy(bv, v, sizeof bv);
+                }
+            }
+        }
+        if (bi == NONE)
+            return; /* what is left goes to the Levenberg shift */
+        memcpy(held + nf * pick, bv, (size_t)nf * sizeof *bv);
+        s->fixed[s->nfixed++] = bi;
+    }
+}
+
 /* Holds x_0, the two coordinates of x_{N/3} across u = x_{N/3} - x_0 and
  * the coordinate of x_{2N/3} along which the rotation about u moves it
- * most: translations and rotations are then fixed. */
+ * most: translations and rotations are then fixed. With vertex constraints
+ * only the free rigid motions are held (set_gauge_constrained). */
 static void set_gauge(solver *s)
 {
+    if (s->ncv > 0) {
+        set_gauge_constrained(s);
+        return;
+    }
     size_t nv = s->nv, k = nv / 3, m = 2 * nv / 3;
     const double *x = s->w.x;
     double u[3], r[3], v[3];
@@ -696,6 +927,15 @@ static int solver_init(solver *s, const tr_curve *cv, double scale, tr_error *er
         s->l0min = fmin(s->l0min, s->l0[k]);
         s->gap[k] = tr_exclusion_gap(1.0, s->l0[k]);
     }
+    for (size_t i = 0; i < nv; i++)
+        s->ncv += vertex_cst(s, i) != NULL;
+    s->cv = malloc((s->ncv ? s->ncv : 1) * sizeof *s->cv);
+    if (!s->cv)
+        return tr_fail(err, TR_ENOMEM, "out of memory (Newton solver)");
+    s->ncv = 0;
+    for (size_t i = 0; i < nv; i++)
+        if (vertex_cst(s, i))
+            s->cv[s->ncv++] = i;
     set_gauge(s);
     return tr_nsearch_build(&s->ns, &s->w, err);
 }
@@ -827,6 +1067,12 @@ static int warm_multipliers(solver *s, const double *y, tr_error *err)
     }
     for (int k = 0; k < s->nfixed; k++)
         t[s->fixed[k]] = 0.0;
+    /* a constrained vertex takes part with its allowed motions only (the
+     * rows' entries come in triples, a vertex's x, y, z) */
+    for (size_t k = 0; s->ncv > 0 && k + 2 < nz; k += 3)
+        if (vertex_cst(s, col[k] / 3))
+            tr_constraint_project_motion(vertex_cst(s, col[k] / 3), val + k);
+    project_allowed(s, t);
     if (nr == 0)
         goto done;
     lam = calloc(nr, sizeof *lam);
@@ -893,6 +1139,28 @@ done:
  * iterate if it is the shortest yet. Only near feasibility: further out the
  * rescaled curve is long anyway and the oracle's time would be wasted. */
 #define BEST_VIOL 1e-3
+
+/* A constrained curve is not rescaled (its planes stay where they are), so
+ * its ropelength is its length at thickness 1: the oracle's length /
+ * thickness where it is a little under 1 (what that costs, honestly), its
+ * length where it is loose (a loose clasp is as long as it is, and scaling
+ * it down would take its ends off their planes). A result is taken within
+ * CONSTRAINED_OUT_TOL of thickness 1, as the polish's (polish.c); a start
+ * below CONSTRAINED_MIN_THICKNESS is refused (skipped = 1), as the
+ * augmented Lagrangian would first have to push the strands apart by more
+ * than the guard lets a step bring them together. */
+#define CONSTRAINED_OUT_TOL 1e-6
+#define CONSTRAINED_MIN_THICKNESS 0.85
+static double constrained_ropelength(const tr_thickness *th) { return th->length / fmin(th->thickness, 1.0); }
+
+static int has_constrained_vertex(const tr_curve *c)
+{
+    for (size_t i = 0; c->ncst > 0 && c->vcst && i < c->nv; i++)
+        if (c->vcst[i] >= 0)
+            return 1;
+    return 0;
+}
+
 static int keep_best(solver *s, const double *y, tr_error *err)
 {
     if (!(s->viol < BEST_VIOL))
@@ -913,8 +1181,11 @@ static int keep_best(solver *s, const double *y, tr_error *err)
     int rc = tr_thickness_measure(&s->probe, NULL, &th, NULL, err);
     if (rc)
         return rc;
-    if (th.thickness > 0 && isfinite(th.ropelength) && th.ropelength < s->best_rl) {
-        s->best_rl = th.ropelength;
+    double rl = th.ropelength;
+    if (s->ncv > 0)
+        rl = th.thickness >= 1.0 - CONSTRAINED_OUT_TOL ? constrained_ropelength(&th) : INFINITY;
+    if (th.thickness > 0 && isfinite(rl) && rl < s->best_rl) {
+        s->best_rl = rl;
         memcpy(s->best_y, y, s->n * sizeof *y);
         const tr_newton_params *p = s->p;
         /* a checkpoint is a valid rope (equal edges to 1e-6, as --resume
@@ -1162,10 +1433,7 @@ int tr_newton(tr_curve *cv, const tr_newton_params *prm, tr_newton_stats *st, tr
     }
     memset(st, 0, sizeof *st);
     double t0 = tr_clock_seconds();
-    if (cv->ncst > 0) {
-        st->skipped = 1;
-        return TR_OK;
-    }
+    int constrained = has_constrained_vertex(cv);
     if (!(prm->max_move > 0 && prm->max_move <= prm->skin / 8) || prm->max_iter < 1 || prm->max_inner < 1)
         return tr_fail(err, TR_EINVAL, "newton: need 0 < max_move <= skin / 8 and at least one iteration");
     tr_thickness th0;
@@ -1174,7 +1442,12 @@ int tr_newton(tr_curve *cv, const tr_newton_params *prm, tr_newton_stats *st, tr
         return rc;
     if (!(th0.thickness > 0) || !isfinite(th0.thickness))
         return tr_fail(err, TR_EGEOMETRY, "newton: the curve has no finite positive thickness");
-    st->ropelength_before = st->ropelength_after = th0.ropelength;
+    if (constrained && th0.thickness < CONSTRAINED_MIN_THICKNESS) {
+        st->skipped = 1;
+        st->why_rejected = "constrained vertices, and the start is too far below thickness 1";
+        return TR_OK;
+    }
+    st->ropelength_before = st->ropelength_after = constrained ? constrained_ropelength(&th0) : th0.ropelength;
     solver s;
     memset(&s, 0, sizeof s);
     s.p = prm;
@@ -1190,11 +1463,17 @@ int tr_newton(tr_curve *cv, const tr_newton_params *prm, tr_newton_stats *st, tr
      * started violated just has further to go (the wobbled 32-gon: 208
      * steps against 76). */
     double unit = th0.thickness;
-    if (isfinite(th0.dcsd) && th0.minrad < (1.0 - 1e-4) * 0.5 * th0.dcsd && th0.minrad >= MINRAD_SLACK * 0.5 * th0.dcsd)
+    int overshoot = isfinite(th0.dcsd) && th0.minrad < (1.0 - 1e-4) * 0.5 * th0.dcsd &&
+                    th0.minrad >= MINRAD_SLACK * 0.5 * th0.dcsd;
+    if (overshoot)
         unit = 0.5 * th0.dcsd;
+    /* a constrained curve stays at its scale: the overshooting MinRad rows
+     * start violated and are stiffened all the same (below) */
+    if (constrained)
+        unit = 1.0;
     if ((rc = prepare(&s, cv, unit, &y, st, err)))
         goto done;
-    if (unit != th0.thickness && !(s.warm_residual < TIGHT_RESIDUAL)) {
+    if (overshoot && !constrained && !(s.warm_residual < TIGHT_RESIDUAL)) {
         solver_free(&s);
         free(y);
         y = NULL;
@@ -1209,7 +1488,7 @@ int tr_newton(tr_curve *cv, const tr_newton_params *prm, tr_newton_stats *st, tr
         st->why_rejected = "the start is not tight (its contacts do not hold the tension)";
         goto done;
     }
-    if (unit != th0.thickness && s.warm_residual < TIGHT_RESIDUAL) {
+    if (overshoot && s.warm_residual < TIGHT_RESIDUAL) {
         /* the same rows, rescaled: the multipliers scale with them */
         double f = MINRAD_ROW_SCALE_TIGHT / MINRAD_ROW_SCALE_LOOSE;
         for (int k = 0; k < s.nc; k++)
@@ -1225,8 +1504,11 @@ int tr_newton(tr_curve *cv, const tr_newton_params *prm, tr_newton_stats *st, tr
         goto done;
     if (s.best_y)
         memcpy(y, s.best_y, s.n * sizeof *y);
-    /* the oracle decides: rescale to thickness 1, keep if shorter */
+    /* the oracle decides: rescale to thickness 1 (a constrained curve:
+     * its vertices exactly on their constraints instead), keep if shorter */
     memcpy(s.w.x, y, 3 * s.nv * sizeof *y);
+    for (size_t q = 0; q < s.ncv; q++)
+        tr_constraint_project(vertex_cst(&s, s.cv[q]), s.w.x + 3 * s.cv[q]);
     tr_thickness th;
     if ((rc = tr_thickness_measure(&s.w, NULL, &th, NULL, err)))
         goto done;
@@ -1234,21 +1516,24 @@ int tr_newton(tr_curve *cv, const tr_newton_params *prm, tr_newton_stats *st, tr
         st->why_rejected = "the result has no finite positive thickness";
         goto done;
     }
-    for (size_t i = 0; i < 3 * s.nv; i++)
-        s.w.x[i] /= th.thickness;
-    if ((rc = tr_thickness_measure(&s.w, NULL, &th, NULL, err)))
-        goto done;
+    if (!constrained) {
+        for (size_t i = 0; i < 3 * s.nv; i++)
+            s.w.x[i] /= th.thickness;
+        if ((rc = tr_thickness_measure(&s.w, NULL, &th, NULL, err)))
+            goto done;
+    }
+    double rl = constrained ? constrained_ropelength(&th) : th.ropelength;
     /* the oracle's MinRad at a nearly straight vertex carries the rounding
      * of its turning angle, ~1e-16 / theta^2 relative (4e-12 at N = 4800):
      * the rescaled curve is at thickness 1 to that, and the ropelength
      * compared is scale free */
-    if (!(th.ropelength < th0.ropelength) || !(th.thickness >= 1.0 - 1e-10)) {
+    if (!(rl < st->ropelength_before) || !(th.thickness >= 1.0 - (constrained ? CONSTRAINED_OUT_TOL : 1e-10))) {
         st->why_rejected = "the result is not shorter";
         goto done;
     }
     memcpy(cv->x, s.w.x, 3 * s.nv * sizeof *y);
     st->accepted = 1;
-    st->ropelength_after = th.ropelength;
+    st->ropelength_after = rl;
 done:
     st->seconds = tr_clock_seconds() - t0;
     st->t_rows = s.t_rows;
