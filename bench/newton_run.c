@@ -50,12 +50,14 @@ int main(int argc, char **argv)
     if (nn > 0) {
         /* as the engine refines (tr_engine_refine), or as tighten --n adds
          * vertices */
-        size_t per = (size_t)nn;
-        if (spline && c.ncomp != 1) {
-            fprintf(stderr, "newton_run: sN is for one component\n");
+        size_t per[64];
+        if (spline && c.ncomp > 64) {
+            fprintf(stderr, "newton_run: sN is for at most 64 components\n");
             return 2;
         }
-        if (spline ? tr_resample_smooth(&c, &per, &r, &err) : tr_refine_lowpass(&c, per, 0.5, 0.5, &r, &err)) {
+        for (int k = 0; k < c.ncomp && k < 64; k++)
+            per[k] = (size_t)nn;
+        if (spline ? tr_resample_smooth(&c, per, &r, &err) : tr_refine_lowpass(&c, per[0], 0.5, 0.5, &r, &err)) {
             fprintf(stderr, "newton_run: %s\n", err.msg);
             return 1;
         }

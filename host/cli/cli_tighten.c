@@ -76,7 +76,7 @@ static void usage(FILE *out)
             "                     launch outweighs it (default 2048; 0: the device at every level)\n"
             "  --newton           at the finest level, the second-order solver (Newton steps\n"
             "                     on an augmented Lagrangian, exact strut Hessians, CHOLMOD)\n"
-            "                     in the polish's place, on curves without end constraints;\n"
+            "                     in the polish's place (clasps included);\n"
             "                     without it the solver still takes a tight finest level (a\n"
             "                     tightened knot refined or resampled by --n) first\n"
             "  --no-newton        never the second-order solver\n"
@@ -544,9 +544,19 @@ static void catch_signals(void)
  * from `make torus 2 3`: 32.748648 in 5 s that way, 40.59 at N = 400
  * directly). Loose: fewer struts within 1e-3 of the shortest than a tenth
  * of the vertices (a tight knot has more than one per vertex). Closed,
- * unconstrained curves with the same N per component only; --n N keeps the
+ * unconstrained curves, or clasps (below), with the same N per component
+ * only; --n N keeps the
  * start's N. A start that cannot be read is left to read_start to report. */
 #define AUTO_ROUTE_MIN_N 200
+/* A loose clasp (open ropes whose ends are held) of more than
+ * CLASP_COARSE_N vertices per rope starts from CLASP_COARSE_N instead: the
+ * first-order steps and the polish tighten a clasp there (13 s at 2 x 100)
+ * but not at 2 x 1000, and every refined level goes to the second-order
+ * solver (level_loop.c, is_solver_level). A clasp cannot be scaled, so it
+ * is also loose at thickness above 1 (`make clasp`: 1.5, with each arch's
+ * whole semicircle at the shortest distance from the other's tip, so the
+ * strut count says nothing). */
+#define CLASP_COARSE_N 100
 static void choose_route(tighten_opts *o)
 {
     if (o->resume || o->n > 0 || o->refine_to > 0 || !o->in)
@@ -556,15 +566,18 @@ static void choose_route(tighten_opts *o)
     if (tr_curve_read(o->in, TR_FORMAT_AUTO, &c, &err))
         return;
     size_t nper = tr_comp_nv(&c, 0);
-    int simple = c.ncst == 0;
-    for (int k = 0; k < c.ncomp; k++)
+    int simple = c.ncst == 0, clasp = c.ncst > 0;
+    for (int k = 0; k < c.ncomp; k++) {
         simple = simple && c.closed[k] && tr_comp_nv(&c, k) == nper;
+        clasp = clasp && !c.closed[k] && tr_comp_nv(&c, k) == nper;
+    }
     tr_thickness th;
     tr_strut_list sl = {0};
     tr_thickness_opts to = {.strut_rel_tol = 1e-3};
-    if (simple && nper >= AUTO_ROUTE_MIN_N && !tr_thickness_measure(&c, &to, &th, &sl, &err) &&
-        th.thickness > 0 && (double)sl.n < 0.1 * (double)c.nv) {
-        o->n = (long)(nper / 4 > 64 ? nper / 4 : 64);
+    if ((simple || (clasp && nper > CLASP_COARSE_N)) && nper >= AUTO_ROUTE_MIN_N &&
+        !tr_thickness_measure(&c, &to, &th, &sl, &err) && th.thickness > 0 &&
+        ((double)sl.n < 0.1 * (double)c.nv || (clasp && th.thickness > 1.0 + 1e-3))) {
+        o->n = clasp ? CLASP_COARSE_N : (long)(nper / 4 > 64 ? nper / 4 : 64);
         o->refine_to = (long)nper;
         if (!o->quiet)
             fprintf(stderr,

@@ -71,9 +71,9 @@ typedef struct tr_engine_params {
     double polish_share;
     int polish_coarse; /* also polish every coarse level before refining it */
     /* The second-order solver (solver/newton.h) in the polish's place and
-     * time at the finest level, on curves without vertex constraints (the
-     * polish still ends the coarse levels). Kept only if the oracle finds
-     * its result shorter at thickness 1. */
+     * time at the finest level, clasps included (the polish still ends the
+     * coarse levels). Kept only if the oracle finds its result shorter at
+     * thickness 1. */
     int newton;
     /* With newton, at tr_engine_create: a start that is tight (a converged
      * knot resampled by --n) goes to the solver before the engine settles

@@ -47,10 +47,10 @@ static int keep_if_settle_lost(tr_engine *e, double polished_rl, double *scratch
  * engine's exact constraint set (equal edges to 1e-9). The polished curve
  * is at thickness 1 with every constraint satisfied, so settle moves it by
  * no more than its edge deviation. */
-static int run_polish(tr_engine *e, double seconds, double target, int final, int tight_only,
+static int run_polish(tr_engine *e, double seconds, double target, int solver_level, int tight_only,
                       volatile sig_atomic_t *stop, tr_error *err)
 {
-    int newton = final && (e->prm.newton || (tight_only && e->prm.newton_tight)) && e->curve.ncst == 0;
+    int newton = solver_level && (e->prm.newton || (tight_only && e->prm.newton_tight));
     size_t nx = 3 * e->curve.nv;
     double *keep = malloc((nx + (size_t)e->curve.ncomp) * sizeof *keep);
     if (!keep)
@@ -145,6 +145,20 @@ restore:
 }
 
 /* ---- the run loop with levels, stops, checkpoints, progress ---- */
+
+/* The levels the second-order solver may take: the finest, and for ropes
+ * with vertex constraints (clasps) every level. A clasp's first-order
+ * steps do not tighten it beyond ~100 vertices per rope (bench/RESULTS.md,
+ * "Second-order solver"), while a tight coarser clasp refined is pressed a
+ * little through itself and the solver restores and tightens it in well
+ * under a second at 2 x 200; so the route for a clasp is the first-order
+ * steps at the coarsest level and the solver at each refined one. Closed
+ * knots keep theirs (coarse levels by the first-order steps and the
+ * polish). */
+static int is_solver_level(const tr_engine *e, int final_level)
+{
+    return final_level || e->curve.ncst > 0;
+}
 
 /* The last level of a run: no refinement asked, or n_per_comp vertices per
  * component reach refine_to. */
@@ -250,9 +264,12 @@ int tr_engine_run(tr_engine *e, const tr_engine_limits *lim, tr_stop_reason *why
          * first-order steps need ~N^2; a loose one (the solver's warm start
          * says which, in a second) takes the first-order steps first and
          * the solver in the polish's place. */
-        if (final_level && stop == TR_STOP_NONE && (e->prm.newton || e->prm.newton_tight) && e->prm.polish &&
-            e->curve.ncst == 0 && !e->newton_tried) {
+        if (is_solver_level(e, final_level) && stop == TR_STOP_NONE && (e->prm.newton || e->prm.newton_tight) &&
+            e->prm.polish && !e->newton_tried) {
             double left = lim->time_limit > 0 ? lim->time_limit - p.elapsed : 0.0;
+            /* a coarse level has half the time left when it began (below) */
+            if (!final_level)
+                left = 0.5 * time_left_at_level - (tr_clock_seconds() - level_t0);
             if ((rc = run_polish(e, lim->time_limit > 0 ? fmax(left, 1e-3) : 0.0, lim->target, 1, 1, lim->stop,
                                  err)))
                 return rc;
@@ -278,7 +295,8 @@ int tr_engine_run(tr_engine *e, const tr_engine_limits *lim, tr_stop_reason *why
             int pc = e->prm.polish && e->prm.polish_coarse;
             double coarse_res = lim->coarse_residual > 0 ? lim->coarse_residual : 1e-3;
             double used = tr_clock_seconds() - level_t0;
-            if (e->jammed || stalled || (e->steps > 0 && e->residual < coarse_res) || (pc && e->polished != 0))
+            if (e->jammed || stalled || (e->steps > 0 && e->residual < coarse_res) || (pc && e->polished != 0) ||
+                e->newton_solved)
                 level_done = 1;
             if (lim->time_limit > 0 && used > (pc ? 0.25 : 0.5) * time_left_at_level)
                 level_done = 1;
