@@ -83,8 +83,19 @@
  * pair is closer than 1 is cut back.
  *
  * The result is accepted if the thickness oracle (thickness.h) says it is
- * shorter, after rescaling it to thickness exactly 1. Curves with vertex
- * constraints (clasp ends on planes) are not handled here (skipped = 1). */
+ * shorter, after rescaling it to thickness exactly 1.
+ *
+ * Vertex constraints (clasp ends on planes, lines, fixed points) are
+ * eliminated: each row's gradient and Hessian are taken on the motions the
+ * constraint allows (P_i), I - P_i fills the vertex's diagonal block, so
+ * every step keeps the vertex on its set (newton.c says why not equality
+ * rows). Only the rigid motions the constraints leave free are held as
+ * gauge (the clasp: translations within its parallel planes and the
+ * rotation about their normal). Open components have no wrap edge and
+ * MinRad rows only where a vertex has two edges. A constrained curve is not
+ * rescaled (its planes stay): its ropelength is its length at thickness 1,
+ * the result is kept within 1e-6 of thickness 1, and a start below
+ * thickness 0.85 is refused (skipped = 1). */
 #ifndef TR_NEWTON_H
 #define TR_NEWTON_H
 
@@ -138,7 +149,7 @@ typedef struct tr_newton_params {
 void tr_newton_params_default(tr_newton_params *p);
 
 typedef struct tr_newton_stats {
-    int skipped;  /* constrained vertices: not handled */
+    int skipped;  /* constrained vertices and a start below thickness 0.85: not run */
     int loose;    /* tight_only, and the start was not tight: not run */
     int accepted; /* the curve was replaced */
     int converged;
