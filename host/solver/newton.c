@@ -1192,7 +1192,9 @@ static int keep_best(solver *s, const double *y, tr_error *err)
          * asks), so only a nearly feasible iterate goes out */
         if (p->checkpoint && p->checkpoint_every > 0 && s->viol <= 1e-7 &&
             tr_clock_seconds() - s->t_ckpt >= p->checkpoint_every) {
-            for (size_t i = 0; i < 3 * s->nv; i++)
+            /* at thickness 1; a constrained rope as it is (within
+             * CONSTRAINED_OUT_TOL of it), its planes do not scale */
+            for (size_t i = 0; s->ncv == 0 && i < 3 * s->nv; i++)
                 s->probe.x[i] /= th.thickness;
             tr_error ce = {0};
             p->checkpoint(p->user, &s->probe, &ce);
