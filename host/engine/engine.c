@@ -540,11 +540,16 @@ int tr_engine_refine(tr_engine *e, size_t n, tr_error *err)
      * not always restore it (the 2 x 800 clasp refined to 2 x 1000). The
      * solver takes the level from the curve before the settle
      * (presettle_x; level_loop.c, is_solver_level) and restores it there,
-     * so the run goes on from the partly settled state rather than ending;
-     * should the solver fail, the first-order steps go on from it. */
+     * so the run goes on rather than ending. Should the solver not take
+     * it, the refinement fails as before (level_loop.c): the half-settled
+     * state can be far from a rope (thickness 1e-3 at 2 x 4000). */
+    e->refine_unsettled = 0;
     if (rc == TR_EGEOMETRY && e->curve.ncst > 0 && e->presettle_x && (e->prm.newton || e->prm.newton_tight) &&
-        e->prm.polish)
+        e->prm.polish) {
+        e->refine_unsettled = 1;
+        e->refine_unsettled_n = n;
         rc = TR_OK;
+    }
     if (rc == TR_EGEOMETRY)
         return tr_fail_wrap(err, TR_ETOPOLOGY, "refining to %zu vertices", n);
     if (rc)

@@ -48,6 +48,11 @@ struct tr_engine {
     /* the solver has had its look at a tight finest level (run, or found
      * the start loose) */
     int newton_tried;
+    /* a refined clasp whose settle failed (engine.c, tr_engine_refine):
+     * the level is the solver's; if it does not take it, the refinement
+     * fails as it would have (the backend holds the half-settled curve) */
+    int refine_unsettled;
+    size_t refine_unsettled_n;
     /* where the second-order solver writes its checkpoints (newton_first:
      * the params; the level loop: its limits) */
     const char *ckpt_path;

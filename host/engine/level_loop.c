@@ -273,6 +273,11 @@ int tr_engine_run(tr_engine *e, const tr_engine_limits *lim, tr_stop_reason *why
             if ((rc = run_polish(e, lim->time_limit > 0 ? fmax(left, 1e-3) : 0.0, lim->target, 1, 1, lim->stop,
                                  err)))
                 return rc;
+            if (e->refine_unsettled && !(e->newton_ran == 1 && e->polished == 1))
+                return tr_fail(err, TR_ETOPOLOGY,
+                               "refining to %zu vertices: the refined clasp could not be settled, and the "
+                               "second-order solver did not take it", e->refine_unsettled_n);
+            e->refine_unsettled = 0;
             if (e->newton_ran != 1)
                 e->polished = 0;
             continue;
@@ -311,6 +316,9 @@ int tr_engine_run(tr_engine *e, const tr_engine_limits *lim, tr_stop_reason *why
             lim->progress(&p, lim->user);
             t_last_prog = tr_clock_seconds();
         }
+        if (stop != TR_STOP_NONE && e->refine_unsettled)
+            return tr_fail(err, TR_ETOPOLOGY, "refining to %zu vertices: the refined clasp could not be settled",
+                           e->refine_unsettled_n);
         if (stop != TR_STOP_NONE) {
             *why = stop;
             if (lim->checkpoint_path && (rc = checkpoint(e, lim->checkpoint_path, err)))
