@@ -126,7 +126,7 @@ int main(int argc, char **argv)
             if (tr_extrap_fit_powers(n, l, s, use, np, pw, r.selected + 1, &f) == 0)
                 printf("  without N = %-6.0f L_inf = %.10f +- %.2e  chi2/dof = %.3g/%d%s\n", n[i], f.coef[0],
                        f.sigma[0], f.chi2, f.dof,
-                       sf->birge > 2.0 && f.birge <= 1.5 ? "  <- the others agree without it: an outlier (unconverged?)" : "");
+                       sf->birge > 2.0 && f.dof >= 1 && f.birge <= 1.5 ? "  <- the others agree without it: an outlier (unconverged?)" : "");
         }
     } else
         printf("leave-one-out: no point to spare\n");
