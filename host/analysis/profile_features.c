@@ -168,6 +168,19 @@ int tr_profile_measure_jump(const tr_arc_profile *p, tr_jump_quantity q, double 
                 m++;
             }
         }
+        /* Neighbours averaged in pairs: a tight polygon's curvature and
+         * torsion alternate from vertex to vertex (kappa by +-0.05 after
+         * l2, phi by +-0.1 rad, so alpha zigzags by as much as the jumps
+         * measured) where its contacts alternate between two strands'
+         * vertices; a period-2 wave averages out of each pair, a line is
+         * left unchanged. */
+        if (m >= 2) {
+            for (size_t i = 0; i + 1 < m; i++) {
+                x[i] = 0.5 * (x[i] + x[i + 1]);
+                y[i] = 0.5 * (y[i] + y[i + 1]);
+            }
+            m--;
+        }
         cnt[side] = m;
         if (fit_intercept(x, y, m, 1, &c[side][0], &se[side][0]) != 0) {
             bad = 1;

@@ -155,6 +155,23 @@ static void test_jumps(void)
     CHECK_OK(tr_profile_measure_jump(&p, TR_JUMP_KAPPA, 0.0, 0.03, 0.3, &j, &err));
     CHECK_NEAR(j.jump, 0.5 - 0.85, 1e-9);
     CHECK(tr_profile_measure_jump(&p, TR_JUMP_KAPPA, 2.0, 0.03, 0.035, &j, &err) == TR_EGEOMETRY);
+
+    /* The tight polygon's alternation: kappa +- 0.05 and phi +- 0.1 from
+     * vertex to vertex (alpha then zigzags by 0.1, as much as the jumps).
+     * Neighbours averaged in pairs take a period-2 wave out exactly. */
+    for (size_t k = 0; k < n; k++) {
+        double sgn = k % 2 ? -1.0 : 1.0;
+        p.kappa[k] += 0.05 * sgn;
+        p.phi[k] += 0.1 * sgn;
+    }
+    CHECK_OK(tr_profile_measure_jump(&p, TR_JUMP_KAPPA, 2.0, 0.03, 0.3, &j, &err));
+    CHECK_NEAR(j.jump, 1.0 - 0.7, 1e-9);
+    CHECK_OK(tr_profile_measure_jump(&p, TR_JUMP_KAPPA, 3.0, 0.03, 0.3, &j, &err));
+    CHECK_NEAR(j.jump, 0.2, 1e-9);
+    CHECK_OK(tr_profile_measure_jump(&p, TR_JUMP_ALPHA, 3.0, 0.03, 0.3, &j, &err));
+    CHECK_NEAR(j.jump, 0.3, 1e-9);
+    CHECK_OK(tr_profile_measure_jump(&p, TR_JUMP_ALPHA, 5.0, 0.03, 0.3, &j, &err));
+    CHECK_NEAR(j.jump, 0.0, 1e-9);
     tr_arc_profile_free(&p);
 }
 
