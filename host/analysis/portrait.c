@@ -89,6 +89,10 @@ int tr_analyze_component(const double *x, size_t n, const tr_contact_pair *pairs
         o.plateau_eps = 1e-4;
     if (!o.plateau_min)
         o.plateau_min = 2;
+    if (!(o.plateau_edge > 0))
+        o.plateau_edge = 0.02;
+    if (o.plateau_edge < o.plateau_eps)
+        o.plateau_edge = o.plateau_eps;
     if (!o.power)
         o.power = 9;
     /* Caller's values that would make the analysis meaningless or unbounded;
@@ -154,8 +158,8 @@ int tr_analyze_component(const double *x, size_t n, const tr_contact_pair *pairs
         goto fail;
 
     /* Plateaus and their representative ends. */
-    if ((rc = tr_profile_find_plateaus(&out->prof, 1.0 - o.plateau_eps, o.plateau_min, &out->plateaus,
-                                       &out->nplateaus, err)) != TR_OK)
+    if ((rc = tr_profile_find_plateaus_margin(&out->prof, 1.0 - o.plateau_eps, 1.0 - o.plateau_edge,
+                                              o.plateau_min, &out->plateaus, &out->nplateaus, err)) != TR_OK)
         goto fail;
     /* The inscribed-arc curvature of arc k uses two averaged edges and each
      * averaged vertex smears over m edges: a step in kappa is spread over

@@ -53,6 +53,35 @@ int tr_profile_find_plateaus(const tr_arc_profile *p, double level, size_t min_a
     return TR_OK;
 }
 
+int tr_profile_find_plateaus_margin(const tr_arc_profile *p, double core_level, double edge_level,
+                                    size_t min_core, tr_plateau **out, size_t *nout, tr_error *err)
+{
+    if (edge_level > core_level)
+        edge_level = core_level;
+    if (min_core < 1)
+        min_core = 1;
+    tr_plateau *runs;
+    size_t nr;
+    int rc = tr_profile_find_plateaus(p, edge_level, 1, &runs, &nr, err);
+    if (rc != TR_OK)
+        return rc;
+    size_t keep = 0;
+    for (size_t i = 0; i < nr; i++) {
+        size_t core = 0;
+        for (size_t k = runs[i].first;; k = (k + 1) % p->n) {
+            if (p->kappa[k] >= core_level)
+                core++;
+            if (k == runs[i].last)
+                break;
+        }
+        if (core >= min_core)
+            runs[keep++] = runs[i];
+    }
+    *out = runs;
+    *nout = keep;
+    return TR_OK;
+}
+
 /* Least squares y = c0 + c1 x (+ c2 x^2 when deg = 2); returns c0 and its
  * standard error. Normal equations are fine here: x is centred on the
  * extrapolation point and spans at most a few hundredths. */

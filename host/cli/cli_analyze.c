@@ -43,7 +43,9 @@ static void usage(FILE *f)
             "  --plots            draw PNGs with gnuplot (CSV files are written regardless)\n"
             "  --tube-size PX     the tube pictures' width and height, 200 to 4000 pixels (default 720)\n"
             "  --plateau-eps E    plateau = arcs with kappa >= 1 - E, 0 < E < 1 (default 1e-4)\n"
-            "  --plateau-min K    plateaus need at least K arcs, an integer >= 1 (default 2)\n"
+            "  --plateau-min K    plateaus need at least K arcs at 1 - E, an integer >= 1 (default 2)\n"
+            "  --plateau-edge G   a plateau extends over neighbouring arcs with kappa >= 1 - G and\n"
+            "                     across dips to that level, E <= G < 1 (default 0.02)\n"
             "  --jump-window w,W  one-sided fit windows [l-W, l-w], [l+w, l+W] (default 2.5me, w+max(0.03, 8me))\n"
             "  --jump-at l,...    also measure jumps at these positions (from the origin)\n"
             "  --sym-tol T        symmetry threshold, relative to the radius of gyration, 0 < T <= 1\n"
@@ -476,7 +478,7 @@ static int write_mesh(const comp_result *res, int nres, const char *in, const cl
 static int takes_value(const char *a)
 {
     static const char *const names[] = {"--out",      "-o",          "-m",          "--plateau-eps",
-                                        "--plateau-min", "--jump-window", "--jump-at", "--sym-tol",
+                                        "--plateau-min", "--plateau-edge", "--jump-window", "--jump-at", "--sym-tol",
                                         "--strut-tol", "--contact-bin", "--power", "--mesh", "--mesh-sides",
                                         "--tube-size"};
     for (size_t i = 0; i < sizeof names / sizeof *names; i++)
@@ -564,6 +566,12 @@ int tr_cmd_analyze(int argc, char **argv)
                 return 2;
             }
             o.ao.plateau_eps = d, i++;
+        } else if (!strcmp(a, "--plateau-edge")) {
+            if (tr_arg_double(v, 0, 1, &d) || d == 0 || d == 1) {
+                fprintf(stderr, "tightrope analyze: --plateau-edge needs a number in (0, 1), got '%s'\n", v);
+                return 2;
+            }
+            o.ao.plateau_edge = d, i++;
         } else if (!strcmp(a, "--sym-tol") || !strcmp(a, "--strut-tol")) {
             if (tr_arg_double(v, 0, 1, &d) || d == 0) {
                 fprintf(stderr, "tightrope analyze: %s needs a number in (0, 1], got '%s'\n", a, v);

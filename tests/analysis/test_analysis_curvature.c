@@ -141,6 +141,33 @@ static void test_jumps(void)
         CHECK_NEAR(pl[0].l2, 7.0, 1e-12);
     }
     free(pl);
+    /* a plateau short of convergence: single arcs on it dip by 1e-3 and
+     * 5e-3; at 1 - 1e-4 it breaks into three runs, with the margin 0.02 it
+     * is one again: from the jump at 2 to where the smooth decline
+     * 1.2 - 0.05 (l - 3) reaches 0.98, l = 7.4 */
+    double keep1 = p.kappa[250], keep2 = p.kappa[270];
+    p.kappa[250] = 1.0 - 1e-3; /* l = 2.505 */
+    p.kappa[270] = 1.0 - 5e-3;
+    CHECK_OK(tr_profile_find_plateaus(&p, 1.0 - 1e-4, 3, &pl, &np, &err));
+    CHECK(np == 3);
+    free(pl);
+    CHECK_OK(tr_profile_find_plateaus_margin(&p, 1.0 - 1e-4, 1.0 - 0.02, 3, &pl, &np, &err));
+    CHECK(np == 1);
+    if (np == 1) {
+        CHECK_NEAR(pl[0].l1, 2.0, 1e-12);
+        CHECK_NEAR(pl[0].l2, 7.4, 1e-12);
+    }
+    free(pl);
+    /* a run at the margin level without min_core arcs at the core level is
+     * no plateau: kappa 0.99 on [8, 8.5] */
+    for (size_t k = 800; k < 850; k++)
+        p.kappa[k] = 0.99;
+    CHECK_OK(tr_profile_find_plateaus_margin(&p, 1.0 - 1e-4, 1.0 - 0.02, 3, &pl, &np, &err));
+    CHECK(np == 1);
+    free(pl);
+    for (size_t k = 800; k < 850; k++)
+        p.kappa[k] = 1.2 - 0.05 * (p.pos[k] - 3.0);
+    p.kappa[250] = keep1, p.kappa[270] = keep2;
     tr_jump j;
     CHECK_OK(tr_profile_measure_jump(&p, TR_JUMP_KAPPA, 2.0, 0.03, 0.3, &j, &err));
     CHECK_NEAR(j.jump, 1.0 - 0.7, 1e-9);
