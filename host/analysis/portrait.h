@@ -21,7 +21,7 @@ typedef struct tr_analysis_opts {
     size_t plateau_min;   /* minimum arcs at 1 - eps in a plateau; 0: 2 */
     double plateau_edge;  /* a plateau extends over arcs with kappa >= 1 - edge on either side
                              and across dips to that level; <= 0: 0.02 (at least eps) */
-    double jump_w, jump_W;/* one-sided fit windows; <= 0: w = 2.5 m e, W = w + max(0.03, 8 m e) */
+    double jump_w, jump_W;/* one-sided fit windows; <= 0: w = 2 m e, W = w + max(0.03, 4 m e) */
     double sym_tol;       /* relative symmetry threshold; <= 0: 1e-3 */
     double contact_bin;   /* bin width for the contact functions; <= 0: max(4 e, L/4000) */
     int power;            /* functional power for the cycles; 0: 9 */

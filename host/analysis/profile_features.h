@@ -38,7 +38,8 @@ typedef struct tr_jump {
     double left, right;  /* one-sided linear extrapolations to `at` */
     double jump;         /* right - left */
     double err;          /* sqrt(statistical^2 + model^2): standard errors of both intercepts,
-                            and the change when quadratics replace the lines */
+                            and the change when quadratics over [w, w + 2(W - w)] replace
+                            the lines */
     size_t nleft, nright;
 } tr_jump;
 

@@ -46,7 +46,7 @@ static void usage(FILE *f)
             "  --plateau-min K    plateaus need at least K arcs at 1 - E, an integer >= 1 (default 2)\n"
             "  --plateau-edge G   a plateau extends over neighbouring arcs with kappa >= 1 - G and\n"
             "                     across dips to that level, E <= G < 1 (default 0.02)\n"
-            "  --jump-window w,W  one-sided fit windows [l-W, l-w], [l+w, l+W] (default 2.5me, w+max(0.03, 8me))\n"
+            "  --jump-window w,W  one-sided fit windows [l-W, l-w], [l+w, l+W] (default 2me, w+max(0.03, 4me))\n"
             "  --jump-at l,...    also measure jumps at these positions (from the origin)\n"
             "  --sym-tol T        symmetry threshold, relative to the radius of gyration, 0 < T <= 1\n"
             "                     (default 1e-3)\n"
