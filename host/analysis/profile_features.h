@@ -35,16 +35,18 @@ typedef enum tr_jump_quantity { TR_JUMP_KAPPA = 0, TR_JUMP_ALPHA = 1 } tr_jump_q
 
 typedef struct tr_jump {
     double at;           /* where it was measured */
-    double left, right;  /* one-sided linear extrapolations to `at` */
+    double left, right;  /* one-sided extrapolations to `at`: quadratics over [w, 2W - w]
+                            (lines over [w, W] when a side has fewer than 5 points there) */
     double jump;         /* right - left */
     double err;          /* sqrt(statistical^2 + model^2): standard errors of both intercepts,
-                            and the change when quadratics over [w, w + 2(W - w)] replace
-                            the lines */
+                            and the change when lines over [w, W] replace the quadratics */
     size_t nleft, nright;
 } tr_jump;
 
-/* Fits lines to the quantity on [at - W, at - w] and [at + w, at + W]
- * (periodic distances) and extrapolates both to `at`. Kappa is sampled at the
+/* Fits quadratics to the quantity on [at - (2W - w), at - w] and
+ * [at + w, at + 2W - w] (periodic distances, neighbours averaged in pairs)
+ * and extrapolates both to `at`; lines on [at - W, at - w], [at + w, at + W]
+ * are the model check. Kappa is sampled at the
  * arc positions, alpha at the junctions (its value just after each junction),
  * accumulated from the first junction of the window so the result does not
  * depend on where the profile starts. Needs 3 points on each side. */

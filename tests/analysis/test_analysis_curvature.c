@@ -199,6 +199,18 @@ static void test_jumps(void)
     CHECK_NEAR(j.jump, 0.3, 1e-9);
     CHECK_OK(tr_profile_measure_jump(&p, TR_JUMP_ALPHA, 5.0, 0.03, 0.3, &j, &err));
     CHECK_NEAR(j.jump, 0.0, 1e-9);
+
+    /* A curved approach, as kappa rises to the trefoil's plateau:
+     * kappa = 0.5 + 0.1 l + 0.5 (2 - l)^2 on [1, 2), still 0.7 at 2-. The
+     * quadratics give the jump 0.3 (to the pairs' h^2/8 = 1.25e-5 offset of
+     * a parabola); a line over [0.03, 0.3] leans by 0.5 (w^2 + 4 w W +
+     * W^2) / 6 = 0.0106, and the error says so. */
+    for (size_t k = 0; k < n; k++)
+        if (p.pos[k] >= 1.0 && p.pos[k] < 2.0)
+            p.kappa[k] += 0.5 * (2.0 - p.pos[k]) * (2.0 - p.pos[k]);
+    CHECK_OK(tr_profile_measure_jump(&p, TR_JUMP_KAPPA, 2.0, 0.03, 0.3, &j, &err));
+    CHECK_NEAR(j.jump, 0.3, 5e-5);
+    CHECK(j.err > 0.008 && j.err < 0.02);
     tr_arc_profile_free(&p);
 }
 
