@@ -7,9 +7,11 @@
 #      overlapping, N < 2400, is retried with --scale)
 #   2. up to RESOLVES times (default 2): bench/newton_run on the current curve, from
 #      scratch (fresh penalty and multipliers). A shorter result replaces the curve; the
-#      change the last re-solve made, or would have made (its settled length, when it was
-#      not shorter; then the re-solves stop, the next would be the same), is the point's
-#      convergence uncertainty s (at least 1e-9).
+#      change the last re-solve made, or would have made (its last iterate's length, when
+#      it was not shorter but ended feasible to 1e-9; then the re-solves stop, the next
+#      would be the same), is the point's convergence uncertainty s, at least 1e-9 (a
+#      re-solve that does not get back to feasibility leaves the floor). Bars too small
+#      for the points' scatter show in the fit's chi^2, which scales the error up.
 #   3. L = `tightrope measure` of the final curve; with N <= KKT_MAX_N (default 2400,
 #      the certificate costs minutes above), its KKT residual.
 # A row "N L s kkt tighten_s resolve_changes stop" goes to OUTDIR/ladder.tsv (a done N is
@@ -66,7 +68,9 @@ for n in "${ns[@]}"; do
     for ((k = 1; k <= resolves; k++)); do
         next=$out/t$n.r$k.vect
         "$nr" "$cur" "$next" 0 "$resolve_time" >"$out/t$n.r$k.log" 2>&1 || true
-        settled=$(awk '$1 == "it" { v = $6 } END { print v }' "$out/t$n.r$k.log")
+        # the last iterate's length, if it is feasible (violation <= 1e-9): a re-solve that
+        # did not get back to feasibility within its time says nothing about the point
+        settled=$(awk '$1 == "it" { v = $6; f = ($8 + 0 <= 1e-9) } END { if (f) print v }' "$out/t$n.r$k.log")
         if [ -f "$next" ]; then
             lk=$(ropelength "$next")
             cur=$next
