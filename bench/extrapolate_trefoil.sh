@@ -19,7 +19,8 @@
 # powers if chi2 asks) and compares with the paper's 32.7429345 (OUTDIR/fit.txt).
 # Environment: BUILD (default build), START (default bench/data/trefoil_2400.vect),
 # RESOLVES, RESOLVE_TIME (seconds per re-solve, default 600), TIME_LIMIT (tighten's,
-# default 900), KKT_MAX_N. Heavy: run it niced, alone (RESULTS.md has the times).
+# default 900), KKT_MAX_N, PREV (another run's ladder.tsv: s is at least the change from
+# its value at the same N). Heavy: run it niced, alone (RESULTS.md has the times).
 set -euo pipefail
 here=$(cd "$(dirname "$0")/.." && pwd)
 out=${1:?usage: extrapolate_trefoil.sh OUTDIR [N ...]}
@@ -51,9 +52,9 @@ for n in "${ns[@]}"; do
     fi
     cur=$out/t$n.vect
     t0=$(date +%s.%N)
-    if ! "$tr" tighten "$start" --n "$n" -o "$cur" --json >"$out/t$n.json" 2>"$out/t$n.err"; then
+    if ! "$tr" tighten "$start" --n "$n" --time-limit "$time_limit" -o "$cur" --json >"$out/t$n.json" 2>"$out/t$n.err"; then
         if grep -q 'overlaps itself' "$out/t$n.err"; then
-            "$tr" tighten "$start" --n "$n" --scale -o "$cur" --json >"$out/t$n.json" 2>"$out/t$n.err"
+            "$tr" tighten "$start" --n "$n" --scale --time-limit "$time_limit" -o "$cur" --json >"$out/t$n.json" 2>"$out/t$n.err"
         else
             cat "$out/t$n.err" >&2
             exit 1
@@ -85,6 +86,12 @@ for n in "${ns[@]}"; do
         l=$lk
         [ -f "$next" ] || break # not shorter: a further re-solve from the same curve is the same
     done
+    # another run's value at this N (PREV: its ladder.tsv, e.g. an earlier solver's): the
+    # change between two solvers that both stopped converged is part of the point's bar
+    if [ -n "${PREV:-}" ]; then
+        s=$(awk -v n="$n" -v l="$l" -v s="$s" '$1 == n { d = $2 - l; d = d < 0 ? -d : d; if (d > s) s = d }
+            END { printf "%.3e", s }' "$PREV")
+    fi
     kkt=-
     if [ "$n" -le "$kkt_max" ]; then
         kkt=$("$tr" measure "$cur" --json --kkt | sed -n 's/.*"kkt": {"residual": \([-0-9.e+]*\).*/\1/p')
