@@ -386,8 +386,9 @@ int tr_report_text(const tr_analysis *a, const tr_report_ctx *ctx, char **out)
     txt_val(&b, "dkappa2", a->dkappa2.jump, a->dkappa2.err, a->have_l12, P_dk2, P_err_j, cmp);
     txt_val(&b, "dalpha1", a->dalpha1.jump, a->dalpha1.err, a->have_l12, P_da1, P_err_j, cmp);
     txt_val(&b, "dalpha2", a->dalpha2.jump, a->dalpha2.err, a->have_l12, P_da2, P_err_j, cmp);
-    tr_text_printf(&b, "  (one-sided linear fits on [l-%.4g, l-%.4g] and [l+%.4g, l+%.4g])\n", a->jump_W,
-              a->jump_w, a->jump_w, a->jump_W);
+    tr_text_printf(&b, "  (one-sided quadratic fits on [l-%.4g, l-%.4g] and [l+%.4g, l+%.4g], lines on the inner\n"
+                       "   %.4g of each as the model check)\n",
+                   2.0 * a->jump_W - a->jump_w, a->jump_w, a->jump_w, 2.0 * a->jump_W - a->jump_w, a->jump_W - a->jump_w);
     for (size_t i = 0; i < a->n_extra; i++)
         tr_text_printf(&b, "  at l = %.6g: dkappa %.5f +- %.5f, dalpha %.5f +- %.5f\n",
                   a->extra_kappa[i].at, a->extra_kappa[i].jump, a->extra_kappa[i].err,

@@ -164,11 +164,11 @@ int tr_analyze_component(const double *x, size_t n, const tr_contact_pair *pairs
     /* The inscribed-arc curvature of arc k uses two averaged edges and each
      * averaged vertex smears over m edges: a step in kappa is spread over
      * about +-1.5 m e, and a plateau end is known to half an arc, so the fits
-     * start 2 m e away. They reach 0.03 or 4 m e further: kappa is curved
-     * just outside the plateau, and a line over a wider window leans (the
-     * N = 4800 trefoil's Delta kappa_1: 0.283 +- 0.022 over [2me, 2me + 4me]
-     * (0.0136..0.0436), 0.331 over [2.5me, 2.5me + 8me]; 9600: 0.265 and
-     * 0.263; the paper's 0.264). */
+     * start 2 m e away. The lines reach 0.03 or 4 m e further and the
+     * quadratics twice that (profile_features.c): kappa is curved just
+     * outside the plateau, and over 8 m e (the old reach) a line leaned by
+     * more than the jumps' targets (the solver's N = 4800 trefoil: Delta
+     * kappa_1 0.331 against 0.283 over 4 m e; the paper's 0.264). */
     out->jump_w = o.jump_w > 0 ? o.jump_w : 2.0 * o.m * e;
     out->jump_W = o.jump_W > 0 ? o.jump_W : out->jump_w + fmax(0.03, 4.0 * o.m * e);
     if (out->jump_W > 0.2 * L)
