@@ -20,29 +20,13 @@
 #include "engine/engine.h"
 #include "curve/generate.h"
 #include "oracle/kkt.h"
+#include "rope_curvature.h"
 #include "testlib.h"
 #include "oracle/thickness.h"
 #include "util/vec3.h"
 
 #define NPER 60
 #define HEIGHT 5.0
-
-/* kappa_i = 2 tan(theta_i / 2) / ebar at the interior vertices of rope k:
- * the curvature Rawdon's MinRad bounds (MinRad = 1/kappa on equal edges). */
-static void curvature(const tr_curve *c, int k, double *kap)
-{
-    size_t s = c->start[k], n = tr_comp_nv(c, k);
-    double ebar = tr_comp_length(c, k) / (double)(n - 1);
-    for (size_t i = 1; i + 1 < n; i++) {
-        const double *a = c->x + 3 * (s + i - 1), *b = c->x + 3 * (s + i), *d = c->x + 3 * (s + i + 1);
-        double p[3], q[3];
-        v3_sub(p, b, a);
-        v3_sub(q, d, b);
-        double cs = v3_dot(p, q) / (v3_norm(p) * v3_norm(q));
-        double th = acos(cs > 1.0 ? 1.0 : (cs < -1.0 ? -1.0 : cs));
-        kap[i - 1] = 2.0 * tan(0.5 * th) / ebar;
-    }
-}
 
 static void test_clasp(void)
 {
@@ -79,8 +63,8 @@ static void test_clasp(void)
     CHECK(f.ncst > 0 && worst_plane < 1e-12);
 
     double ka[NPER - 2], kb[NPER - 2];
-    curvature(&f, 0, ka);
-    curvature(&f, 1, kb);
+    rope_curvature(&f, 0, ka);
+    rope_curvature(&f, 1, kb);
     double dab = 0.0, drev = 0.0, kmax = 0.0;
     size_t imax = 0;
     for (size_t i = 0; i < NPER - 2; i++) {

@@ -28,29 +28,13 @@
 #include "oracle/kkt.h"
 #include "oracle/thickness.h"
 #include "solver/newton.h"
+#include "rope_curvature.h"
 #include "testlib.h"
 #include "util/vec3.h"
 
 #define NCOARSE 50
 #define NPER 100
 #define HEIGHT 5.0
-
-/* kappa_i = 2 tan(theta_i / 2) / ebar at the interior vertices of rope k:
- * the curvature Rawdon's MinRad bounds (MinRad = 1/kappa on equal edges). */
-static void curvature(const tr_curve *c, int k, double *kap)
-{
-    size_t s = c->start[k], n = tr_comp_nv(c, k);
-    double ebar = tr_comp_length(c, k) / (double)(n - 1);
-    for (size_t i = 1; i + 1 < n; i++) {
-        const double *a = c->x + 3 * (s + i - 1), *b = c->x + 3 * (s + i), *d = c->x + 3 * (s + i + 1);
-        double p[3], q[3];
-        v3_sub(p, b, a);
-        v3_sub(q, d, b);
-        double cs = v3_dot(p, q) / (v3_norm(p) * v3_norm(q));
-        double th = acos(cs > 1.0 ? 1.0 : (cs < -1.0 ? -1.0 : cs));
-        kap[i - 1] = 2.0 * tan(0.5 * th) / ebar;
-    }
-}
 
 static void test_clasp_newton(void)
 {
@@ -98,7 +82,7 @@ static void test_clasp_newton(void)
 
     for (int r = 0; r < 2; r++) {
         double ka[NPER - 2], kmax = 0.0, drev = 0.0;
-        curvature(&f, r, ka);
+        rope_curvature(&f, r, ka);
         size_t imax = 0;
         for (size_t i = 0; i < NPER - 2; i++) {
             drev = fmax(drev, fabs(ka[i] - ka[NPER - 3 - i]));
