@@ -79,11 +79,6 @@ typedef struct solver {
     cholmod_factor *L;
     SuiteSparse_long *pat_i, *pat_j;
     size_t pat_nz;
-    /* the fill-reducing order of the last full analysis, reused by the
-     * next REORDER_EVERY (newton_dir) */
-    SuiteSparse_long *perm;
-    int perm_uses;
-    double fill; /* nonzeros of L per entry of the Hessian, at that analysis */
     /* gauge: 6 coordinates held, so that no rigid motion is left in the
      * Hessian's null space (a Levenberg shift there would also damp the
      * knot's soft global modes, which Newton must see) */
@@ -570,14 +565,6 @@ static int rebuild(solver *s, const double *y, tr_error *err)
 
 /* ---- the Newton step ---- */
 
-/* The Hessian's pattern changes with the active set (a few rows join or
- * leave at most steps), and CHOLMOD's analysis with its choice of
- * orderings (AMD, METIS) cost 29 % of the factorisation time at N = 9600
- * (20 of 69 s for 209 analyses). The rows that change are a sliver of the
- * pattern, so the last fill-reducing order serves the next ones: a full
- * analysis only every REORDER_EVERY + 1. */
-#define REORDER_EVERY 10
-
 /* Factors the assembled Hessian (plus the smallest Levenberg shift that
  * makes it positive definite) and solves H dir = -grad. *lm: the shift
  * tried first on entry, the one used on return. */
@@ -613,32 +600,7 @@ static int newton_dir(solver *s, const double *grad, double *dir, double *lm, tr
     if (!same) {
         cholmod_l_free_factor(&s->L, cm);
         double ta = tr_clock_seconds();
-        if (s->perm && s->perm_uses < REORDER_EVERY) {
-            /* the last fill-reducing order, given: only the elimination
-             * tree and the supernodes are computed again */
-            int nm = cm->nmethods, ord = cm->method[0].ordering;
-            cm->nmethods = 1;
-            cm->method[0].ordering = CHOLMOD_GIVEN;
-            s->L = cholmod_l_analyze_p(A, s->perm, NULL, 0, cm);
-            cm->nmethods = nm;
-            cm->method[0].ordering = ord;
-            s->perm_uses++;
-            /* an order found for another pattern fills in more: from the
-             * first steps' chain (a few struts active) to the tight knot's
-             * thousands the factorisation took 30 times longer */
-            if (s->L && cm->lnz > 1.1 * s->fill * (double)cholmod_l_nnz(A, cm))
-                cholmod_l_free_factor(&s->L, cm);
-        }
-        if (!s->L) {
-            s->L = cholmod_l_analyze(A, cm);
-            SuiteSparse_long *pm = s->L ? realloc(s->perm, s->n * sizeof *pm) : NULL;
-            if (pm) {
-                memcpy(pm, s->L->Perm, s->n * sizeof *pm);
-                s->perm = pm;
-                s->perm_uses = 0;
-                s->fill = cm->lnz / (double)cholmod_l_nnz(A, cm);
-            }
-        }
+        s->L = cholmod_l_analyze(A, cm);
         st->t_analyze += tr_clock_seconds() - ta;
         if (!s->L) {
             rc = tr_fail(err, TR_ENOMEM, "CHOLMOD could not analyse the Hessian (status %d)", cm->status);
@@ -721,7 +683,6 @@ static void solver_free(solver *s)
     free(s->tx);
     free(s->pat_i);
     free(s->pat_j);
-    free(s->perm);
     free(s->best_y);
     free(s->cv);
     tr_curve_free(&s->probe);
