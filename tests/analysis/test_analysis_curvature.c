@@ -107,6 +107,22 @@ static void test_helix(double handed)
 /* A hand-made profile on a period of 10: kappa = 0.5 + 0.1 l below l = 2, 1 on
  * [2, 3], 1.2 - 0.05 (l - 3) above; torsion angles phi = 0.02 h (tau = 0.02)
  * plus a delta of weight 0.3 at the junction nearest l = 3. */
+/* The hand-made profile's four jumps: kappa 0.7 -> 1 at l = 2 and by 0.2
+ * at 3, alpha by 0.3 at 3 and none at 5 (test_jumps). */
+static void check_jumps(const tr_arc_profile *p)
+{
+    tr_error err;
+    tr_jump j;
+    CHECK_OK(tr_profile_measure_jump(p, TR_JUMP_KAPPA, 2.0, 0.03, 0.3, &j, &err));
+    CHECK_NEAR(j.jump, 1.0 - 0.7, 1e-9);
+    CHECK_OK(tr_profile_measure_jump(p, TR_JUMP_KAPPA, 3.0, 0.03, 0.3, &j, &err));
+    CHECK_NEAR(j.jump, 0.2, 1e-9);
+    CHECK_OK(tr_profile_measure_jump(p, TR_JUMP_ALPHA, 3.0, 0.03, 0.3, &j, &err));
+    CHECK_NEAR(j.jump, 0.3, 1e-9);
+    CHECK_OK(tr_profile_measure_jump(p, TR_JUMP_ALPHA, 5.0, 0.03, 0.3, &j, &err));
+    CHECK_NEAR(j.jump, 0.0, 1e-9);
+}
+
 static void test_jumps(void)
 {
     tr_error err;
@@ -169,15 +185,9 @@ static void test_jumps(void)
         p.kappa[k] = 1.2 - 0.05 * (p.pos[k] - 3.0);
     p.kappa[250] = keep1, p.kappa[270] = keep2;
     tr_jump j;
+    check_jumps(&p);
     CHECK_OK(tr_profile_measure_jump(&p, TR_JUMP_KAPPA, 2.0, 0.03, 0.3, &j, &err));
-    CHECK_NEAR(j.jump, 1.0 - 0.7, 1e-9);
     CHECK(j.err < 1e-9);
-    CHECK_OK(tr_profile_measure_jump(&p, TR_JUMP_KAPPA, 3.0, 0.03, 0.3, &j, &err));
-    CHECK_NEAR(j.jump, 0.2, 1e-9);
-    CHECK_OK(tr_profile_measure_jump(&p, TR_JUMP_ALPHA, 3.0, 0.03, 0.3, &j, &err));
-    CHECK_NEAR(j.jump, 0.3, 1e-9);
-    CHECK_OK(tr_profile_measure_jump(&p, TR_JUMP_ALPHA, 5.0, 0.03, 0.3, &j, &err));
-    CHECK_NEAR(j.jump, 0.0, 1e-9);
     /* across the period boundary: kappa at 0 jumps from 1.2 - 0.05*7 = 0.85 to 0.5 */
     CHECK_OK(tr_profile_measure_jump(&p, TR_JUMP_KAPPA, 0.0, 0.03, 0.3, &j, &err));
     CHECK_NEAR(j.jump, 0.5 - 0.85, 1e-9);
@@ -191,14 +201,7 @@ static void test_jumps(void)
         p.kappa[k] += 0.05 * sgn;
         p.phi[k] += 0.1 * sgn;
     }
-    CHECK_OK(tr_profile_measure_jump(&p, TR_JUMP_KAPPA, 2.0, 0.03, 0.3, &j, &err));
-    CHECK_NEAR(j.jump, 1.0 - 0.7, 1e-9);
-    CHECK_OK(tr_profile_measure_jump(&p, TR_JUMP_KAPPA, 3.0, 0.03, 0.3, &j, &err));
-    CHECK_NEAR(j.jump, 0.2, 1e-9);
-    CHECK_OK(tr_profile_measure_jump(&p, TR_JUMP_ALPHA, 3.0, 0.03, 0.3, &j, &err));
-    CHECK_NEAR(j.jump, 0.3, 1e-9);
-    CHECK_OK(tr_profile_measure_jump(&p, TR_JUMP_ALPHA, 5.0, 0.03, 0.3, &j, &err));
-    CHECK_NEAR(j.jump, 0.0, 1e-9);
+    check_jumps(&p);
 
     /* A curved approach, as kappa rises to the trefoil's plateau:
      * kappa = 0.5 + 0.1 l + 0.5 (2 - l)^2 on [1, 2), still 0.7 at 2-. The
