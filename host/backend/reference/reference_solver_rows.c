@@ -36,25 +36,25 @@ static int reserve_pairs(ref_state *s, size_t n, tr_error *err)
 /* Room for block k (gradient and, with hess, Hessian), grown by half as
  * the selection walks the list, so that a list with few selected rows (a
  * tenth on a tight knot) holds few blocks. */
+static int grow_blocks(double **buf, size_t *cap, size_t k, size_t per, tr_error *err)
+{
+    if (k < *cap)
+        return TR_OK;
+    size_t c = k + k / 2 + 64;
+    double *b = realloc(*buf, per * c * sizeof *b);
+    if (!b)
+        return tr_fail(err, TR_ENOMEM, "out of memory (strut rows, %zu blocks)", c);
+    *buf = b;
+    *cap = c;
+    return TR_OK;
+}
+
 static int reserve_block(ref_state *s, size_t k, int hess, tr_error *err)
 {
-    if (k >= s->sr_gcap) {
-        size_t cap = k + k / 2 + 64;
-        double *g = realloc(s->sr_g, 12 * cap * sizeof *g);
-        if (!g)
-            return tr_fail(err, TR_ENOMEM, "out of memory (strut rows, %zu blocks)", cap);
-        s->sr_g = g;
-        s->sr_gcap = cap;
-    }
-    if (hess && k >= s->sr_hcap) {
-        size_t cap = k + k / 2 + 64;
-        double *h = realloc(s->sr_h, 144 * cap * sizeof *h);
-        if (!h)
-            return tr_fail(err, TR_ENOMEM, "out of memory (strut rows, %zu blocks)", cap);
-        s->sr_h = h;
-        s->sr_hcap = cap;
-    }
-    return TR_OK;
+    int rc = grow_blocks(&s->sr_g, &s->sr_gcap, k, 12, err);
+    if (rc == TR_OK && hess)
+        rc = grow_blocks(&s->sr_h, &s->sr_hcap, k, 144, err);
+    return rc;
 }
 
 int rb_strut_rows(void *sp, tr_strut_rows *r, tr_error *err)
