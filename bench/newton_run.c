@@ -2,11 +2,14 @@
  * curve, optionally spline-resampled to N vertices per component, with one
  * progress line per Newton step: how the solver is measured apart from the
  * engine's route (bench/RESULTS.md, "Second-order solver").
- *   newton_run [--device SPEC] IN.vect OUT.vect [N | sN] [TIME_LIMIT_S]
+ *   newton_run [--device SPEC] IN.vect OUT.vect [N | sN] [TIME_LIMIT_S] [CKPT_S]
  * N: the engine's low-pass refinement; sN: the cubic spline tighten --n
  * uses (tr_resample_smooth). --device: the strut rows by that backend
  * (backend.h strut_rows; "reference", "opencl", "pocl", ...), exactly the
- * device named (no fallback); without it the solver's own host path. */
+ * device named (no fallback); without it the solver's own host path.
+ * CKPT_S: every CKPT_S seconds the solver's best iterate goes to
+ * OUT.ckpt (what a long run keeps, and what to measure when the oracle
+ * rejects a result). */
 #include <stdio.h>
 #include <stdlib.h>
 
@@ -18,6 +21,11 @@
 #include "engine/refine_lowpass.h"
 #include "solver/newton.h"
 #include "oracle/thickness.h"
+
+static int write_ckpt(void *user, const tr_curve *best, tr_error *err)
+{
+    return tr_curve_write((const char *)user, TR_FORMAT_VECT, best, "newton_run checkpoint", err);
+}
 
 static void show(void *user, const tr_newton_progress *p)
 {
@@ -36,7 +44,7 @@ int main(int argc, char **argv)
         argc -= 2;
     }
     if (argc < 3) {
-        fprintf(stderr, "usage: newton_run [--device SPEC] IN OUT [N | sN] [TIME_LIMIT_S]\n");
+        fprintf(stderr, "usage: newton_run [--device SPEC] IN OUT [N | sN] [TIME_LIMIT_S] [CKPT_S]\n");
         return 2;
     }
     tr_error err = {0};
@@ -69,6 +77,13 @@ int main(int argc, char **argv)
     p.progress = show;
     if (argc > 4)
         p.time_limit = atof(argv[4]);
+    char ckpt[4096];
+    if (argc > 5) {
+        snprintf(ckpt, sizeof ckpt, "%s.ckpt", argv[2]);
+        p.checkpoint_every = atof(argv[5]);
+        p.checkpoint = write_ckpt;
+        p.user = ckpt;
+    }
     tr_backend be = {0};
     if (device) {
         if (tr_backend_open_device(device, &c, 0, &be, &err)) {
