@@ -152,12 +152,19 @@ restore:
  * "Second-order solver"), while a tight coarser clasp refined is pressed a
  * little through itself and the solver restores and tightens it in well
  * under a second at 2 x 200; so the route for a clasp is the first-order
- * steps at the coarsest level and the solver at each refined one. Closed
- * knots keep theirs (coarse levels by the first-order steps and the
- * polish). */
+ * steps at the coarsest level and the solver at each refined one. A
+ * closed knot's levels go to the solver from SOLVER_LEVEL_MIN_N vertices
+ * per component on (its warm start says whether the refined level is
+ * tight; a loose one is handed back to the first-order steps within a
+ * second or two): the first-order steps need ~N^2 of them, and from the
+ * N = 400 torus knot refined to 9600 the coarse levels by first-order
+ * steps and the polish took 290 s and left 9600 loose (32.8270 at the end),
+ * where with the solver from 800 on the run ends at 32.7429444 in 188 s.
+ * Below 800 the first-order steps converge in seconds. */
+#define SOLVER_LEVEL_MIN_N 800
 static int is_solver_level(const tr_engine *e, int final_level)
 {
-    return final_level || e->curve.ncst > 0;
+    return final_level || e->curve.ncst > 0 || e->curve.nv / (size_t)e->curve.ncomp >= SOLVER_LEVEL_MIN_N;
 }
 
 /* The last level of a run: no refinement asked, or n_per_comp vertices per

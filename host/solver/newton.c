@@ -936,7 +936,7 @@ static void update_multipliers(solver *s)
 
 /* The multipliers that best balance the tension at y: with every edge's
  * multiplier at -1 (unit tension), least squares min |t - J^T lambda| over
- * the inequality rows within WARM_BAND of their bound (relative), t the
+ * the inequality rows within the warm band of their bound (relative), t the
  * tension's force sum grad |e|, by conjugate gradients on the normal
  * equations J J^T lambda = J t (products with J and J^T only: J J^T itself
  * fills in where many struts share vertices), then clipped at 0. A refined
@@ -946,6 +946,18 @@ static void update_multipliers(solver *s)
  * tension they leave unbalanced, or the damped least squares' if less
  * (damped_multipliers), is warm_residual: whether the start is tight. */
 #define WARM_BAND 1e-4
+/* A knot converged at edge L and spline-refined to edge l leaves its
+ * contacts up to the spline's sag between the coarse vertices apart,
+ * ~L^2 / 8 at curvature 1: 8e-4 of the thickness for the N = 400 trefoil
+ * refined to 2400, where a band of 1e-4 kept too few rows to hold the
+ * tension (warm residual 1.0: read as loose, and the loose road ended at
+ * 34.27 in 4688 steps), while with 5e-4 the solve took 247 steps, 9.5 s, to
+ * 32.7430932 (the converged N = 2400 value is 32.7430930). So the band
+ * widens to WARM_BAND_SAG l^2 (a refinement by up to ~6 at l; at
+ * N >= 9600 this is under WARM_BAND), capped at WARM_BAND_MAX so that
+ * a loose coarse start's rows do not count as contacts. */
+#define WARM_BAND_SAG 10.0
+#define WARM_BAND_MAX 2e-3
 
 /* out = J v for J stored by rows (rowp, col, val), nr rows */
 static void rows_times(const size_t *rowp, const size_t *col, const double *val, size_t nr, const double *v,
@@ -1060,6 +1072,7 @@ static int warm_multipliers(solver *s, const double *y, tr_error *err)
         rc = tr_fail(err, TR_ENOMEM, "out of memory (warm start)");
         goto done;
     }
+    double band = fmin(WARM_BAND_MAX, fmax(WARM_BAND, WARM_BAND_SAG * s->l0min * s->l0min));
     size_t nr = 0, nz = 0;
     rowp[0] = 0;
     for (size_t i = 0; i < cap; i++)
@@ -1070,7 +1083,7 @@ static int warm_multipliers(solver *s, const double *y, tr_error *err)
             continue;
         size_t ip = s->prev[i], in = s->next[i];
         int k = s->comp[i];
-        if ((c - v3_dot(wv, wv)) / c > WARM_BAND)
+        if ((c - v3_dot(wv, wv)) / c > band)
             continue;
         static const double v[3] = {1.0, -2.0, 1.0};
         size_t vx[3] = {ip, i, in};
@@ -1086,7 +1099,7 @@ static int warm_multipliers(solver *s, const double *y, tr_error *err)
         size_t a = s->sp[qq].a, b = s->sp[qq].b, na = s->next[a], nb = s->next[b];
         double gr[12];
         double d = tr_strut_distance_derivs(x + 3 * a, x + 3 * na, x + 3 * b, x + 3 * nb, gr, NULL);
-        if ((d - 2.0) / 2.0 > WARM_BAND)
+        if ((d - 2.0) / 2.0 > band)
             continue;
         size_t vx[4] = {a, na, b, nb};
         for (int j = 0; j < 4; j++)
