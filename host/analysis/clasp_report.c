@@ -139,7 +139,7 @@ void tr_clasp_text(tr_text *b, const tr_clasp_report *c)
         tr_text_printf(b, "clasp anatomy: not found: %s\n", r->why);
         return;
     }
-    tr_text_printf(b, "clasp anatomy (docs/physics.md 6.2): edge e = %.4g; positions are arclength from the free end; "
+    tr_text_printf(b, "clasp anatomy (docs/physics.md 6.2, 6.3): edge e = %.4g; positions are arclength from the free end; "
                       "a boundary is +- e/2 with the spread of its estimate\n", r->e);
     tr_text_printf(b, "  tip (middle of K) at l = %.6f +- %.2g from vertex 0 (the rope's middle: %.6f)\n", r->tip,
                    r->tip_err, 0.5 * r->L);
