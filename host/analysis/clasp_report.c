@@ -139,8 +139,8 @@ void tr_clasp_text(tr_text *b, const tr_clasp_report *c)
         tr_text_printf(b, "clasp anatomy: not found: %s\n", r->why);
         return;
     }
-    tr_text_printf(b, "clasp anatomy (docs/physics.md 6.2, 6.3): edge e = %.4g; positions are arclength from the free end; "
-                      "a boundary is +- e/2 with the spread of its estimate\n", r->e);
+    tr_text_printf(b, "clasp anatomy (docs/physics.md 6.2, 6.3): edge e = %.4g; positions are arclength from the "
+                      "free end; a boundary is +- e/2 with the spread of its estimate\n", r->e);
     tr_text_printf(b, "  tip (middle of K) at l = %.6f +- %.2g from vertex 0 (the rope's middle: %.6f)\n", r->tip,
                    r->tip_err, 0.5 * r->L);
     for (int h = 0; h < 2; h++) {
@@ -169,9 +169,9 @@ void tr_clasp_text(tr_text *b, const tr_clasp_report *c)
 int tr_clasp_pieces_csv(const tr_clasp_rope *r, char **out)
 {
     tr_text b = {0};
-    tr_text_printf(&b, "# the clasp's pieces (docs/physics.md 6.2) on each half, from the free end at end_vertex to the "
-                       "tip; from, to: arclength from that end; status resolved, dip (a straight piece narrower than "
-                       "two edges, width from the turning it lacks) or unseen\n");
+    tr_text_printf(&b, "# the clasp's pieces (docs/physics.md 6.2) on each half, from the free end at end_vertex to "
+                       "the tip; from, to: arclength from that end; status resolved, dip (a straight piece narrower "
+                       "than two edges, width from the turning it lacks) or unseen\n");
     tr_text_printf(&b, "half,end_vertex,piece,status,from,from_err,to,to_err,width,err,from_tip,to_tip,arcs,kappa_min,"
                        "kappa_mean,kappa_max\n");
     for (int h = 0; r->found && h < 2; h++)
