@@ -83,7 +83,8 @@ static void num(tr_text *b, const char *key, double v)
     tr_json_number(b, "%.10g", v);
 }
 
-int tr_open_rope_summary_json(const tr_open_rope *r, const tr_report_ctx *ctx, char **out)
+int tr_open_rope_summary_json(const tr_open_rope *r, const tr_report_ctx *ctx, const tr_clasp_report *clasp,
+                              char **out)
 {
     tr_text b = {0};
     tr_text_printf(&b, "{\n  \"input\": ");
@@ -119,11 +120,17 @@ int tr_open_rope_summary_json(const tr_open_rope *r, const tr_report_ctx *ctx, c
     num(&b, "mean", r->tau_mean);
     tr_text_printf(&b, ", ");
     num(&b, "total", r->total_torsion);
-    tr_text_printf(&b, "}\n}\n");
+    tr_text_printf(&b, "}");
+    if (clasp) {
+        tr_text_printf(&b, ",\n  ");
+        tr_clasp_json(&b, clasp);
+    }
+    tr_text_printf(&b, "\n}\n");
     return finish(&b, out);
 }
 
-int tr_open_rope_report_text(const tr_open_rope *r, const tr_report_ctx *ctx, char **out)
+int tr_open_rope_report_text(const tr_open_rope *r, const tr_report_ctx *ctx, const tr_clasp_report *clasp,
+                             char **out)
 {
     tr_text b = {0};
     tr_text_printf(&b, "%s, component %d: open rope, %zu vertices, length %.10g (scaled by %.10g)\n",
@@ -135,6 +142,9 @@ int tr_open_rope_report_text(const tr_open_rope *r, const tr_report_ctx *ctx, ch
                    r->kappa_min, r->kappa_max, r->kappa_mean);
     tr_text_printf(&b, "torsion over %zu junctions: min %.10g, max %.10g, mean %.10g, total %.10g rad\n", r->prof.nj,
                    r->tau_min, r->tau_max, r->tau_mean, r->total_torsion);
-    tr_text_printf(&b, "(open ropes: profiles only; no symmetry, plateaus or contact functions)\n");
+    if (clasp)
+        tr_clasp_text(&b, clasp);
+    else
+        tr_text_printf(&b, "(open ropes: profiles only; no symmetry, plateaus or contact functions)\n");
     return finish(&b, out);
 }

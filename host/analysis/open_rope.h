@@ -9,6 +9,7 @@
 
 #include "analysis/analysis_report.h"
 #include "analysis/arc_profile.h"
+#include "analysis/clasp_report.h"
 #include "util/error.h"
 
 typedef struct tr_open_rope {
@@ -24,10 +25,13 @@ typedef struct tr_open_rope {
 int tr_open_rope_analyze(const double *x, size_t n, tr_open_rope *out, tr_error *err);
 void tr_open_rope_free(tr_open_rope *r);
 
-/* Each returns a malloc'd string in *out, or TR_ENOMEM. */
+/* Each returns a malloc'd string in *out, or TR_ENOMEM. clasp: the rope's
+ * anatomy when it is one of a clasp's two ropes (clasp_report.h), else NULL. */
 int tr_open_rope_curvature_csv(const tr_open_rope *r, char **out);
 int tr_open_rope_torsion_csv(const tr_open_rope *r, char **out);
-int tr_open_rope_summary_json(const tr_open_rope *r, const tr_report_ctx *ctx, char **out);
-int tr_open_rope_report_text(const tr_open_rope *r, const tr_report_ctx *ctx, char **out);
+int tr_open_rope_summary_json(const tr_open_rope *r, const tr_report_ctx *ctx, const tr_clasp_report *clasp,
+                              char **out);
+int tr_open_rope_report_text(const tr_open_rope *r, const tr_report_ctx *ctx, const tr_clasp_report *clasp,
+                             char **out);
 
 #endif

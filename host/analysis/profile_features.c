@@ -254,3 +254,38 @@ int tr_profile_measure_jump(const tr_arc_profile *p, tr_jump_quantity q, double 
     out->err = hypot(stat, model);
     return TR_OK;
 }
+
+int tr_profile_kappa_side(const tr_arc_profile *p, double at, int side, double w, double W, int quadratic,
+                          double *value, double *se, tr_error *err)
+{
+    *value = NAN, *se = NAN;
+    double half = p->closed ? 0.25 * p->L : p->L;
+    if (!(w >= 0) || !(W > w) || W > half)
+        return tr_fail(err, TR_EINVAL, "side fit window needs 0 <= w < W%s (w=%g, W=%g)",
+                       p->closed ? " < L/4" : " < L", w, W);
+    double W2 = fmin(w + 2.0 * (W - w), half);
+    size_t n = p->n, ns = 0;
+    sample *s = malloc(n * sizeof *s);
+    double *x = malloc(n * sizeof *x), *y = malloc(n * sizeof *y);
+    if (!s || !x || !y) {
+        free(s), free(x), free(y);
+        return tr_fail(err, TR_ENOMEM, "out of memory for a side fit");
+    }
+    for (size_t k = 0; k < n; k++) {
+        double dx = p->closed ? tr_wrap_signed(p->pos[k] - at, p->L) : p->pos[k] - at;
+        if (fabs(dx) <= W2)
+            s[ns++] = (sample){dx, p->kappa[k]};
+    }
+    qsort(s, ns, sizeof *s, by_dx);
+    size_t m = quadratic ? side_samples(s, ns, side, w, W2, x, y) : 0;
+    int ok = m >= 5 && fit_intercept(x, y, m, 2, value, se) == 0;
+    if (!ok) {
+        m = side_samples(s, ns, side, w, W, x, y);
+        ok = fit_intercept(x, y, m, 1, value, se) == 0;
+    }
+    free(s), free(x), free(y);
+    if (!ok)
+        return tr_fail(err, TR_EGEOMETRY, "too few points for a side fit at %.6g (%zu %s in w=%g..W=%g)", at, m,
+                       side ? "right" : "left", w, W);
+    return TR_OK;
+}

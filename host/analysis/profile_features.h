@@ -53,4 +53,17 @@ typedef struct tr_jump {
 int tr_profile_measure_jump(const tr_arc_profile *p, tr_jump_quantity q, double at, double w, double W,
                             tr_jump *out, tr_error *err);
 
+/* One side of tr_profile_measure_jump on its own, for kappa: the
+ * extrapolation to `at` of the curvature on the left (side 0) or right
+ * (side 1) of it, neighbours averaged in pairs, for a level whose other side
+ * is known or is no fit's business. quadratic = 1: the jumps' fits (a
+ * quadratic over [w, 2W - w], a line over [w, W] when the quadratic has too
+ * few points); 0: the line alone, for a level read right beside a boundary
+ * (the clasp's Gehring piece rising into its kink, clasp_anatomy.h, where a
+ * quadratic over a few coarse arcs overshoots). Distances are periodic on a
+ * closed profile, plain on an open one. *value and its standard error *se;
+ * TR_EGEOMETRY when fewer than 3 points (after pairing) fall on the side. */
+int tr_profile_kappa_side(const tr_arc_profile *p, double at, int side, double w, double W, int quadratic,
+                          double *value, double *se, tr_error *err);
+
 #endif

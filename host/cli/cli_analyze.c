@@ -11,8 +11,10 @@
 
 #include "analysis/analysis_plots.h"
 #include "analysis/analysis_report.h"
+#include "analysis/clasp_plots.h"
 #include "cli/cli.h"
 #include "cli/cli_args.h"
+#include "cli/cli_clasp.h"
 #include "cli/cli_gnuplot.h"
 #include "analysis/contact_functions.h"
 #include "curve/curve_io.h"
@@ -31,7 +33,10 @@ static void usage(FILE *f)
             "\n"
             "Curvature, torsion, symmetry and contact portrait of each closed component of IN\n"
             "(docs/physics.md 3-5); curvature and torsion profiles of each open one (a rope: curvature.csv,\n"
-            "torsion.csv, summary.json, report.txt). The curve is first scaled to thickness 1 (rope radius 1).\n"
+            "torsion.csv, summary.json, report.txt). Two open ropes are read as a simple clasp: each rope's\n"
+            "pieces E, S, D1, G, D2, K from its free ends to its tip, its symmetry and the ropes' congruence\n"
+            "in summary.json, report.txt and pieces.csv; with --plots clasp_curvature.png and clasp_d1.png\n"
+            "(docs/physics.md 6.3). The curve is first scaled to thickness 1 (rope radius 1).\n"
             "Writes into DIR (DIR/compK/ for a link): curvature.csv, torsion.csv, plateaus.csv,\n"
             "symmetry.csv, contacts.csv, sigma.csv, fixed_points.csv, summary.json, report.txt;\n"
             "with --plots also PNG plots drawn by gnuplot, and pictures of the tube (radius 1) shaded:\n"
@@ -244,7 +249,8 @@ static const char *const analyze_files[] = {
     "curvature.csv", "torsion.csv", "plateaus.csv", "symmetry.csv", "contacts.csv", "sigma.csv",
     "fixed_points.csv", "summary.json", "report.txt", "curvature_torsion.png", "plateau_zoom.png",
     "accumulated_torsion.png", "contact_map.png", "sigma9.png", "plots.gp", "gnuplot.log",
-    "tube_front.png", "tube_top.png", "tube_side.png", "tube_struts.png", "tube.dat", "struts.dat", "tube.gp", "tube_gnuplot.log"};
+    "tube_front.png", "tube_top.png", "tube_side.png", "tube_struts.png", "tube.dat", "struts.dat", "tube.gp", "tube_gnuplot.log",
+    "pieces.csv", TR_CLASP_PLOT_CURVATURE, TR_CLASP_PLOT_D1};
 #define N_ANALYZE_FILES (sizeof analyze_files / sizeof *analyze_files)
 
 /* Removes DIR/NAME for the names given (files of ours an earlier analyze
@@ -285,20 +291,39 @@ static void remove_other_layout(const char *out, int link)
     closedir(d);
 }
 
-/* An open rope's tables, summary and report into dir, which exists; the
- * closed-knot files an earlier run left there go (only analyze's names).
- * Returns a process status. */
-static int write_open_rope(comp_result *r, const char *in, const char *dir, const cli_opts *o)
+/* Removes from dir every name of analyze_files but the n in keep. */
+static void remove_ours_except(const char *dir, const char *const *keep, size_t n)
+{
+    for (size_t i = 0; i < N_ANALYZE_FILES; i++) {
+        size_t j = 0;
+        while (j < n && strcmp(keep[j], analyze_files[i]) != 0)
+            j++;
+        if (j == n)
+            remove_ours(dir, analyze_files + i, 1);
+    }
+}
+
+/* An open rope's tables, summary and report into dir, which exists; with
+ * clasp (one of a clasp's two ropes) its anatomy in them, pieces.csv, and
+ * with --plots the paper's Fig. 3 and 4. Files of ours an earlier run left
+ * there that this one does not write go (only analyze's names). Returns a
+ * process status. */
+static int write_open_rope(comp_result *r, const char *in, const char *dir, const cli_opts *o,
+                           const tr_clasp_report *clasp, int *plots_missing)
 {
     tr_error err = {{0}};
     tr_report_ctx ctx = {in, r->k, r->scale, &r->th, 0};
-    const char *names[] = {"curvature.csv", "torsion.csv", "summary.json", "report.txt"};
-    for (int i = 0; i < 4; i++) {
+    const char *names[] = {"curvature.csv", "torsion.csv", "summary.json", "report.txt", "pieces.csv",
+                           "plots.gp", "gnuplot.log", TR_CLASP_PLOT_CURVATURE, TR_CLASP_PLOT_D1};
+    int found = clasp && clasp->rope->found;
+    size_t nw = found ? 5 : 4;
+    for (size_t i = 0; i < nw; i++) {
         char *t = NULL;
         int fmt = i == 0   ? tr_open_rope_curvature_csv(&r->rope, &t)
                   : i == 1 ? tr_open_rope_torsion_csv(&r->rope, &t)
-                  : i == 2 ? tr_open_rope_summary_json(&r->rope, &ctx, &t)
-                           : tr_open_rope_report_text(&r->rope, &ctx, &t);
+                  : i == 2 ? tr_open_rope_summary_json(&r->rope, &ctx, clasp, &t)
+                  : i == 3 ? tr_open_rope_report_text(&r->rope, &ctx, clasp, &t)
+                           : tr_clasp_pieces_csv(clasp->rope, &t);
         if (fmt == TR_OK && i == 3)
             fputs(t, stdout);
         int rc = fmt == TR_OK ? write_text(dir, names[i], t, &err) : TR_ENOMEM;
@@ -311,12 +336,27 @@ static int write_open_rope(comp_result *r, const char *in, const char *dir, cons
             return 2;
         }
     }
-    /* an open rope writes the first two and the last two of the first nine */
-    remove_ours(dir, analyze_files + 2, 5);
-    remove_ours(dir, analyze_files + 9, N_ANALYZE_FILES - 9);
-    if (o->plots)
-        fprintf(stderr, "tightrope analyze: %s: component %d is open: no plots for open ropes yet; the CSV files "
-                        "are written\n", in, r->k);
+    if (o->plots && found) {
+        char title[256];
+        const char *base = strrchr(in, '/');
+        snprintf(title, sizeof title, "%.200s, rope %d", base ? base + 1 : in, r->k);
+        int rc = tr_cli_clasp_draw(dir, clasp->rope, title, &err);
+        if (rc == TR_OK) {
+            nw = 9;
+            printf("plots: %s/{clasp_curvature,clasp_d1}.png\n", dir);
+        } else if (rc == TR_EUNSUPPORTED) {
+            fprintf(stderr, "tightrope analyze: no plots: %s; the CSV files are written\n", err.msg);
+            *plots_missing = 1;
+        } else {
+            fprintf(stderr, "tightrope analyze: plots: %s\n", err.msg);
+            return 1;
+        }
+    } else if (o->plots) {
+        fprintf(stderr, "tightrope analyze: %s: component %d is open: plots are drawn for a clasp's ropes only "
+                        "(%s); the CSV files are written\n", in, r->k,
+                clasp ? clasp->rope->why : "not one of two open ropes");
+    }
+    remove_ours_except(dir, names, nw);
     return 0;
 }
 
@@ -367,10 +407,10 @@ static int draw_tube(const char *dir, const comp_result *r, const char *in, int 
 /* Writes the tables, the summary and (with --plots) the plots of one
  * analysed component into dir, which exists. Returns a process status. */
 static int write_component(comp_result *r, const char *in, const char *dir, const cli_opts *o,
-                           int *plots_missing)
+                           const tr_clasp_report *clasp, int *plots_missing)
 {
     if (r->open)
-        return write_open_rope(r, in, dir, o);
+        return write_open_rope(r, in, dir, o, clasp, plots_missing);
     tr_error err = {{0}};
     const tr_analysis *an = &r->an;
     tr_report_ctx ctx = {in, r->k, r->scale, &r->th,
@@ -421,6 +461,8 @@ static int write_component(comp_result *r, const char *in, const char *dir, cons
                                              "contact_map.png", "sigma9.png", "plots.gp", "gnuplot.log",
                                              "tube_front.png", "tube_top.png", "tube_side.png", "tube_struts.png",
                                              "tube.dat", "struts.dat", "tube.gp", "tube_gnuplot.log"};
+    static const char *const clasp_files[] = {"pieces.csv", TR_CLASP_PLOT_CURVATURE, TR_CLASP_PLOT_D1};
+    remove_ours(dir, clasp_files, 3); /* an earlier clasp's, written into this folder */
     if (!an->have_sigma)
         remove_ours(dir, sigma_files, 4);
     if (!o->plots)
@@ -701,6 +743,18 @@ int tr_cmd_analyze(int argc, char **argv)
     }
     if (optbad) /* an option wrong for the input: nothing is written */
         ndone = 0, status = 2;
+    /* A simple clasp, two open ropes: the pieces of each (docs/physics.md 6.2) */
+    tr_cli_clasp *clasp = NULL;
+    if (nres == 2 && done[0] && done[1] && res[0].open && res[1].open) {
+        tr_error err2 = {{0}};
+        if (!(clasp = malloc(sizeof *clasp)) ||
+            tr_cli_clasp_read(&res[0].rope.prof, &res[1].rope.prof, clasp, &err2) != TR_OK) {
+            fprintf(stderr, "tightrope analyze: %s: the clasp's anatomy: %s\n", in,
+                    clasp ? err2.msg : "out of memory");
+            ndone = 0, status = 1;
+        }
+    }
+    int comps[2] = {res[0].k, nres > 1 ? res[1].k : 0};
     int plots_missing = 0;
     if (ndone && make_dir(out)) {
         fprintf(stderr, "tightrope analyze: cannot create directory %s: %s\n", out, strerror(errno));
@@ -723,7 +777,10 @@ int tr_cmd_analyze(int argc, char **argv)
             status = 2;
             break;
         }
-        int s = write_component(&res[q], in, dir, &o, &plots_missing);
+        tr_clasp_report view;
+        if (clasp)
+            view = tr_cli_clasp_view(clasp, q, comps);
+        int s = write_component(&res[q], in, dir, &o, clasp ? &view : NULL, &plots_missing);
         if (s > status)
             status = s;
     }
@@ -737,7 +794,7 @@ int tr_cmd_analyze(int argc, char **argv)
     for (int q = 0; q < nres; q++)
         if (done[q])
             comp_result_free(&res[q]);
-    free(res), free(done);
+    free(res), free(done), free(clasp);
     tr_curve_free(&c);
     return status;
 }

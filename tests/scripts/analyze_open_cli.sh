@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# CLI checks of 'tightrope analyze' on open ropes (issue 23).
+# CLI checks of 'tightrope analyze' on open ropes and the clasp's anatomy (issue 23).
 # Usage: analyze_open_cli.sh CASE TIGHTROPE WORK_DIR. Exit 0 pass, 1 fail.
 set -u
 case_=$1 tr=$2 work=$3
@@ -52,6 +52,54 @@ clasp)
     done
   done
   grep -q 'open rope' "$work/stdout" || fail "report"
+  # a clasp not yet tightened has no anatomy, and says why
+  grep -q '^clasp anatomy: not found: ' "$work/stdout" || fail "no anatomy line: $(cat "$work/stdout")"
+  grep -q '"found": false, "why": ' "$work/out/comp0/summary.json" || fail "summary.json: no reason"
+  [ -e "$work/out/comp0/pieces.csv" ] && fail "pieces.csv without an anatomy"
+  ;;
+clasp_tight)
+  # 'make clasp' (100 vertices per rope) tightened by the serial reference,
+  # its anatomy checked against the physics (docs/physics.md 6.2), not our
+  # own numbers: the shoulder at curvature 1/2 and the kink at 1 (the pair
+  # averages to 1e-3, REFERENCE.md 6.3); E, S, G, K in order on every half;
+  # D1 and D2 (0.0078 and 0.0004 wide, Starostin) never called resolved at
+  # an edge of 0.14; each rope symmetric about its tip and the ropes
+  # congruent from the tip, to the uncertainties they state
+  "$tr" make clasp --n 100 -o "$work/clasp.vect" >/dev/null || fail "make clasp"
+  "$tr" tighten "$work/clasp.vect" -o "$work/tight.vect" --device reference --quiet >"$work/tighten.out" 2>&1 ||
+    fail "tighten: $(cat "$work/tighten.out")"
+  "$tr" analyze "$work/tight.vect" --out "$work/out" --plots >"$work/stdout" 2>"$work/stderr" ||
+    fail "exit $?: $(cat "$work/stderr")"
+  for k in 0 1; do
+    d=$work/out/comp$k
+    [ -s "$d/pieces.csv" ] || fail "comp$k: no pieces.csv: $(grep -A1 'clasp anatomy' "$work/stdout")"
+    # the numbers after "key": in the clasp object's summary line
+    val() { grep -o "\"$1\": {\"$2\": [-0-9.e+]*" "$d/summary.json" | head -1 | sed 's/.*: //'; }
+    sh=$(val shoulder kappa) kk=$(val kink kappa)
+    echo "comp$k: shoulder kappa $sh, kink kappa $kk"
+    awk -v s="$sh" -v k="$kk" 'BEGIN { d = s - 0.5; e = k - 1; exit !(s != "" && k != "" && d * d < 1e-6 && e * e < 1e-6) }' ||
+      fail "comp$k: shoulder $sh, kink $kk"
+    awk -F, '
+      /^#/ || $1 == "half" { next }
+      { rows++; key = $1 " " $3; st[key] = $4; from[key] = $5; to[key] = $7; w[key] = $9 }
+      END {
+        if (rows != 12) { print "rows " rows; exit 1 }
+        for (h = 0; h <= 1; h++) {
+          if (st[h " D1"] == "resolved" || st[h " D2"] == "resolved") { print "half " h ": a deep resolved at e = 0.14"; exit 1 }
+          n = split("E S G K", p, " ")
+          for (i = 1; i <= n; i++) if (st[h " " p[i]] != "resolved" || !(w[h " " p[i]] > 0)) { print "half " h ": " p[i] " " st[h " " p[i]]; exit 1 }
+          if (!(to[h " E"] <= from[h " S"] + 1e-12 && to[h " S"] <= from[h " G"] + 1e-12 && to[h " G"] <= from[h " K"] + 1e-12)) { print "half " h ": order"; exit 1 }
+        } }' "$d/pieces.csv" || fail "comp$k: pieces.csv"
+    for m in symmetry congruence; do
+      diff=$(grep -o "\"$m\": {[^}]*" "$d/summary.json" | grep -o '"boundary_diff": [-0-9.e+]*' | sed 's/.*: //')
+      derr=$(grep -o "\"$m\": {[^}]*" "$d/summary.json" | grep -o '"boundary_err": [-0-9.e+]*' | sed 's/.*: //')
+      awk -v a="$diff" -v b="$derr" 'BEGIN { exit !(a != "" && b != "" && a + 0 <= b + 0) }' || fail "comp$k: $m $diff +- $derr"
+    done
+    if command -v gnuplot >/dev/null; then
+      for f in clasp_curvature.png clasp_d1.png; do [ -s "$d/$f" ] || fail "comp$k: no $f"; done
+    fi
+  done
+  grep -q '^  shoulder kappa 0.5' "$work/stdout" || fail "report: $(cat "$work/stdout")"
   ;;
 short)
   # an open rope of 3 vertices: one line naming the file, exit 2, nothing written
