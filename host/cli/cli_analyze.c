@@ -371,12 +371,7 @@ static int draw_plots(const char *dir, const tr_analysis *an, tr_error *err)
     int rc = tr_analysis_plots_script(dir, an, &ps, err);
     if (rc != TR_OK)
         return rc;
-    rc = tr_gnuplot_run(dir, "plots.gp", "gnuplot.log", err);
-    if (rc != TR_OK) {
-        tr_plot_discard(&ps);
-        return rc;
-    }
-    return tr_plot_commit(dir, &ps, err);
+    return tr_gnuplot_draw(dir, "plots.gp", "gnuplot.log", &ps, err);
 }
 
 /* The tube pictures of one analysed component: DIR/tube.dat,
@@ -395,11 +390,8 @@ static int draw_tube(const char *dir, const comp_result *r, const char *in, int 
     const char *base = strrchr(in, '/');
     snprintf(title, sizeof title, "%.200s, N = %zu, L = %.6f", base ? base + 1 : in, r->one.nv, r->th.length);
     tr_plot_script ps;
-    if ((rc = tr_tube_script_write(dir, &tp, &views, title, px, &ps, err)) == TR_OK &&
-        (rc = tr_gnuplot_run(dir, "tube.gp", "tube_gnuplot.log", err)) != TR_OK)
-        tr_plot_discard(&ps);
-    if (rc == TR_OK)
-        rc = tr_plot_commit(dir, &ps, err);
+    if ((rc = tr_tube_script_write(dir, &tp, &views, title, px, &ps, err)) == TR_OK)
+        rc = tr_gnuplot_draw(dir, "tube.gp", "tube_gnuplot.log", &ps, err);
     tr_tube_picture_free(&tp);
     return rc;
 }

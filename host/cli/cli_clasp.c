@@ -42,10 +42,5 @@ int tr_cli_clasp_draw(const char *dir, const tr_clasp_rope *r, const char *title
     int rc = tr_clasp_plots_script(dir, r, title, &ps, err);
     if (rc != TR_OK)
         return rc;
-    rc = tr_gnuplot_run(dir, "plots.gp", "gnuplot.log", err);
-    if (rc != TR_OK) {
-        tr_plot_discard(&ps);
-        return rc;
-    }
-    return tr_plot_commit(dir, &ps, err);
+    return tr_gnuplot_draw(dir, "plots.gp", "gnuplot.log", &ps, err);
 }

@@ -63,3 +63,13 @@ int tr_gnuplot_run(const char *dir, const char *script, const char *log, tr_erro
                        WIFEXITED(status) ? WEXITSTATUS(status) : -1, logp);
     return TR_OK;
 }
+
+int tr_gnuplot_draw(const char *dir, const char *script, const char *log, tr_plot_script *ps, tr_error *err)
+{
+    int rc = tr_gnuplot_run(dir, script, log, err);
+    if (rc != TR_OK) {
+        tr_plot_discard(ps);
+        return rc;
+    }
+    return tr_plot_commit(dir, ps, err);
+}

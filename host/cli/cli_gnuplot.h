@@ -4,6 +4,7 @@
 #ifndef TIGHTROPE_CLI_GNUPLOT_H
 #define TIGHTROPE_CLI_GNUPLOT_H
 
+#include "analysis/plot_output.h"
 #include "util/error.h"
 
 /* 1 if a `gnuplot` executable is on PATH. */
@@ -12,5 +13,11 @@ int tr_gnuplot_available(void);
 /* Runs `gnuplot SCRIPT` in DIR, its output to DIR/LOG, and waits for it.
  * TR_EIO if it cannot be started or fails (the message names the log). */
 int tr_gnuplot_run(const char *dir, const char *script, const char *log, tr_error *err);
+
+/* Runs DIR/SCRIPT as tr_gnuplot_run and then puts the pictures ps drew into
+ * in place (tr_plot_commit), or throws them away if gnuplot failed
+ * (tr_plot_discard): what every plotting command does once its script is
+ * written. */
+int tr_gnuplot_draw(const char *dir, const char *script, const char *log, tr_plot_script *ps, tr_error *err);
 
 #endif
