@@ -11,6 +11,7 @@
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "analysis/clasp_anatomy.h"
 #include "analysis/clasp_compare.h"
@@ -110,19 +111,34 @@ static void check_half(const tr_clasp_half *h, const clasp_def *c, double e, con
     CHECK_NEAR(h->length, from, e);
 }
 
+/* The rope c built with n vertices (its length *total, edge *e), its
+ * profile *p and its anatomy *r; returns the vertices (the caller frees). */
+static double *anatomy_of(const clasp_def *c, size_t n, double *total, double *e, tr_arc_profile *p, tr_clasp_rope *r)
+{
+    double *x = build(c, n, total);
+    *e = *total / (double)(n - 1);
+    tr_error err;
+    memset(r, 0, sizeof *r);
+    if (tr_arc_profile_compute_open(x, n, p, &err) != 0) {
+        /* r->found stays 0: the caller's check fails and says so */
+        tr_test_report(__FILE__, __LINE__, "profile: %s", err.msg);
+        memset(p, 0, sizeof *p);
+        return x;
+    }
+    CHECK_OK(tr_clasp_rope_anatomy(p, r, &err));
+    return x;
+}
+
 /* Everything resolved: 2 x 1525 vertices, edge 0.002; D1 15 edges wide, D2 6. */
 static void test_resolved(void)
 {
     clasp_def c = {{{1.0, 0, 0}, {0.8, 0.5, 0.5}, {0.03, 0, 0}, {1.2, 0.45, 0.65}, {0.012, 0, 0}, {0.15, 1, 1}}};
     size_t n = 3193;
-    double total;
-    double *x = build(&c, n, &total);
-    double e = total / (double)(n - 1);
+    double total, e;
     tr_error err;
     tr_arc_profile p;
-    REQUIRE_OK(tr_arc_profile_compute_open(x, n, &p, &err));
     tr_clasp_rope r;
-    CHECK_OK(tr_clasp_rope_anatomy(&p, &r, &err));
+    double *x = anatomy_of(&c, n, &total, &e, &p, &r);
     CHECK(r.found);
     if (!r.found) {
         tr_test_report(__FILE__, __LINE__, "not found: %s", r.why);
@@ -166,15 +182,11 @@ static void test_coarse(void)
                         {2.0, 0.42, 0.66},
                         {TR_CLASP_D2_STAROSTIN, 0, 0},
                         {0.1335, 1, 1}}};
-        double total;
-        double *x = build(&c, n, &total);
-        double e = total / (double)(n - 1);
+        double total, e;
         tr_error err;
         tr_arc_profile p;
-        REQUIRE_OK(tr_arc_profile_compute_open(x, n, &p, &err));
-        free(x);
         tr_clasp_rope r;
-        CHECK_OK(tr_clasp_rope_anatomy(&p, &r, &err));
+        free(anatomy_of(&c, n, &total, &e, &p, &r));
         CHECK(r.found);
         if (!r.found) {
             tr_test_report(__FILE__, __LINE__, "phase %d: not found: %s", phase, r.why);
