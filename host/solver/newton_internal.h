@@ -1,0 +1,82 @@
+/* This file contains the Newton solver's private state and what its files share (newton.c and its parts). */
+#ifndef TR_NEWTON_INTERNAL_H
+#define TR_NEWTON_INTERNAL_H
+
+/* Only host/solver includes this header: the solver struct and the
+ * functions declared here (prefix tr_newton_i_) are the solver's own, split
+ * over files by responsibility. */
+
+#include <cholmod.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "curve/curve.h"
+#include "geometry/neighbour_search.h"
+#include "geometry/struts.h"
+#include "solver/newton.h"
+#include "solver/solver_rows.h"
+#include "util/error.h"
+
+/* no vertex: the neighbour past an open rope's end */
+#define NONE SIZE_MAX
+
+typedef tr_strut_pair strut_row;
+
+typedef struct solver {
+    tr_curve w; /* topology; x = the positions at the last list build */
+    const tr_newton_params *p;
+    size_t nv, n; /* vertices, variables (3 nv + ncomp) */
+    int nc;
+    size_t *next, *prev;
+    int *comp;
+    size_t *ne; /* edges per component */
+    int *gap;
+    double *l0, *scale_m; /* start edge, S l0^2 per component (MinRad rows) */
+    double l0min;
+    double mu;
+    /* the near-active band's width, relative to NEAR_ACTIVE: mu0 / mu */
+    double band;
+    /* the shortest iterate the oracle has seen at a multiplier update (its
+     * ropelength at thickness 1): the last is not always the best (the
+     * peer drifted away from its best at N = 19 200) */
+    tr_curve probe;
+    double *best_y, best_rl;
+    double t_ckpt; /* when the last checkpoint went out (or the solve began) */
+    double warm_residual; /* |t - J^T lambda| / |t| after the warm start; 1 without one */
+    double *lam_e, *lam_m, *pi_e, *pi_m; /* per edge (by first vertex) / vertex */
+    double *pi_s;
+    strut_row *sp;
+    size_t nsp;
+    tr_nsearch ns;
+    /* the Hessian's upper triangle as triplets */
+    size_t nz, capz;
+    SuiteSparse_long *ti, *tj;
+    double *tx;
+    int oom;
+    /* the symbolic factor of the last pattern, kept while the pattern
+     * (the triplets' rows and columns, in al_eval's order) stays */
+    cholmod_factor *L;
+    SuiteSparse_long *pat_i, *pat_j;
+    size_t pat_nz;
+    /* gauge: 6 coordinates held, so that no rigid motion is left in the
+     * Hessian's null space (a Levenberg shift there would also damp the
+     * knot's soft global modes, which Newton must see) */
+    size_t fixed[6];
+    int nfixed;
+    /* the vertices with a constraint (clasp ends), in order */
+    size_t *cv, ncv;
+    /* results of the last evaluation */
+    double viol, dmin, length;
+    size_t active;
+    cholmod_common cm;
+    /* the strut rows by p->backend (solver_rows.h): the list as it takes
+     * it; its first failure (the rows are then evaluated here, and the
+     * minimisation returns the error); time in its calls for the Newton
+     * matrix and in the line search's evaluations */
+    tr_solver_rows rows;
+    int dev_rc;
+    tr_error dev_err;
+    double t_rows, t_value;
+} solver;
+
+#endif
