@@ -96,90 +96,6 @@ static int is_fixed(const solver *s, size_t i)
     return 0;
 }
 
-/* ---- vertex constraints (clasp ends on planes) ----
- *
- * A constrained vertex moves only within its constraint: P_i, the
- * projector onto the motions it allows (curve.h: the plane's directions,
- * the line's, none for a fixed point). The constraints are linear, so they
- * are eliminated rather than written as rows of L_A: every row's gradient
- * and Hessian are taken on the allowed motions (g_i <- P_i g_i, the row's
- * block Q^T H Q with Q = diag(P_i): exact for the reduced problem, since Q
- * is block diagonal per vertex), and I - P_i goes on the vertex's diagonal
- * block so the matrix stays nonsingular. The Newton system then has
- * (I - P_i) dir_i = 0, so a vertex on its plane stays there to rounding at
- * every step, and no multiplier or penalty is involved. Equality rows
- * n.x_i - d = 0 in L_A would instead need their own multipliers to
- * converge (linearly, at a rate 1 / mu) and leave the ends lambda / mu off
- * their planes at every pass, to be projected back at the end at some cost
- * in thickness; the elimination is also what the reference backend's P_i
- * and the KKT oracle (kkt.h) do, so the three agree on what "held" means. */
-static const tr_constraint *vertex_cst(const solver *s, size_t v)
-{
-    return s->w.vcst && s->w.vcst[v] >= 0 ? &s->w.cst[s->w.vcst[v]] : NULL;
-}
-
-/* P (3 x 3, symmetric): the projector onto the motions k allows */
-static void allowed_projector(const tr_constraint *k, double P[9])
-{
-    for (int c = 0; c < 3; c++) {
-        double e[3] = {c == 0, c == 1, c == 2};
-        tr_constraint_project_motion(k, e);
-        for (int r = 0; r < 3; r++)
-            P[3 * r + c] = e[r];
-    }
-}
-
-/* v (3 nv + ncomp) with every constrained vertex's part on its allowed motions */
-static void project_allowed(const solver *s, double *v)
-{
-    for (size_t q = 0; q < s->ncv; q++) {
-        size_t i = s->cv[q];
-        tr_constraint_project_motion(vertex_cst(s, i), v + 3 * i);
-    }
-}
-
-/* A row's gradient gr and Hessian H (m x m, or NULL) over idx, whose vertex
- * coordinates come in triples (3 i, 3 i + 1, 3 i + 2) from position 0, on
- * the allowed motions: gr <- Q gr, H <- Q H Q. Returns 0 (nothing copied)
- * when the row touches no constrained vertex. */
-static int project_row(const solver *s, int m, const size_t *idx, const double *gr, const double *H, double *gq,
-                       double *Hq)
-{
-    int any = 0;
-    for (int a = 0; a + 2 < m && !any; a += 3)
-        any = idx[a] < 3 * s->nv && idx[a] % 3 == 0 && vertex_cst(s, idx[a] / 3);
-    if (!any)
-        return 0;
-    memcpy(gq, gr, (size_t)m * sizeof *gq);
-    if (H)
-        memcpy(Hq, H, (size_t)m * (size_t)m * sizeof *Hq);
-    for (int a = 0; a + 2 < m; a += 3) {
-        const tr_constraint *k = idx[a] < 3 * s->nv && idx[a] % 3 == 0 ? vertex_cst(s, idx[a] / 3) : NULL;
-        if (!k)
-            continue;
-        double P[9], t[3];
-        allowed_projector(k, P);
-        for (int r = 0; r < 3; r++)
-            t[r] = P[3 * r] * gq[a] + P[3 * r + 1] * gq[a + 1] + P[3 * r + 2] * gq[a + 2];
-        memcpy(gq + a, t, sizeof t);
-        if (!H)
-            continue;
-        for (int c = 0; c < m; c++) { /* rows a..a+2: P H */
-            for (int r = 0; r < 3; r++)
-                t[r] = P[3 * r] * Hq[a * m + c] + P[3 * r + 1] * Hq[(a + 1) * m + c] + P[3 * r + 2] * Hq[(a + 2) * m + c];
-            for (int r = 0; r < 3; r++)
-                Hq[(a + r) * m + c] = t[r];
-        }
-        for (int r = 0; r < m; r++) { /* columns a..a+2: H P */
-            for (int c = 0; c < 3; c++)
-                t[c] = Hq[r * m + a] * P[c] + Hq[r * m + a + 1] * P[3 + c] + Hq[r * m + a + 2] * P[6 + c];
-            for (int c = 0; c < 3; c++)
-                Hq[r * m + a + c] = t[c];
-        }
-    }
-    return 1;
-}
-
 static void tri_push(solver *s, size_t i, size_t j, double v)
 {
     if (s->nz == s->capz) {
@@ -214,7 +130,7 @@ static void row_terms(solver *s, int m, const size_t *idx, const double *gr, con
                       double cH, double pi, double *grad, int hess)
 {
     double gq[16], Hq[256];
-    if (project_row(s, m, idx, gr, hess ? H : NULL, gq, Hq)) {
+    if (tr_newton_i_project_row(s, m, idx, gr, hess ? H : NULL, gq, Hq)) {
         gr = gq;
         H = hess && H ? Hq : NULL;
     }
@@ -405,7 +321,7 @@ static double al_eval(solver *s, const double *y, double *grad, int hess)
      * block (the rows above have none there), so dir_i has none of them */
     for (size_t q = 0; hess && q < s->ncv; q++) {
         double P[9];
-        allowed_projector(vertex_cst(s, s->cv[q]), P);
+        tr_newton_i_allowed_projector(tr_newton_i_vertex_cst(s, s->cv[q]), P);
         for (int r = 0; r < 3; r++)
             for (int c = r; c < 3; c++) {
                 double v = (r == c) - P[3 * r + c];
@@ -595,7 +511,7 @@ static int newton_dir(solver *s, const double *grad, double *dir, double *lm, tr
     cholmod_l_free_dense(&xs, cm);
     /* the solve leaves a constrained vertex's forbidden part at rounding;
      * none at all, so the ends do not drift off their planes over the steps */
-    project_allowed(s, dir);
+    tr_newton_i_project_allowed(s, dir);
     st->t_solve += tr_clock_seconds() - t1;
 done:
     cholmod_l_free_sparse(&A, cm);
@@ -696,7 +612,7 @@ static void set_gauge_constrained(solver *s)
         v3_scale(xr, 1.0 / R, xr);
         for (int c = 0; c < 3 && nb < 6; c++) {
             double e[3] = {c == 0, c == 1, c == 2}, f[3] = {c == 0, c == 1, c == 2};
-            tr_constraint_project_motion(vertex_cst(s, i), f);
+            tr_constraint_project_motion(tr_newton_i_vertex_cst(s, i), f);
             double qv[3], row[6];
             v3_sub(qv, e, f);
             if (!(v3_norm(qv) > GAUGE_TOL))
@@ -725,7 +641,7 @@ static void set_gauge_constrained(solver *s)
         size_t bi = NONE;
         for (int q = 0; q < GAUGE_CANDIDATES; q++) {
             size_t i = (size_t)((double)nv * (double)q / GAUGE_CANDIDATES);
-            if (i >= nv || vertex_cst(s, i))
+            if (i >= nv || tr_newton_i_vertex_cst(s, i))
                 continue;
             double xr[3];
             v3_sub(xr, x + 3 * i, o);
@@ -830,13 +746,13 @@ static int solver_init(solver *s, const tr_curve *cv, double scale, tr_error *er
         s->gap[k] = tr_exclusion_gap(1.0, s->l0[k]);
     }
     for (size_t i = 0; i < nv; i++)
-        s->ncv += vertex_cst(s, i) != NULL;
+        s->ncv += tr_newton_i_vertex_cst(s, i) != NULL;
     s->cv = malloc((s->ncv ? s->ncv : 1) * sizeof *s->cv);
     if (!s->cv)
         return tr_fail(err, TR_ENOMEM, "out of memory (Newton solver)");
     s->ncv = 0;
     for (size_t i = 0; i < nv; i++)
-        if (vertex_cst(s, i))
+        if (tr_newton_i_vertex_cst(s, i))
             s->cv[s->ncv++] = i;
     set_gauge(s);
     return tr_nsearch_build(&s->ns, &s->w, err);
@@ -1072,9 +988,9 @@ static int warm_multipliers(solver *s, const double *y, tr_error *err)
     /* a constrained vertex takes part with its allowed motions only (the
      * rows' entries come in triples, a vertex's x, y, z) */
     for (size_t k = 0; s->ncv > 0 && k + 2 < nz; k += 3)
-        if (vertex_cst(s, col[k] / 3))
-            tr_constraint_project_motion(vertex_cst(s, col[k] / 3), val + k);
-    project_allowed(s, t);
+        if (tr_newton_i_vertex_cst(s, col[k] / 3))
+            tr_constraint_project_motion(tr_newton_i_vertex_cst(s, col[k] / 3), val + k);
+    tr_newton_i_project_allowed(s, t);
     if (nr == 0)
         goto done;
     lam = calloc(nr, sizeof *lam);
@@ -1551,7 +1467,7 @@ int tr_newton(tr_curve *cv, const tr_newton_params *prm, tr_newton_stats *st, tr
      * its vertices exactly on their constraints instead), keep if shorter */
     memcpy(s.w.x, y, 3 * s.nv * sizeof *y);
     for (size_t q = 0; q < s.ncv; q++)
-        tr_constraint_project(vertex_cst(&s, s.cv[q]), s.w.x + 3 * s.cv[q]);
+        tr_constraint_project(tr_newton_i_vertex_cst(&s, s.cv[q]), s.w.x + 3 * s.cv[q]);
     tr_thickness th;
     if ((rc = tr_thickness_measure(&s.w, NULL, &th, NULL, err)))
         goto done;

@@ -79,4 +79,17 @@ typedef struct solver {
     double t_rows, t_value;
 } solver;
 
+/* ---- vertex constraints (vertex_constraints.c) ---- */
+
+/* the constraint vertex v is held to, or NULL */
+const tr_constraint *tr_newton_i_vertex_cst(const solver *s, size_t v);
+/* P (3 x 3, symmetric): the projector onto the motions k allows */
+void tr_newton_i_allowed_projector(const tr_constraint *k, double P[9]);
+/* v (3 nv + ncomp) with every constrained vertex's part on its allowed motions */
+void tr_newton_i_project_allowed(const solver *s, double *v);
+/* a row's gradient and Hessian on the allowed motions; 0 when the row
+ * touches no constrained vertex */
+int tr_newton_i_project_row(const solver *s, int m, const size_t *idx, const double *gr, const double *H,
+                            double *gq, double *Hq);
+
 #endif
