@@ -92,4 +92,20 @@ void tr_newton_i_project_allowed(const solver *s, double *v);
 int tr_newton_i_project_row(const solver *s, int m, const size_t *idx, const double *gr, const double *H,
                             double *gq, double *Hq);
 
+/* ---- the gauge (gauge.c) ---- */
+
+/* Is coordinate i one the gauge holds? Here, inline, rather than in gauge.c:
+ * the Hessian's assembly asks it of every entry of every row. */
+static inline int tr_newton_i_is_fixed(const solver *s, size_t i)
+{
+    for (int k = 0; k < s->nfixed; k++)
+        if (s->fixed[k] == i)
+            return 1;
+    return 0;
+}
+
+/* holds the coordinates that fix the rigid motions (s->fixed, s->nfixed);
+ * with vertex constraints only the free ones */
+void tr_newton_i_set_gauge(solver *s);
+
 #endif
