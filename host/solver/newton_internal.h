@@ -108,4 +108,17 @@ static inline int tr_newton_i_is_fixed(const solver *s, size_t i)
  * with vertex constraints only the free ones */
 void tr_newton_i_set_gauge(solver *s);
 
+/* ---- the augmented Lagrangian's rows (newton_rows.c) ---- */
+
+/* the MinRad row's pieces at vertex i (w, c and its derivatives); 0 at an
+ * end of an open rope (no row) */
+int tr_newton_i_minrad_row(const solver *s, const double *x, const double *l, size_t i, double w[3],
+                           double *c, double *dc, double *d2c);
+/* appends v at (i, j) of the Hessian's upper triangle */
+void tr_newton_i_tri_push(solver *s, size_t i, size_t j, double v);
+/* L_A at y less its length term; with grad its gradient and the multiplier
+ * estimates, with hess the Hessian's triplets; sets viol, dmin, length,
+ * active */
+double tr_newton_i_al_eval(solver *s, const double *y, double *grad, int hess);
+
 #endif
