@@ -121,4 +121,9 @@ void tr_newton_i_tri_push(solver *s, size_t i, size_t j, double v);
  * active */
 double tr_newton_i_al_eval(solver *s, const double *y, double *grad, int hess);
 
+/* ---- the strut list (strut_list.c) ---- */
+
+/* rebuilds the strut list at y, carrying the multipliers of kept pairs */
+int tr_newton_i_rebuild(solver *s, const double *y, tr_error *err);
+
 #endif
