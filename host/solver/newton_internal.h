@@ -126,4 +126,10 @@ double tr_newton_i_al_eval(solver *s, const double *y, double *grad, int hess);
 /* rebuilds the strut list at y, carrying the multipliers of kept pairs */
 int tr_newton_i_rebuild(solver *s, const double *y, tr_error *err);
 
+/* ---- the warm start (warm_start.c) ---- */
+
+/* the first multipliers (s->lam_m, s->sp[].lam) that best balance the unit
+ * tension at y, and s->warm_residual, the share they leave unbalanced */
+int tr_newton_i_warm_multipliers(solver *s, const double *y, tr_error *err);
+
 #endif
