@@ -1,21 +1,22 @@
 /* This file contains the second-order solver: Newton steps on the augmented
  * Lagrangian of the ideal-knot problem, factored by CHOLMOD (newton.h has
- * the formulation and why it converges). */
+ * the formulation and why it converges). Its parts, each in its own file
+ * (newton_internal.h): the rows (newton_rows.c), the strut list
+ * (strut_list.c), the warm start (warm_start.c), the gauge (gauge.c) and
+ * the vertex constraints (vertex_constraints.c); here the entry, the
+ * solver's set-up, the Newton direction and the minimisation loop. */
 #include "solver/newton.h"
 
 #include <cholmod.h>
 #include <float.h>
 #include <math.h>
-#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "geometry/neighbour_search.h"
 #include "geometry/struts.h"
-#include "segment_distance.h"
 #include "solver/newton_internal.h"
 #include "solver/solver_rows.h"
-#include "solver/strut_hessian.h"
 #include "oracle/thickness.h"
 #include "util/clock.h"
 #include "util/vec3.h"
@@ -59,7 +60,7 @@ void tr_newton_params_default(tr_newton_params *p)
  * warm start's multipliers balance all but TIGHT_RESIDUAL of the tension
  * (bench/RESULTS.md, "Second-order solver"): a wobbled circle leaves all of
  * it (1.0), the N = 2400 trefoil spline-refined to 9600 0.19, to 19 200
- * 0.21, to 38 400 0.29 (warm_multipliers). */
+ * 0.21, to 38 400 0.29 (warm_start.c). */
 #define MINRAD_ROW_SCALE_LOOSE 4.0
 #define MINRAD_ROW_SCALE_TIGHT 0.1
 #define TIGHT_RESIDUAL 0.7

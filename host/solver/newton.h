@@ -39,7 +39,7 @@
  * mu_max) if the violation did not fall by 4 in a solved pass (newton.c:
  * an unfinished pass says nothing about mu). Inactive rows near their
  * bound enter the Newton matrix in a band that narrows as mu grows
- * (newton.c, NEAR_ACTIVE). It stops converged (violation and
+ * (newton_rows.c, NEAR_ACTIVE). It stops converged (violation and
  * unbalanced force below their tolerances) or settled (feasible, and the
  * length unchanged to 1e-11 over three updates: where many struts press on
  * one edge the discrete multipliers are far from unique and the unbalanced
@@ -88,10 +88,10 @@
  * Vertex constraints (clasp ends on planes, lines, fixed points) are
  * eliminated: each row's gradient and Hessian are taken on the motions the
  * constraint allows (P_i), I - P_i fills the vertex's diagonal block, so
- * every step keeps the vertex on its set (newton.c says why not equality
- * rows). Only the rigid motions the constraints leave free are held as
- * gauge (the clasp: translations within its parallel planes and the
- * rotation about their normal). Open components have no wrap edge and
+ * every step keeps the vertex on its set (vertex_constraints.c says why
+ * not equality rows). Only the rigid motions the constraints leave free
+ * are held as gauge (gauge.c; the clasp: translations within its parallel
+ * planes and the rotation about their normal). Open components have no wrap edge and
  * MinRad rows only where a vertex has two edges. A constrained curve is not
  * rescaled (its planes stay): its ropelength is its length at thickness 1,
  * the result is kept within 1e-6 of thickness 1, and a start below
@@ -128,7 +128,7 @@ typedef struct tr_newton_params {
     double mu_max;     /* largest penalty, likewise */
     double viol_tol;   /* converged: worst relative violation below this ... */
     double stat_tol;   /* ... and relative unbalanced force below this */
-    int warm_start;    /* first multipliers by least squares (newton.c, warm_multipliers); 0: cold */
+    int warm_start;    /* first multipliers by least squares (warm_start.c); 0: cold */
     int tight_only;    /* give up at once (not accepted) unless the warm start finds the start tight */
     volatile sig_atomic_t *stop; /* raised by a signal handler: stop as at the time limit */
     /* NULL: every row evaluated here. Else the strut rows (the distances, the

@@ -1,6 +1,6 @@
 /* The second-order solver's strut rows through a backend (backend.h
- * strut_rows): the seam between newton.c and the device, so that the
- * solver does not know which backend it drives. */
+ * strut_rows): the seam between the solver's rows (newton_rows.c) and the
+ * device, so that the solver does not know which backend it drives. */
 #ifndef TR_SOLVER_ROWS_H
 #define TR_SOLVER_ROWS_H
 
