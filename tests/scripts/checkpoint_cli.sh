@@ -13,7 +13,10 @@ fail() { echo "FAIL: $*"; exit 1; }
 pid=$!
 sleep 1
 [ -s "$work/ck/c.ckpt" ] || fail "no checkpoint after 1 s"
-rm -rf "$work/ck"
+# moved away in one step: an rm -rf raced the writer (a checkpoint written
+# into the folder while rm emptied it left it "not empty", and the run saw
+# no failure); after the rename every write into ck/ fails
+mv "$work/ck" "$work/ck.gone" || fail "could not move the checkpoint folder"
 wait $pid
 rc=$?
 cat "$work/err"
