@@ -295,6 +295,8 @@ int tr_engine_i_newton(tr_engine *e, double seconds, int tight_only, volatile si
     np.backend = be && !be->ops->serial ? be : NULL;
     int rc = tr_newton(&e->curve, &np, &ns, err);
     tr_backend_close(&own);
+    snprintf(e->newton_why, sizeof e->newton_why, "%.150s",
+             rc ? err->msg : ns.why_rejected ? ns.why_rejected : ns.skipped ? "skipped" : "");
     if (rc)
         return rc == TR_EGEOMETRY ? TR_OK : rc;
     if (ns.loose)
@@ -304,7 +306,14 @@ int tr_engine_i_newton(tr_engine *e, double seconds, int tight_only, volatile si
     e->newton_after = ns.ropelength_after;
     e->newton_seconds = ns.seconds;
     e->newton_iters = ns.iters;
-    e->newton_solved = ns.accepted && (ns.converged || ns.settled);
+    /* for a clasp, converged or settled, kept or not: a settled solve
+     * that is not shorter says the start was already the level's optimum
+     * (a converged clasp at the route's first level), and the first-order
+     * steps a rejection would hand the level to only move a clasp's ends
+     * (at 2 x 2000 they folded them through themselves before the next
+     * refinement). A closed knot's rejected solve leaves the level to the
+     * first-order steps as before. */
+    e->newton_solved = (ns.converged || ns.settled) && (ns.accepted || e->curve.ncst > 0);
     *accepted = ns.accepted;
     return TR_OK;
 }
@@ -534,7 +543,14 @@ int tr_engine_refine(tr_engine *e, size_t n, tr_error *err)
     e->newton_solved = 0;
     if ((rc = tr_engine_i_keep_presettle(e, err)))
         return rc;
-    rc = tr_engine_i_settle(e, "the refined curve", 0.25, err);
+    /* A refined clasp goes to the solver from the curve before the settle
+     * whatever the settle does (level_loop.c, run_polish), and first-order
+     * steps do not tighten a clasp beyond ~100 vertices per rope: there
+     * the settle's damped passes are time lost (most of 794 s at 2 x 2000
+     * refined to 2 x 4000, where the solver then took 17 s), so a clasp
+     * whose levels the solver takes is left unsettled for it. */
+    int to_solver = e->curve.ncst > 0 && (e->prm.newton || e->prm.newton_tight) && e->prm.polish;
+    rc = to_solver ? TR_EGEOMETRY : tr_engine_i_settle(e, "the refined curve", 0.25, err);
     /* A refined clasp is pressed through itself where strands touch, and
      * its planes forbid scaling it out: the settle's 400 damped passes do
      * not always restore it (the 2 x 800 clasp refined to 2 x 1000). The
@@ -544,8 +560,7 @@ int tr_engine_refine(tr_engine *e, size_t n, tr_error *err)
      * it, the refinement fails as before (level_loop.c): the half-settled
      * state can be far from a rope (thickness 1e-3 at 2 x 4000). */
     e->refine_unsettled = 0;
-    if (rc == TR_EGEOMETRY && e->curve.ncst > 0 && e->presettle_x && (e->prm.newton || e->prm.newton_tight) &&
-        e->prm.polish) {
+    if (rc == TR_EGEOMETRY && to_solver && e->presettle_x) {
         e->refine_unsettled = 1;
         e->refine_unsettled_n = n;
         rc = TR_OK;

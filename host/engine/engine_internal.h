@@ -33,6 +33,9 @@ struct tr_engine {
     int newton_ran; /* as polished, for the second-order solver */
     double newton_before, newton_after, newton_seconds;
     int newton_iters;
+    /* why the solver's last call kept nothing (tr_newton_stats.why_rejected,
+     * or its own error's text), for the message when a refinement needs it */
+    char newton_why[160];
     /* The polished curve itself, kept when settling it onto the engine's
      * constraint set cost ropelength (the oracle's, which is scale free):
      * until the engine takes another step it is the curve handed out. */

@@ -283,9 +283,13 @@ int tr_engine_run(tr_engine *e, const tr_engine_limits *lim, tr_stop_reason *why
             if (e->refine_unsettled && !(e->newton_ran == 1 && e->polished == 1))
                 return tr_fail(err, TR_ETOPOLOGY,
                                "refining to %zu vertices: the refined clasp could not be settled, and the "
-                               "second-order solver did not take it", e->refine_unsettled_n);
+                               "second-order solver did not take it (%s)", e->refine_unsettled_n,
+                               e->newton_why[0] ? e->newton_why : "not run");
             e->refine_unsettled = 0;
-            if (e->newton_ran != 1)
+            /* a rejected solve leaves the level to the first-order polish,
+             * unless it counted as solved (a clasp already at the level's
+             * optimum: engine.c, tr_engine_i_newton) */
+            if (e->newton_ran != 1 && !e->newton_solved)
                 e->polished = 0;
             continue;
         }
