@@ -543,22 +543,20 @@ int tr_engine_refine(tr_engine *e, size_t n, tr_error *err)
     e->newton_solved = 0;
     if ((rc = tr_engine_i_keep_presettle(e, err)))
         return rc;
-    /* A refined clasp goes to the solver from the curve before the settle
-     * whatever the settle does (level_loop.c, run_polish), and first-order
-     * steps do not tighten a clasp beyond ~100 vertices per rope: there
-     * the settle's damped passes are time lost (most of 794 s at 2 x 2000
-     * refined to 2 x 4000, where the solver then took 17 s), so a clasp
-     * whose levels the solver takes is left unsettled for it. */
-    int to_solver = e->curve.ncst > 0 && (e->prm.newton || e->prm.newton_tight) && e->prm.polish;
-    rc = to_solver ? TR_EGEOMETRY : tr_engine_i_settle(e, "the refined curve", 0.25, err);
     /* A refined clasp is pressed through itself where strands touch, and
      * its planes forbid scaling it out: the settle's 400 damped passes do
-     * not always restore it (the 2 x 800 clasp refined to 2 x 1000). The
-     * solver takes the level from the curve before the settle
-     * (presettle_x; level_loop.c, is_solver_level) and restores it there,
-     * so the run goes on rather than ending. Should the solver not take
-     * it, the refinement fails as before (level_loop.c): the half-settled
-     * state can be far from a rope (thickness 1e-3 at 2 x 4000). */
+     * not always restore it (the 2 x 800 clasp refined to 2 x 1000), and
+     * the solver takes the level from the curve before the settle
+     * (presettle_x; level_loop.c, run_polish) whatever the settle did. As
+     * first-order steps do not tighten a clasp beyond ~100 vertices per
+     * rope, a clasp whose levels the solver takes is not settled at all:
+     * make clasp in one command, with the rejected-but-settled levels
+     * counted as solved (tr_engine_i_newton), went from 74 s to 33.5 s at
+     * 2 x 1000 and from 111 s to 25 s at 2 x 2000 (bench/RESULTS.md).
+     * Should the solver not take the level, the refinement fails
+     * (level_loop.c). */
+    int to_solver = e->curve.ncst > 0 && (e->prm.newton || e->prm.newton_tight) && e->prm.polish;
+    rc = to_solver ? TR_EGEOMETRY : tr_engine_i_settle(e, "the refined curve", 0.25, err);
     e->refine_unsettled = 0;
     if (rc == TR_EGEOMETRY && to_solver && e->presettle_x) {
         e->refine_unsettled = 1;

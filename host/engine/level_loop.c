@@ -282,8 +282,8 @@ int tr_engine_run(tr_engine *e, const tr_engine_limits *lim, tr_stop_reason *why
                 return rc;
             if (e->refine_unsettled && !(e->newton_ran == 1 && e->polished == 1))
                 return tr_fail(err, TR_ETOPOLOGY,
-                               "refining to %zu vertices: the refined clasp could not be settled, and the "
-                               "second-order solver did not take it (%s)", e->refine_unsettled_n,
+                               "refining to %zu vertices: the second-order solver did not take the refined "
+                               "clasp (%s)", e->refine_unsettled_n,
                                e->newton_why[0] ? e->newton_why : "not run");
             e->refine_unsettled = 0;
             /* a rejected solve leaves the level to the first-order polish,
