@@ -33,6 +33,25 @@
 #define WARM_BAND_SAG 10.0
 #define WARM_BAND_MAX 2e-3
 
+/* out = J^T v (nx entries) for J stored by rows (rowp, col, val), nr rows */
+static void rows_transpose_times(const size_t *rowp, const size_t *col, const double *val, size_t nr,
+                                 const double *v, size_t nx, double *out)
+{
+    memset(out, 0, nx * sizeof *out);
+    for (size_t i = 0; i < nr; i++)
+        for (size_t k = rowp[i]; k < rowp[i + 1]; k++)
+            out[col[k]] += val[k] * v[i];
+}
+
+/* |t - w|^2: the tension the multipliers' forces w leave unbalanced */
+static double unbalanced2(const double *t, const double *w, size_t nx)
+{
+    double r = 0.0;
+    for (size_t k = 0; k < nx; k++)
+        r += (t[k] - w[k]) * (t[k] - w[k]);
+    return r;
+}
+
 /* out = J v for J stored by rows (rowp, col, val), nr rows */
 static void rows_times(const size_t *rowp, const size_t *col, const double *val, size_t nr, const double *v,
                        double *out)
@@ -230,10 +249,7 @@ int tr_newton_i_warm_multipliers(solver *s, const double *y, tr_error *err)
     }
     double rr0 = rr;
     for (int it = 0; it < WARM_ITERS && rr > 1e-20 * rr0 && !(s->p->stop && *s->p->stop); it++) {
-        memset(w, 0, nx * sizeof *w);
-        for (size_t i = 0; i < nr; i++)
-            for (size_t k = rowp[i]; k < rowp[i + 1]; k++)
-                w[col[k]] += val[k] * pd[i];
+        rows_transpose_times(rowp, col, val, nr, pd, nx, w);
         rows_times(rowp, col, val, nr, w, q);
         double pq = 0.0;
         for (size_t i = 0; i < nr; i++)
@@ -253,15 +269,11 @@ int tr_newton_i_warm_multipliers(solver *s, const double *y, tr_error *err)
     /* how much of the tension the clipped multipliers leave unbalanced */
     for (size_t i = 0; i < nr; i++)
         lam[i] = fmax(0.0, lam[i]);
-    memset(w, 0, nx * sizeof *w);
-    for (size_t i = 0; i < nr; i++)
-        for (size_t k = rowp[i]; k < rowp[i + 1]; k++)
-            w[col[k]] += val[k] * lam[i];
-    double tt = 0.0, res = 0.0;
-    for (size_t k = 0; k < nx; k++) {
+    rows_transpose_times(rowp, col, val, nr, lam, nx, w);
+    double tt = 0.0;
+    for (size_t k = 0; k < nx; k++)
         tt += t[k] * t[k];
-        res += (t[k] - w[k]) * (t[k] - w[k]);
-    }
+    double res = unbalanced2(t, w, nx);
     /* the damped least squares' clipped multipliers: a second bound on the
      * tension nonnegative multipliers can hold */
     if (tt > 0.0) {
@@ -274,14 +286,10 @@ int tr_newton_i_warm_multipliers(solver *s, const double *y, tr_error *err)
             free(lt);
             goto done;
         }
-        memset(w, 0, nx * sizeof *w);
         for (size_t i = 0; i < nr; i++)
-            for (size_t k = rowp[i]; k < rowp[i + 1]; k++)
-                w[col[k]] += val[k] * fmax(0.0, lt[i]);
-        double res2 = 0.0;
-        for (size_t k = 0; k < nx; k++)
-            res2 += (t[k] - w[k]) * (t[k] - w[k]);
-        res = fmin(res, res2);
+            lt[i] = fmax(0.0, lt[i]);
+        rows_transpose_times(rowp, col, val, nr, lt, nx, w);
+        res = fmin(res, unbalanced2(t, w, nx));
         free(lt);
     }
     s->warm_residual = tt > 0.0 ? sqrt(res / tt) : 0.0;
