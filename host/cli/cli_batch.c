@@ -182,10 +182,13 @@ static void knot_path(char *buf, size_t size, const char *out, const char *name,
 static int exists(const char *path) { return access(path, F_OK) == 0; }
 
 /* The options of a resumed run: the checkpoint holds the resampled and
- * scaled start, and tighten refuses --n and --scale with --resume. */
+ * scaled start, and tighten refuses --n and --scale with --resume; it
+ * continues the road that was interrupted, so --tries and --seed go too. */
 static int start_only(char **opts, int j)
 {
-    return !strcmp(opts[j], "--scale") ? 1 : !strcmp(opts[j], "--n") ? 2 : 0;
+    if (!strcmp(opts[j], "--scale"))
+        return 1;
+    return !strcmp(opts[j], "--n") || !strcmp(opts[j], "--tries") || !strcmp(opts[j], "--seed") ? 2 : 0;
 }
 
 /* Appends the options to args, leaving out the start's when resuming. */

@@ -26,6 +26,7 @@
 #include "curve/perturb.h"
 #include "util/json.h"
 #include "oracle/kkt.h"
+#include "util/clock.h"
 #include "util/text_file.h"
 #include "oracle/thickness.h"
 
@@ -80,11 +81,15 @@ static void usage(FILE *out)
             "                     without it the solver still takes a tight finest level (a\n"
             "                     tightened knot refined or resampled by --n) first\n"
             "  --no-newton        never the second-order solver\n"
-            "  --tries K          K roads (default 1): the start as given, then K - 1 times\n"
-            "                     the shortest result so far moved by a smooth random\n"
+            "  --tries K          K roads (default 1), each with an equal share of the time\n"
+            "                     left; the shortest result at the finest N is written.\n"
+            "                     With levels (--refine-to): the start as given, then the\n"
+            "                     start again from other coarse counts (--n or N/4, times\n"
+            "                     1, 1.25, 0.8, 1.5, ...), every other road inflated 1.5\n"
+            "                     times (the coarse level picks the local minimum). With one\n"
+            "                     level: the shortest result so far moved by a smooth random\n"
             "                     displacement (under half the rope's diameter, so the knot\n"
-            "                     stays the same) and tightened again, each with 1/K of the\n"
-            "                     time limit; the shortest result is written\n"
+            "                     stays the same) and tightened again\n"
             "  --seed S           the displacements' seed (default 1): the same S, the same roads\n"
             "  --no-polish        skip the polish stage at every level (a serial augmented-\n"
             "                     Lagrangian / L-BFGS minimisation on the host, which ends each\n"
@@ -170,6 +175,7 @@ typedef struct tighten_opts {
     const char *in, *out, *ckpt, *resume, *device;
     long n, refine_to, steps, device_from, tries, seed;
     int try_index; /* which of --tries this run is (0: the start as given) */
+    double inflate; /* --tries: the start scaled up by this after --scale (1: not) */
     const tr_curve *road_from; /* --tries: the shortest result so far, this road's start */
     double target, residual, time_limit, ckpt_every;
     int residual_given; /* the default residual is a stopping rule, not a goal */
@@ -181,7 +187,7 @@ typedef struct tighten_opts {
  * command line, with its message printed). */
 static int parse_options(int argc, char **argv, tighten_opts *o)
 {
-    *o = (tighten_opts){.device_from = -1, .residual = 1e-4, .ckpt_every = 300, .kkt = -1, .tries = 1, .seed = 1};
+    *o = (tighten_opts){.inflate = 1.0, .device_from = -1, .residual = 1e-4, .ckpt_every = 300, .kkt = -1, .tries = 1, .seed = 1};
     static const char *valued[] = {"-o", "--output", "--n", "--refine-to", "--target", "--residual",
                                    "--steps", "--time-limit", "--checkpoint", "--checkpoint-every",
                                    "--resume", "--device", "--device-from", "--tries", "--seed"};
@@ -338,8 +344,8 @@ static int parse_options(int argc, char **argv, tighten_opts *o)
 /* A start at thickness 1 (after --scale) whose edges are longer than the
  * engine takes (a KnotPlot start of 101 vertices: edges of 1.31) is
  * resampled along a spline through its vertices to edges of about
- * COARSE_EDGE, and scaled to thickness 1 again (the spline changes it a
- * little), instead of being refused: the user asked for a rope, not for a
+ * COARSE_EDGE, and scaled back to its thickness (1 after --scale; the
+ * spline changes it a little), instead of being refused: the user asked for a rope, not for a
  * vertex count. --refine-to, if given, caps the count as long as the edges
  * stay below MAX_COARSE_EDGE. */
 #define COARSE_EDGE 0.5
@@ -372,15 +378,19 @@ static int densify_coarse(const tighten_opts *o, tr_curve *c, tr_error *err)
         free(per);
         if (rc)
             return rc;
+        tr_thickness t, was;
+        if ((rc = tr_thickness_measure(c, NULL, &was, NULL, err))) {
+            tr_curve_free(&r);
+            return rc;
+        }
         tr_curve_free(c);
         *c = r;
-        tr_thickness t;
         if ((rc = tr_thickness_measure(c, NULL, &t, NULL, err)))
             return tr_fail_wrap(err, rc, "%s (resampled)", o->in);
         if (!(t.thickness > 0 && isfinite(t.thickness)))
             return tr_fail(err, TR_EGEOMETRY, "%s: resampled along a spline, it has thickness %g", o->in,
                            t.thickness);
-        scale_curve(c, 1.0 / t.thickness);
+        scale_curve(c, was.thickness / t.thickness);
         fprintf(stderr, "tightrope tighten: %s: too coarse for thickness 1; resampled along a spline to %zu vertices\n",
                 o->in, c->nv);
     }
@@ -428,6 +438,34 @@ static int other_road(const tighten_opts *o, tr_curve *c, tr_error *err)
     tr_curve_free(c);
     *c = moved;
     return TR_OK;
+}
+
+/* --tries on a route of levels (--refine-to above the coarse count): the
+ * local minimum a knot ends in is chosen on its coarse level, by the road
+ * the first-order steps take there, and a kick smaller than the rope's
+ * radius (other_road) does not leave it (5_2 from KnotPlot: four kicked roads
+ * all ended at 50.4078, the TightKnot table has 49.484). Another coarse count
+ * is another road from the same start: 4_1 from --n 90 ends at 45.13, from
+ * 100, 110 and 128 near 42.2; 5_2 from 100 reaches 49.482. So road t >= 1
+ * starts afresh from IN at the coarse count base * ROAD_COARSE_FACTOR[...],
+ * base being --n or else a quarter of the finest count (at least 64), and
+ * every other road from the start inflated by ROAD_INFLATE: a looser start
+ * has room to slide before its strands meet, and takes another road (5_2 at
+ * --n 100: 50.4077 from thickness 1, 49.4822 from KnotPlot's own 1.48). */
+static const double ROAD_COARSE_FACTOR[] = {1.0, 1.25, 0.8, 1.5, 0.67, 1.12, 0.9, 1.75};
+#define ROAD_FACTORS ((int)(sizeof ROAD_COARSE_FACTOR / sizeof ROAD_COARSE_FACTOR[0]))
+#define ROAD_INFLATE 1.5
+
+static int multi_level(const tighten_opts *o) { return o->refine_to > 0 && !o->resume && o->in; }
+
+static long road_coarse_n(const tighten_opts *o, int t)
+{
+    long base = o->n > 0 ? o->n : (o->refine_to / 4 > 64 ? o->refine_to / 4 : 64);
+    double f = ROAD_COARSE_FACTOR[(t - 1) % ROAD_FACTORS];
+    long n = lround((double)base * f);
+    if (n >= o->refine_to)
+        n = o->refine_to / 2;
+    return n < 16 ? 16 : n;
 }
 
 /* Reads the start curve IN into c, resampled with --n and scaled with
@@ -517,8 +555,15 @@ static int read_start(const tighten_opts *o, tr_curve *c, tr_error *err)
                          t0.thickness);
         if (rc == TR_OK)
             scale_curve(c, 1.0 / t0.thickness);
-        if (rc == TR_OK && o->n <= 0)
+        /* also after --n: a count too coarse for thickness 1 (a road of
+         * --tries at a count below the start's length) is raised */
+        if (rc == TR_OK)
             rc = densify_coarse(o, c, err);
+    }
+    /* an inflated road's edges grow with it: the count grows to match */
+    if (rc == TR_OK && o->inflate != 1.0) {
+        scale_curve(c, o->inflate);
+        rc = densify_coarse(o, c, err);
     }
     if (rc != TR_OK)
         tr_curve_free(c);
@@ -901,18 +946,30 @@ int tr_tighten_command(int argc, char **argv, tr_tighten_report *rep)
     if (rc >= 0)
         return rc;
     choose_route(&o);
-    /* --tries: the roads one after the other, each with its share of the
-     * time; the shortest certified one is kept. A road that fails after the
-     * first is skipped (said on stderr); SIGINT ends the series. */
+    /* --tries: the roads one after the other, each with an equal share of
+     * the time left; of the certified ones the finest, then the shortest,
+     * is kept. A road that fails after the first is skipped (said on
+     * stderr); SIGINT ends the series. */
     tr_engine *e = NULL;
     tighten_result r = {0};
     int have = 0;
+    double t0 = tr_clock_seconds();
     for (long t = 0; t < o.tries && !(have && stop_requested); t++) {
         tighten_opts ot = o;
         ot.try_index = (int)t;
-        ot.road_from = have ? &r.fin : NULL;
+        if (t > 0 && multi_level(&o)) {
+            ot.n = road_coarse_n(&o, (int)t);
+            ot.inflate = t % 2 ? ROAD_INFLATE : 1.0;
+        } else
+            ot.road_from = have ? &r.fin : NULL;
+        /* a road that jams early leaves its time to the roads after it */
         if (o.time_limit > 0)
-            ot.time_limit = o.time_limit / (double)o.tries;
+            ot.time_limit = fmax(o.time_limit - (tr_clock_seconds() - t0), 0.05 * o.time_limit) / (double)(o.tries - t);
+        if (o.tries > 1 && t > 0 && !o.quiet)
+            fprintf(stderr, "tightrope tighten: road %ld of %ld: %s\n", t + 1, o.tries,
+                    ot.road_from ? "the shortest result so far, moved"
+                    : ot.inflate != 1.0 ? "the start again, inflated 1.5 times, from another coarse count"
+                                        : "the start again, from another coarse count");
         tr_engine *et;
         tighten_result rt;
         rc = one_road(&ot, &et, &rt);
@@ -924,7 +981,9 @@ int tr_tighten_command(int argc, char **argv, tr_tighten_report *rep)
         }
         if (o.tries > 1 && !o.quiet)
             fprintf(stderr, "tightrope tighten: road %ld of %ld: ropelength %.9f\n", t + 1, o.tries, rt.th.ropelength);
-        if (!have || rt.th.ropelength < r.th.ropelength) {
+        /* a road that ran out of time on a coarse level has not reached
+         * the N asked for: the finest road wins, then the shortest */
+        if (!have || rt.fin.nv > r.fin.nv || (rt.fin.nv == r.fin.nv && rt.th.ropelength < r.th.ropelength)) {
             if (have) {
                 tr_curve_free(&r.fin);
                 tr_engine_destroy(e);
