@@ -30,8 +30,10 @@ static int write_ckpt(void *user, const tr_curve *best, tr_error *err)
 static void show(void *user, const tr_newton_progress *p)
 {
     (void)user;
-    printf("it %3d outer %2d  length %.10f  viol %.2e  stat %.2e  mu %.1e  lm %.1e  step %.3f  struts %zu active %zu  %.2f s\n",
-           p->iter, p->outer, p->length, p->viol, p->stat, p->mu, p->lm, p->step, p->struts, p->active, p->seconds);
+    printf("it %3d outer %2d  length %.10f  viol %.2e (e %.0e m %.0e s %.0e)  stat %.2e  mu %.1e  lm %.1e  step %.3f  struts %zu "
+           "active %zu  %.2f s\n",
+           p->iter, p->outer, p->length, p->viol, p->viol_edge, p->viol_minrad, p->viol_strut, p->stat, p->mu, p->lm,
+           p->step, p->struts, p->active, p->seconds);
     fflush(stdout);
 }
 
@@ -77,6 +79,9 @@ int main(int argc, char **argv)
     p.progress = show;
     if (argc > 4)
         p.time_limit = atof(argv[4]);
+    /* the bend cap, for measuring it (newton.h max_bend) */
+    if (getenv("NEWTON_MAX_BEND"))
+        p.max_bend = atof(getenv("NEWTON_MAX_BEND"));
     char ckpt[4096];
     if (argc > 5) {
         snprintf(ckpt, sizeof ckpt, "%s.ckpt", argv[2]);
@@ -107,6 +112,10 @@ int main(int argc, char **argv)
            st.ropelength_after, st.iters, st.outer, st.factorizations, st.analyses, st.rebuilds, st.seconds, st.t_eval, st.t_rows,
            st.t_factor, st.t_analyze, st.t_solve, st.t_search, st.t_value, st.t_rebuild, st.max_viol, st.stat, st.struts, st.active, st.warm_residual,
            st.why_rejected ? " - " : "", st.why_rejected ? st.why_rejected : "");
+    printf("memory at the largest factorisation: Hessian triplets %zu (%.0f MB), compressed entries %zu (%.0f MB with the "
+           "kept pattern), factor entries %zu (%.0f MB)\n",
+           st.hess_triplets, 24e-6 * (double)st.hess_triplets, st.hess_entries, 20e-6 * (double)st.hess_entries,
+           st.factor_entries, 8e-6 * (double)st.factor_entries);
     if (st.accepted && tr_curve_write(argv[2], TR_FORMAT_AUTO, &c, "newton_run", &err)) {
         fprintf(stderr, "newton_run: %s\n", err.msg);
         return 1;

@@ -35,6 +35,7 @@ void tr_newton_params_default(tr_newton_params *p)
     p->max_inner = 15;
     p->skin = 0.08;
     p->max_move = p->skin / 8;
+    p->max_bend = 0.05;
     p->mu0 = 10.0;
     p->warm_start = 1;
     p->mu_max = 1e5;
@@ -92,12 +93,17 @@ static int newton_dir(solver *s, const double *grad, double *dir, double *lm, tr
                          .x = s->tx, .stype = 1, .itype = CHOLMOD_LONG, .xtype = CHOLMOD_REAL,
                          .dtype = CHOLMOD_DOUBLE};
     cholmod_sparse *A = cholmod_l_triplet_to_sparse(&T, T.nnz, cm);
-    int same = s->L && s->pat_nz == s->nz && !memcmp(s->pat_i, s->ti, s->nz * sizeof *s->ti) &&
-               !memcmp(s->pat_j, s->tj, s->nz * sizeof *s->tj);
     size_t full = s->nz;
     s->nz = nz;
     if (!A)
         return tr_fail(err, TR_ENOMEM, "out of memory (Hessian)");
+    /* the last analysis holds while the compressed pattern is the same (it
+     * is kept, not the triplets': duplicates summed, it is about a quarter
+     * of their size, and the triplets are most of the solver's memory) */
+    const SuiteSparse_long *Ap = A->p, *Ai = A->i;
+    size_t annz = (size_t)Ap[s->n];
+    int same = s->L && s->pat_nz == annz && !memcmp(s->pat_p, Ap, (s->n + 1) * sizeof *Ap) &&
+               !memcmp(s->pat_i, Ai, annz * sizeof *Ai);
     int rc = TR_OK;
     if (!same) {
         cholmod_l_free_factor(&s->L, cm);
@@ -108,19 +114,22 @@ static int newton_dir(solver *s, const double *grad, double *dir, double *lm, tr
             rc = tr_fail(err, TR_ENOMEM, "CHOLMOD could not analyse the Hessian (status %d)", cm->status);
             goto done;
         }
-        SuiteSparse_long *pi = realloc(s->pat_i, full * sizeof *pi), *pj = pi ? realloc(s->pat_j, full * sizeof *pj) : NULL;
+        SuiteSparse_long *pi = realloc(s->pat_i, (annz ? annz : 1) * sizeof *pi),
+                         *pp = pi ? realloc(s->pat_p, (s->n + 1) * sizeof *pp) : NULL;
         if (pi)
             s->pat_i = pi;
-        if (pj) {
-            s->pat_j = pj;
-            memcpy(s->pat_i, s->ti, full * sizeof *pi);
-            memcpy(s->pat_j, s->tj, full * sizeof *pj);
-            s->pat_nz = full;
+        if (pp) {
+            s->pat_p = pp;
+            memcpy(s->pat_p, Ap, (s->n + 1) * sizeof *pp);
+            memcpy(s->pat_i, Ai, annz * sizeof *pi);
+            s->pat_nz = annz;
         } else
-            s->pat_nz = 0; /* analysed again next time: slower, as correct */
+            s->pat_nz = (size_t)-1; /* analysed again next time: slower, as correct */
         st->analyses++;
     }
     cholmod_factor *L = s->L;
+    st->hess_triplets = st->hess_triplets > full ? st->hess_triplets : full;
+    st->hess_entries = st->hess_entries > annz ? st->hess_entries : annz;
     /* rounding's share only: the gauge holds the rigid motions */
     double floor_shift = 1e-14 * dmax, shift = fmax(*lm, floor_shift);
     for (int tries = 0;; tries++) {
@@ -136,6 +145,10 @@ static int newton_dir(solver *s, const double *grad, double *dir, double *lm, tr
         shift = fmax(shift * 10.0, 1e-8 * dmax);
     }
     *lm = shift;
+    {
+        size_t fe = L->is_super ? L->xsize : L->nzmax;
+        st->factor_entries = st->factor_entries > fe ? st->factor_entries : fe;
+    }
     double t1 = tr_clock_seconds();
     st->t_factor += t1 - t0;
     cholmod_dense *b = cholmod_l_allocate_dense(s->n, 1, s->n, CHOLMOD_REAL, cm);
@@ -184,7 +197,7 @@ static void solver_free(solver *s)
     free(s->tj);
     free(s->tx);
     free(s->pat_i);
-    free(s->pat_j);
+    free(s->pat_p);
     free(s->best_y);
     free(s->cv);
     tr_curve_free(&s->probe);
@@ -248,6 +261,36 @@ static int solver_init(solver *s, const tr_curve *cv, double scale, tr_error *er
             s->cv[s->ncv++] = i;
     tr_newton_i_set_gauge(s);
     return tr_nsearch_build(&s->ns, &s->w, err);
+}
+
+/* The largest change of a vertex's curvature along dir, |dw| / l0^2 (w the
+ * second difference x_{i+1} - 2 x_i + x_{i-1}, |w| = l0^2 kappa): the
+ * MinRad rows the Newton matrix leaves out (inactive) see only the model's
+ * tension, which resists a kink of angle phi by l0 phi^2 / 8 alone, so a
+ * step's second differences must stay small against l0^2, a scale that
+ * falls like 1 / N^2 (at N = 38 400 the first steps, 2.5e-3 long, took
+ * MinRad's violation from 0.05 to 0.37, and the solve wandered for 1500
+ * steps; capped at 0.05 it settled in 405). The cap is p->max_bend, on a
+ * tight start whose start multipliers are poor only (CAUTIOUS_RESIDUAL). */
+/* The start multipliers (conjugate gradients, warm_start.c) leave 0.30 and
+ * 0.58 of the tension unbalanced at N = 9600 and 19 200 from the N = 2400
+ * trefoil, 0.99 at 38 400 from the converged 19 200. Below this the
+ * curvature cap only slows the solve (9600: 375 steps against 225 at 0.05,
+ * 300 at 0.1, 240 at 0.2); above it, it is what settled the 38 400 solve. */
+#define CAUTIOUS_RESIDUAL 0.75
+static double max_bend_change(const solver *s, const double *dir)
+{
+    double m = 0.0;
+    for (size_t i = 0; i < s->nv; i++) {
+        size_t ip = s->prev[i], in = s->next[i];
+        if (ip == NONE || in == NONE)
+            continue;
+        double dw[3], l0 = s->l0[s->comp[i]];
+        for (int d = 0; d < 3; d++)
+            dw[d] = dir[3 * in + (size_t)d] - 2.0 * dir[3 * i + (size_t)d] + dir[3 * ip + (size_t)d];
+        m = fmax(m, v3_norm(dw) / (l0 * l0));
+    }
+    return m;
 }
 
 /* The largest vertex displacement of dir (3 nv entries). */
@@ -391,7 +434,7 @@ static int minimise(solver *s, double *y, tr_newton_stats *st, double t0, tr_err
         s->oom = 0;
         double f = tr_newton_i_al_eval(s, y, grad, 1);
         /* the line search's trial evaluations overwrite these */
-        double len_y = s->length, viol_y = s->viol;
+        double len_y = s->length, viol_y = s->viol, vk[3] = {s->viol_kind[0], s->viol_kind[1], s->viol_kind[2]};
         st->t_eval += tr_clock_seconds() - te;
         if (s->oom) {
             rc = tr_fail(err, TR_ENOMEM, "out of memory (Hessian)");
@@ -479,6 +522,9 @@ static int minimise(solver *s, double *y, tr_newton_stats *st, double t0, tr_err
             cap = 1.0;
             if (mv > p->max_move)
                 cap = p->max_move / mv;
+            double bend = isfinite(s->max_bend) ? max_bend_change(s, dir) : 0.0;
+            if (bend * cap > s->max_bend)
+                cap = s->max_bend / bend;
             for (int k = 0; k < s->nc; k++) {
                 double dl = fabs(dir[3 * nv + (size_t)k]);
                 if (dl * cap > 0.1 * s->l0[k])
@@ -509,6 +555,7 @@ static int minimise(solver *s, double *y, tr_newton_stats *st, double t0, tr_err
         inner++;
         if (p->progress) {
             tr_newton_progress pr = {.iter = it, .outer = st->outer, .length = len_y, .viol = viol_y,
+                                     .viol_edge = vk[0], .viol_minrad = vk[1], .viol_strut = vk[2],
                                      .stat = stat, .mu = s->mu * s->l0min, .lm = lm, .step = ok ? alpha : 0.0,
                                      .struts = s->nsp, .active = s->active, .seconds = tr_clock_seconds() - t0};
             p->progress(p->user, &pr);
@@ -562,7 +609,7 @@ static int prepare(solver *s, const tr_curve *cv, double unit, double **y, tr_ne
     if ((rc = tr_newton_i_rebuild(s, *y, err)))
         return rc;
     st->t_rebuild += tr_clock_seconds() - tr;
-    s->warm_residual = 1.0;
+    s->warm_residual = s->start_residual = 1.0;
     /* a stop asked for during the list's build: the minimisation stops at
      * once, so the warm start would be time lost */
     if (s->p->stop && *s->p->stop)
@@ -582,8 +629,9 @@ int tr_newton(tr_curve *cv, const tr_newton_params *prm, tr_newton_stats *st, tr
     memset(st, 0, sizeof *st);
     double t0 = tr_clock_seconds();
     int constrained = has_constrained_vertex(cv);
-    if (!(prm->max_move > 0 && prm->max_move <= prm->skin / 8) || prm->max_iter < 1 || prm->max_inner < 1)
-        return tr_fail(err, TR_EINVAL, "newton: need 0 < max_move <= skin / 8 and at least one iteration");
+    if (!(prm->max_move > 0 && prm->max_move <= prm->skin / 8) || !(prm->max_bend > 0) || prm->max_iter < 1 ||
+        prm->max_inner < 1)
+        return tr_fail(err, TR_EINVAL, "newton: need 0 < max_move <= skin / 8, max_bend > 0 and at least one iteration");
     tr_thickness th0;
     int rc = tr_thickness_measure(cv, NULL, &th0, NULL, err);
     if (rc)
@@ -653,7 +701,14 @@ int tr_newton(tr_curve *cv, const tr_newton_params *prm, tr_newton_stats *st, tr
      * refined to 2 x 100: MinRad 1.18, struts 1.999) the stiff rows stall
      * the steps as from a loose start (4445 steps against 124). */
     int minrad_pressed = pressed && th0.minrad < 1.0 - CONSTRAINED_OUT_TOL;
+    s.max_bend = INFINITY;
     if ((overshoot && s.warm_residual < TIGHT_RESIDUAL) || minrad_pressed) {
+        /* a tight start's steps are small: where the multipliers it
+         * starts with hold less than a quarter of the tension, the
+         * curvature cap holds them to the model (max_bend_change); a loose
+         * start's steps may not be small */
+        if (s.start_residual > CAUTIOUS_RESIDUAL)
+            s.max_bend = prm->max_bend;
         /* the same rows, rescaled: the multipliers scale with them */
         double f = MINRAD_ROW_SCALE_TIGHT / MINRAD_ROW_SCALE_LOOSE;
         for (int k = 0; k < s.nc; k++)

@@ -29,7 +29,9 @@
  * is sparse (the chain's 3x3 blocks, a 12 x 12 block per active strut, one
  * dense row per component for l_k) and factored by CHOLMOD (LL^T; when it is
  * not positive definite a multiple of I is added, Levenberg-Marquardt), the
- * step is capped so no vertex moves more than max_move, and an Armijo line
+ * step is capped so no vertex moves more than max_move (and, on a tight
+ * start with poor first multipliers, no vertex's curvature changes by more
+ * than max_bend; newton.c), and an Armijo line
  * search on L_A accepts it. A direction that is no descent (the factor of a
  * nearly singular matrix is inaccurate) or that would move a vertex more
  * than 4 max_move (a soft mode nothing holds yet: the whole rope shrinking
@@ -109,6 +111,7 @@ typedef struct tr_newton_progress {
     int iter, outer;
     double length;    /* sum of the edges */
     double viol;      /* worst relative violation (edge / l, MinRad, strut (2 - d) / 2) */
+    double viol_edge, viol_minrad, viol_strut; /* the same by kind of row */
     double stat;      /* |grad L_A|_inf / l0: unbalanced force relative to the tension */
     double mu, lm;    /* penalty (times l0), Levenberg shift used (0 if none) */
     double step;      /* accepted step fraction */
@@ -124,6 +127,7 @@ typedef struct tr_newton_params {
     int max_inner;     /* Newton steps between multiplier updates */
     double skin;       /* strut list cutoff 2 + skin */
     double max_move;   /* per-vertex cap on one step (<= skin / 8) */
+    double max_bend;   /* per-vertex cap on one step's change of curvature, |dw| / l0^2 */
     double mu0;        /* first penalty, in units of 1 / l0 */
     double mu_max;     /* largest penalty, likewise */
     double viol_tol;   /* converged: worst relative violation below this ... */
@@ -166,6 +170,11 @@ typedef struct tr_newton_stats {
      * call, transfers included); the line search's evaluations (part of
      * t_search, which also holds the factorisations it asks for) */
     double t_rows, t_value;
+    /* the memory the factorisations took, at their largest: the Hessian's
+     * triplets (24 bytes each), its compressed entries (duplicates summed;
+     * 12 bytes each, and 8 for the pattern kept to skip analyses) and the
+     * factor's entries */
+    size_t hess_triplets, hess_entries, factor_entries;
     const char *why_rejected; /* static text */
 } tr_newton_stats;
 

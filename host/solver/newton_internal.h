@@ -43,6 +43,7 @@ typedef struct solver {
     double *best_y, best_rl;
     double t_ckpt; /* when the last checkpoint went out (or the solve began) */
     double warm_residual; /* |t - J^T lambda| / |t| after the warm start; 1 without one */
+    double start_residual; /* the same for the multipliers the solve starts with (1 without) */
     double *lam_e, *lam_m, *pi_e, *pi_m; /* per edge (by first vertex) / vertex */
     double *pi_s;
     strut_row *sp;
@@ -53,10 +54,10 @@ typedef struct solver {
     SuiteSparse_long *ti, *tj;
     double *tx;
     int oom;
-    /* the symbolic factor of the last pattern, kept while the pattern
-     * (the triplets' rows and columns, in al_eval's order) stays */
+    /* the symbolic factor of the last pattern, kept while the Hessian's
+     * compressed pattern stays (newton_dir) */
     cholmod_factor *L;
-    SuiteSparse_long *pat_i, *pat_j;
+    SuiteSparse_long *pat_p, *pat_i; /* the last analysed Hessian's compressed pattern */
     size_t pat_nz;
     /* gauge: 6 coordinates held, so that no rigid motion is left in the
      * Hessian's null space (a Levenberg shift there would also damp the
@@ -67,6 +68,8 @@ typedef struct solver {
     size_t *cv, ncv;
     /* results of the last evaluation */
     double viol, dmin, length;
+    double viol_kind[3]; /* viol by kind of row: edges, MinRad, struts */
+    double max_bend;     /* the step's curvature cap (p->max_bend on a tight start, else none) */
     size_t active;
     cholmod_common cm;
     /* the strut rows by p->backend (solver_rows.h): the list as it takes

@@ -121,7 +121,7 @@ double tr_newton_i_al_eval(solver *s, const double *y, double *grad, int hess)
 {
     size_t nv = s->nv;
     const double *x = y, *l = y + 3 * nv;
-    double mu = s->mu, f = 0.0, viol = 0.0, dmin = INFINITY, len = 0.0;
+    double mu = s->mu, f = 0.0, ve = 0.0, vm = 0.0, vs = 0.0, dmin = INFINITY, len = 0.0;
     double tv = tr_clock_seconds();
     if (grad)
         memset(grad, 0, s->n * sizeof *grad);
@@ -147,7 +147,7 @@ double tr_newton_i_al_eval(solver *s, const double *y, double *grad, int hess)
         double h = el - l[k];
         double pi = s->lam_e[a] - mu * h;
         f += -s->lam_e[a] * h + 0.5 * mu * h * h;
-        viol = fmax(viol, fabs(h) / s->l0[k]);
+        ve = fmax(ve, fabs(h) / s->l0[k]);
         if (!grad)
             continue;
         s->pi_e[a] = pi;
@@ -175,7 +175,7 @@ double tr_newton_i_al_eval(solver *s, const double *y, double *grad, int hess)
         double w2 = v3_dot(w, w), S = s->scale_m[k];
         double g = (c - w2) / S, pi;
         f += ineq_term(g, s->lam_m[i], mu, &pi);
-        viol = fmax(viol, 0.5 * (w2 / c - 1.0));
+        vm = fmax(vm, 0.5 * (w2 / c - 1.0));
         if (!grad)
             continue;
         s->pi_m[i] = pi;
@@ -219,7 +219,7 @@ double tr_newton_i_al_eval(solver *s, const double *y, double *grad, int hess)
         f = dev.sum;
     if (on_dev && !grad) {
         dmin = fmin(dmin, dev.dmin);
-        viol = fmax(viol, 0.5 * (2.0 - dev.dmin));
+        vs = fmax(vs, 0.5 * (2.0 - dev.dmin));
     }
     for (size_t r = 0; r < s->nsp && !(on_dev && !grad); r++) {
         size_t a = s->sp[r].a, b = s->sp[r].b, na = s->next[a], nb = s->next[b];
@@ -229,7 +229,7 @@ double tr_newton_i_al_eval(solver *s, const double *y, double *grad, int hess)
         double pi, term = ineq_term(d - 2.0, s->sp[r].lam, mu, &pi);
         if (!on_dev)
             f += term;
-        viol = fmax(viol, 0.5 * (2.0 - d));
+        vs = fmax(vs, 0.5 * (2.0 - d));
         if (!grad)
             continue;
         s->pi_s[r] = pi;
@@ -268,7 +268,10 @@ double tr_newton_i_al_eval(solver *s, const double *y, double *grad, int hess)
                     tr_newton_i_tri_push(s, 3 * s->cv[q] + (size_t)r, 3 * s->cv[q] + (size_t)c, v);
             }
     }
-    s->viol = viol;
+    s->viol = fmax(ve, fmax(vm, vs));
+    s->viol_kind[0] = ve;
+    s->viol_kind[1] = vm;
+    s->viol_kind[2] = vs;
     s->dmin = dmin;
     s->length = len;
     if (grad)

@@ -274,6 +274,7 @@ int tr_newton_i_warm_multipliers(solver *s, const double *y, tr_error *err)
     for (size_t k = 0; k < nx; k++)
         tt += t[k] * t[k];
     double res = unbalanced2(t, w, nx);
+    s->start_residual = tt > 0.0 ? sqrt(res / tt) : 0.0;
     /* the damped least squares' clipped multipliers: a second bound on the
      * tension nonnegative multipliers can hold */
     if (tt > 0.0) {
