@@ -4,6 +4,9 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "geometry/neighbour_search.h"
+#include "geometry/struts.h"
+
 #include "segment_distance.h"
 
 /* the distance between edges a and b at the positions the list was built at */
@@ -25,28 +28,105 @@ static int is_local_min(const solver *s, size_t a, size_t b, double d)
     return over_b || over_a;
 }
 
-/* Of the pairs within the cutoff (sorted), keeps those within NEAR_MIN
- * places along either strand of a local minimum of the distance: a strand
- * pair in contact has ~1/edge pairs within any fixed cutoff, but the
- * constraint is the distance between the strands, which the local minima
- * carry; their neighbours keep the contact from slipping between list
- * rebuilds, which follow the motion (minimise). */
+/* The list keeps the pairs within NEAR_MIN places along either strand of
+ * a local minimum of the distance (within the cutoff): a strand pair in
+ * contact has ~1/edge pairs within any fixed cutoff, but the constraint is
+ * the distance between the strands, which the local minima carry; their
+ * neighbours keep the contact from slipping between list rebuilds, which
+ * follow the motion (minimise). The pairs within the cutoff are not stored
+ * on the way: they are ~1/edge per edge in contact, so their number grows
+ * like N^2 (some 1e8 pairs, 2.5 GB, at N = 38 400; at 102 400 a rebuild
+ * took the solve from 15 to 23.5 GB), where the minima are a few per edge.
+ * The search reports each pair once; only the local minima are kept, and
+ * their neighbourhoods are added after. */
 #define NEAR_MIN 2
-static size_t keep_near_minima(solver *s, strut_row *r, size_t n)
+
+typedef struct list_build {
+    const solver *s;
+    double cutoff;
+    tr_strut_pair *out;
+    size_t n, cap;
+    int oom;
+} list_build;
+
+static void push_pair(list_build *lb, size_t a, size_t b)
 {
-    unsigned char *keep = calloc(n ? n : 1, 1);
-    if (!keep)
-        return n; /* keep them all: slower, as correct */
-    for (size_t i = 0; i < n; i++) {
-        if (!is_local_min(s, r[i].a, r[i].b, pair_dist(s, r[i].a, r[i].b)))
-            continue;
-        /* mark (a', b') with a' within NEAR_MIN of a and b' within NEAR_MIN of b */
+    if (lb->n == lb->cap) {
+        size_t nc = lb->cap ? 2 * lb->cap : 1024;
+        tr_strut_pair *g = realloc(lb->out, nc * sizeof *g);
+        if (!g) {
+            lb->oom = 1;
+            return;
+        }
+        lb->out = g;
+        lb->cap = nc;
+    }
+    lb->out[lb->n++] = (tr_strut_pair){.a = a < b ? a : b, .b = a < b ? b : a, .lam = 0.0};
+}
+
+/* the search's callback: a pair within the cutoff that is a local minimum */
+static int take_minimum(void *v, size_t ei, size_t ej, double *cutoff)
+{
+    (void)cutoff;
+    list_build *lb = v;
+    const solver *s = lb->s;
+    const tr_nsearch *ns = &s->ns;
+    if (tr_nsearch_excluded(ns, ei, ej, (size_t)s->gap[ns->ecomp[ei]]))
+        return 0;
+    size_t a = ns->ea[ei], b = ns->ea[ej];
+    if (a > b) {
+        size_t t = a;
+        a = b;
+        b = t;
+    }
+    double d = pair_dist(s, a, b);
+    if (d < lb->cutoff && is_local_min(s, a, b, d))
+        push_pair(lb, a, b);
+    return lb->oom;
+}
+
+/* sorts the pairs and drops repeats */
+static size_t sort_unique(tr_strut_pair *r, size_t n)
+{
+    if (n == 0)
+        return 0;
+    qsort(r, n, sizeof *r, tr_strut_pair_cmp);
+    size_t m = 1;
+    for (size_t i = 1; i < n; i++)
+        if (tr_strut_pair_cmp(&r[i], &r[m - 1]) != 0)
+            r[m++] = r[i];
+    return m;
+}
+
+/* The list at s->w.x: the local minima, then every pair (a', b') within
+ * NEAR_MIN of a minimum (a, b) along both strands that the search would
+ * have reported (an edge each, not excluded, within the cutoff). */
+static int build_list(solver *s, double cutoff, tr_strut_pair **list, size_t *n_list, tr_error *err)
+{
+    const tr_nsearch *ns = &s->ns;
+    list_build lb = {.s = s, .cutoff = cutoff};
+    double cut = cutoff;
+    int gmin = s->gap[0];
+    for (int k = 1; k < s->nc; k++)
+        gmin = s->gap[k] < gmin ? s->gap[k] : gmin;
+    tr_nsearch_pairs(ns, &cut, (size_t)gmin, 0, take_minimum, &lb);
+    size_t *edge_of = lb.oom ? NULL : malloc(s->nv * sizeof *edge_of);
+    if (!edge_of) {
+        free(lb.out);
+        return tr_fail(err, TR_ENOMEM, "out of memory (strut list)");
+    }
+    for (size_t i = 0; i < s->nv; i++)
+        edge_of[i] = NONE;
+    for (size_t e = 0; e < ns->ne; e++)
+        edge_of[ns->ea[e]] = e;
+    size_t nmin = sort_unique(lb.out, lb.n);
+    lb.n = nmin;
+    for (size_t i = 0; i < nmin && !lb.oom; i++) {
         size_t av[2 * NEAR_MIN + 1], bv[2 * NEAR_MIN + 1];
         int na = 0, nb = 0;
-        av[na++] = r[i].a;
-        bv[nb++] = r[i].b;
+        size_t a0 = lb.out[i].a, b0 = lb.out[i].b;
         for (int side = 0; side < 2; side++) {
-            size_t u = r[i].a, v = r[i].b;
+            size_t u = a0, v = b0;
             for (int g = 0; g < NEAR_MIN; g++) {
                 u = u == NONE ? NONE : (side ? s->next[u] : s->prev[u]);
                 v = v == NONE ? NONE : (side ? s->next[v] : s->prev[v]);
@@ -56,20 +136,38 @@ static size_t keep_near_minima(solver *s, strut_row *r, size_t n)
                     bv[nb++] = v;
             }
         }
+        av[na++] = a0;
+        bv[nb++] = b0;
         for (int ia = 0; ia < na; ia++)
             for (int ib = 0; ib < nb; ib++) {
-                strut_row q = {.a = av[ia] < bv[ib] ? av[ia] : bv[ib], .b = av[ia] < bv[ib] ? bv[ib] : av[ia]};
-                strut_row *hit = bsearch(&q, r, n, sizeof *r, tr_strut_pair_cmp);
-                if (hit)
-                    keep[hit - r] = 1;
+                size_t a = av[ia], b = bv[ib];
+                if ((ia == na - 1 && ib == nb - 1) || a == b)
+                    continue;
+                size_t ea = edge_of[a], eb = edge_of[b];
+                if (tr_nsearch_excluded(ns, ea, eb, (size_t)s->gap[ns->ecomp[ea]]))
+                    continue;
+                if (pair_dist(s, a < b ? a : b, a < b ? b : a) < cutoff)
+                    push_pair(&lb, a, b);
             }
     }
-    size_t m = 0;
-    for (size_t i = 0; i < n; i++)
-        if (keep[i])
-            r[m++] = r[i];
-    free(keep);
-    return m;
+    free(edge_of);
+    if (lb.oom) {
+        free(lb.out);
+        return tr_fail(err, TR_ENOMEM, "out of memory (strut list)");
+    }
+    lb.n = sort_unique(lb.out, lb.n);
+    /* a pair already listed keeps its multiplier */
+    size_t j = 0;
+    for (size_t i = 0; i < lb.n; i++) {
+        while (j < *n_list && tr_strut_pair_cmp(&(*list)[j], &lb.out[i]) < 0)
+            j++;
+        if (j < *n_list && tr_strut_pair_cmp(&(*list)[j], &lb.out[i]) == 0)
+            lb.out[i].lam = (*list)[j].lam;
+    }
+    free(*list);
+    *list = lb.out;
+    *n_list = lb.n;
+    return TR_OK;
 }
 
 /* Rebuilds the strut list at y, carrying the multipliers of kept pairs. */
@@ -77,10 +175,9 @@ int tr_newton_i_rebuild(solver *s, const double *y, tr_error *err)
 {
     memcpy(s->w.x, y, 3 * s->nv * sizeof *y);
     tr_nsearch_refit(&s->ns);
-    int rc = tr_strut_candidates(&s->ns, s->w.x, s->next, s->gap, s->nc, 2.0 + s->p->skin, &s->sp, &s->nsp, err);
+    int rc = build_list(s, 2.0 + s->p->skin, &s->sp, &s->nsp, err);
     if (rc)
         return rc;
-    s->nsp = keep_near_minima(s, s->sp, s->nsp);
     free(s->pi_s);
     s->pi_s = calloc(s->nsp ? s->nsp : 1, sizeof *s->pi_s);
     if (!s->pi_s)
