@@ -39,6 +39,17 @@ int tr_strut_pair_cmp(const void *x, const void *y)
     return a->b < b->b ? -1 : (a->b > b->b);
 }
 
+void tr_strut_pairs_carry(const tr_strut_pair *from, size_t nfrom, tr_strut_pair *to, size_t nto)
+{
+    size_t j = 0;
+    for (size_t i = 0; i < nto; i++) {
+        while (j < nfrom && tr_strut_pair_cmp(&from[j], &to[i]) < 0)
+            j++;
+        if (j < nfrom && tr_strut_pair_cmp(&from[j], &to[i]) == 0)
+            to[i].lam = from[j].lam;
+    }
+}
+
 typedef struct collect {
     const tr_nsearch *ns;
     const double *x;
@@ -93,13 +104,7 @@ int tr_strut_candidates(const tr_nsearch *ns, const double *x, const size_t *nex
     }
     if (cl.n)
         qsort(cl.out, cl.n, sizeof *cl.out, tr_strut_pair_cmp);
-    size_t j = 0;
-    for (size_t i = 0; i < cl.n; i++) {
-        while (j < *n_list && tr_strut_pair_cmp(&(*list)[j], &cl.out[i]) < 0)
-            j++;
-        if (j < *n_list && tr_strut_pair_cmp(&(*list)[j], &cl.out[i]) == 0)
-            cl.out[i].lam = (*list)[j].lam;
-    }
+    tr_strut_pairs_carry(*list, *n_list, cl.out, cl.n);
     free(*list);
     *list = cl.out;
     *n_list = cl.n;

@@ -40,6 +40,10 @@ typedef struct tr_strut_pair {
 /* Orders pairs by (a, b), for qsort and bsearch. */
 int tr_strut_pair_cmp(const void *x, const void *y);
 
+/* Gives each pair of to (sorted, nto) that is also in from (sorted, nfrom)
+ * the multiplier it has there. */
+void tr_strut_pairs_carry(const tr_strut_pair *from, size_t nfrom, tr_strut_pair *to, size_t nto);
+
 /* Every pair of edges of the curve in ns (positions x, edge a from a to
  * next[a]) not excluded by its component's gap (gap[k], along the curve)
  * and closer than cutoff, sorted by (a, b); a pair also in *list (sorted,

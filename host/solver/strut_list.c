@@ -157,13 +157,7 @@ static int build_list(solver *s, double cutoff, tr_strut_pair **list, size_t *n_
     }
     lb.n = sort_unique(lb.out, lb.n);
     /* a pair already listed keeps its multiplier */
-    size_t j = 0;
-    for (size_t i = 0; i < lb.n; i++) {
-        while (j < *n_list && tr_strut_pair_cmp(&(*list)[j], &lb.out[i]) < 0)
-            j++;
-        if (j < *n_list && tr_strut_pair_cmp(&(*list)[j], &lb.out[i]) == 0)
-            lb.out[i].lam = (*list)[j].lam;
-    }
+    tr_strut_pairs_carry(*list, *n_list, lb.out, lb.n);
     free(*list);
     *list = lb.out;
     *n_list = lb.n;
