@@ -344,8 +344,8 @@ static int parse_options(int argc, char **argv, tighten_opts *o)
 /* A start at thickness 1 (after --scale) whose edges are longer than the
  * engine takes (a KnotPlot start of 101 vertices: edges of 1.31) is
  * resampled along a spline through its vertices to edges of about
- * COARSE_EDGE, and scaled back to its thickness (1 after --scale; the
- * spline changes it a little), instead of being refused: the user asked for a rope, not for a
+ * COARSE_EDGE, and scaled to thickness 1 again (the spline changes it a
+ * little), instead of being refused: the user asked for a rope, not for a
  * vertex count. --refine-to, if given, caps the count as long as the edges
  * stay below MAX_COARSE_EDGE. */
 #define COARSE_EDGE 0.5
@@ -378,19 +378,15 @@ static int densify_coarse(const tighten_opts *o, tr_curve *c, tr_error *err)
         free(per);
         if (rc)
             return rc;
-        tr_thickness t, was;
-        if ((rc = tr_thickness_measure(c, NULL, &was, NULL, err))) {
-            tr_curve_free(&r);
-            return rc;
-        }
         tr_curve_free(c);
         *c = r;
+        tr_thickness t;
         if ((rc = tr_thickness_measure(c, NULL, &t, NULL, err)))
             return tr_fail_wrap(err, rc, "%s (resampled)", o->in);
         if (!(t.thickness > 0 && isfinite(t.thickness)))
             return tr_fail(err, TR_EGEOMETRY, "%s: resampled along a spline, it has thickness %g", o->in,
                            t.thickness);
-        scale_curve(c, was.thickness / t.thickness);
+        scale_curve(c, 1.0 / t.thickness);
         fprintf(stderr, "tightrope tighten: %s: too coarse for thickness 1; resampled along a spline to %zu vertices\n",
                 o->in, c->nv);
     }
