@@ -39,6 +39,20 @@ int tr_strut_pair_cmp(const void *x, const void *y)
     return a->b < b->b ? -1 : (a->b > b->b);
 }
 
+int tr_strut_pair_append(tr_strut_pair **p, size_t *n, size_t *cap, size_t a, size_t b)
+{
+    if (*n == *cap) {
+        size_t nc = *cap ? 2 * *cap : 1024;
+        tr_strut_pair *g = realloc(*p, nc * sizeof *g);
+        if (!g)
+            return -1;
+        *p = g;
+        *cap = nc;
+    }
+    (*p)[(*n)++] = (tr_strut_pair){.a = a < b ? a : b, .b = a < b ? b : a, .lam = 0.0};
+    return 0;
+}
+
 void tr_strut_pairs_carry(const tr_strut_pair *from, size_t nfrom, tr_strut_pair *to, size_t nto)
 {
     size_t j = 0;
@@ -74,18 +88,10 @@ static int collect_pair(void *vc, size_t ei, size_t ej, double *cutoff)
     double d = tr_segment_distance(x + 3 * a, x + 3 * cl->next[a], x + 3 * b, x + 3 * cl->next[b], &sp, &tp);
     if (!(d < cl->cutoff))
         return 0;
-    if (cl->n == cl->cap) {
-        size_t nc = cl->cap ? 2 * cl->cap : 1024;
-        tr_strut_pair *g2 = realloc(cl->out, nc * sizeof *g2);
-        if (!g2) {
-            cl->oom = 1;
-            return 1;
-        }
-        cl->out = g2;
-        cl->cap = nc;
+    if (tr_strut_pair_append(&cl->out, &cl->n, &cl->cap, a, b)) {
+        cl->oom = 1;
+        return 1;
     }
-    tr_strut_pair q = {.a = a < b ? a : b, .b = a < b ? b : a, .lam = 0.0};
-    cl->out[cl->n++] = q;
     return 0;
 }
 

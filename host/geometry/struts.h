@@ -40,6 +40,11 @@ typedef struct tr_strut_pair {
 /* Orders pairs by (a, b), for qsort and bsearch. */
 int tr_strut_pair_cmp(const void *x, const void *y);
 
+/* Appends the pair of edges a, b (as a < b, multiplier 0) to the growable
+ * list *p of *n pairs, room for *cap. Returns 0, or -1 out of memory (the
+ * list left as it was). */
+int tr_strut_pair_append(tr_strut_pair **p, size_t *n, size_t *cap, size_t a, size_t b);
+
 /* Gives each pair of to (sorted, nto) that is also in from (sorted, nfrom)
  * the multiplier it has there. */
 void tr_strut_pairs_carry(const tr_strut_pair *from, size_t nfrom, tr_strut_pair *to, size_t nto);

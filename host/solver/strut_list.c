@@ -49,19 +49,11 @@ typedef struct list_build {
     int oom;
 } list_build;
 
-static void push_pair(list_build *lb, size_t a, size_t b)
+/* edge v's index in the search's numbering (neighbour_search.h) */
+static size_t edge_index(const solver *s, size_t v)
 {
-    if (lb->n == lb->cap) {
-        size_t nc = lb->cap ? 2 * lb->cap : 1024;
-        tr_strut_pair *g = realloc(lb->out, nc * sizeof *g);
-        if (!g) {
-            lb->oom = 1;
-            return;
-        }
-        lb->out = g;
-        lb->cap = nc;
-    }
-    lb->out[lb->n++] = (tr_strut_pair){.a = a < b ? a : b, .b = a < b ? b : a, .lam = 0.0};
+    int k = s->comp[v];
+    return s->ns.estart[k] + (v - s->w.start[k]);
 }
 
 /* the search's callback: a pair within the cutoff that is a local minimum */
@@ -80,8 +72,8 @@ static int take_minimum(void *v, size_t ei, size_t ej, double *cutoff)
         b = t;
     }
     double d = pair_dist(s, a, b);
-    if (d < lb->cutoff && is_local_min(s, a, b, d))
-        push_pair(lb, a, b);
+    if (d < lb->cutoff && is_local_min(s, a, b, d) && tr_strut_pair_append(&lb->out, &lb->n, &lb->cap, a, b))
+        lb->oom = 1;
     return lb->oom;
 }
 
@@ -110,15 +102,6 @@ static int build_list(solver *s, double cutoff, tr_strut_pair **list, size_t *n_
     for (int k = 1; k < s->nc; k++)
         gmin = s->gap[k] < gmin ? s->gap[k] : gmin;
     tr_nsearch_pairs(ns, &cut, (size_t)gmin, 0, take_minimum, &lb);
-    size_t *edge_of = lb.oom ? NULL : malloc(s->nv * sizeof *edge_of);
-    if (!edge_of) {
-        free(lb.out);
-        return tr_fail(err, TR_ENOMEM, "out of memory (strut list)");
-    }
-    for (size_t i = 0; i < s->nv; i++)
-        edge_of[i] = NONE;
-    for (size_t e = 0; e < ns->ne; e++)
-        edge_of[ns->ea[e]] = e;
     size_t nmin = sort_unique(lb.out, lb.n);
     lb.n = nmin;
     for (size_t i = 0; i < nmin && !lb.oom; i++) {
@@ -143,14 +126,14 @@ static int build_list(solver *s, double cutoff, tr_strut_pair **list, size_t *n_
                 size_t a = av[ia], b = bv[ib];
                 if ((ia == na - 1 && ib == nb - 1) || a == b)
                     continue;
-                size_t ea = edge_of[a], eb = edge_of[b];
-                if (tr_nsearch_excluded(ns, ea, eb, (size_t)s->gap[ns->ecomp[ea]]))
+                size_t ea = edge_index(s, a);
+                if (tr_nsearch_excluded(ns, ea, edge_index(s, b), (size_t)s->gap[ns->ecomp[ea]]))
                     continue;
-                if (pair_dist(s, a < b ? a : b, a < b ? b : a) < cutoff)
-                    push_pair(&lb, a, b);
+                if (pair_dist(s, a < b ? a : b, a < b ? b : a) < cutoff &&
+                    tr_strut_pair_append(&lb.out, &lb.n, &lb.cap, a, b))
+                    lb.oom = 1;
             }
     }
-    free(edge_of);
     if (lb.oom) {
         free(lb.out);
         return tr_fail(err, TR_ENOMEM, "out of memory (strut list)");
