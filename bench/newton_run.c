@@ -31,9 +31,9 @@ static void show(void *user, const tr_newton_progress *p)
 {
     (void)user;
     printf("it %3d outer %2d  length %.10f  viol %.2e (e %.0e m %.0e s %.0e)  stat %.2e  mu %.1e  lm %.1e  step %.3f  struts %zu "
-           "active %zu  %.2f s\n",
+           "active %zu  worst MinRad at %zu  %.2f s\n",
            p->iter, p->outer, p->length, p->viol, p->viol_edge, p->viol_minrad, p->viol_strut, p->stat, p->mu, p->lm,
-           p->step, p->struts, p->active, p->seconds);
+           p->step, p->struts, p->active, p->worst_minrad, p->seconds);
     fflush(stdout);
 }
 

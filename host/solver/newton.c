@@ -435,6 +435,7 @@ static int minimise(solver *s, double *y, tr_newton_stats *st, double t0, tr_err
         double f = tr_newton_i_al_eval(s, y, grad, 1);
         /* the line search's trial evaluations overwrite these */
         double len_y = s->length, viol_y = s->viol, vk[3] = {s->viol_kind[0], s->viol_kind[1], s->viol_kind[2]};
+        size_t worst_m = s->worst_m;
         st->t_eval += tr_clock_seconds() - te;
         if (s->oom) {
             rc = tr_fail(err, TR_ENOMEM, "out of memory (Hessian)");
@@ -557,7 +558,8 @@ static int minimise(solver *s, double *y, tr_newton_stats *st, double t0, tr_err
             tr_newton_progress pr = {.iter = it, .outer = st->outer, .length = len_y, .viol = viol_y,
                                      .viol_edge = vk[0], .viol_minrad = vk[1], .viol_strut = vk[2],
                                      .stat = stat, .mu = s->mu * s->l0min, .lm = lm, .step = ok ? alpha : 0.0,
-                                     .struts = s->nsp, .active = s->active, .seconds = tr_clock_seconds() - t0};
+                                     .struts = s->nsp, .active = s->active, .worst_minrad = worst_m,
+                                     .seconds = tr_clock_seconds() - t0};
             p->progress(p->user, &pr);
         }
         /* next time, start from a tenth of the shift that worked; after

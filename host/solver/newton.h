@@ -116,6 +116,7 @@ typedef struct tr_newton_progress {
     double mu, lm;    /* penalty (times l0), Levenberg shift used (0 if none) */
     double step;      /* accepted step fraction */
     size_t struts, active; /* listed pairs, active strut rows */
+    size_t worst_minrad;   /* the vertex of the worst MinRad violation */
     double seconds;
 } tr_newton_progress;
 

@@ -69,6 +69,7 @@ typedef struct solver {
     /* results of the last evaluation */
     double viol, dmin, length;
     double viol_kind[3]; /* viol by kind of row: edges, MinRad, struts */
+    size_t worst_m;      /* the vertex of the worst MinRad violation */
     double max_bend;     /* the step's curvature cap (p->max_bend on a tight start, else none) */
     size_t active;
     cholmod_common cm;

@@ -121,6 +121,7 @@ double tr_newton_i_al_eval(solver *s, const double *y, double *grad, int hess)
 {
     size_t nv = s->nv;
     const double *x = y, *l = y + 3 * nv;
+    size_t wm = 0;
     double mu = s->mu, f = 0.0, ve = 0.0, vm = 0.0, vs = 0.0, dmin = INFINITY, len = 0.0;
     double tv = tr_clock_seconds();
     if (grad)
@@ -175,7 +176,10 @@ double tr_newton_i_al_eval(solver *s, const double *y, double *grad, int hess)
         double w2 = v3_dot(w, w), S = s->scale_m[k];
         double g = (c - w2) / S, pi;
         f += ineq_term(g, s->lam_m[i], mu, &pi);
-        vm = fmax(vm, 0.5 * (w2 / c - 1.0));
+        if (0.5 * (w2 / c - 1.0) > vm) {
+            vm = 0.5 * (w2 / c - 1.0);
+            wm = i;
+        }
         if (!grad)
             continue;
         s->pi_m[i] = pi;
@@ -272,6 +276,7 @@ double tr_newton_i_al_eval(solver *s, const double *y, double *grad, int hess)
     s->viol_kind[0] = ve;
     s->viol_kind[1] = vm;
     s->viol_kind[2] = vs;
+    s->worst_m = wm;
     s->dmin = dmin;
     s->length = len;
     if (grad)
