@@ -223,6 +223,33 @@ slurm)
   done
   check_table out
   ;;
+manifests)
+  # bench/knot_table_manifest.sh and bench/link_table_manifest.sh over the KnotPlot set (skipped
+  # without ../shared/data): every line's start exists and batch --list takes the manifest; the
+  # Hopf link and the 3-component unlink from theirs tighten to the polygons' closed forms in
+  # bench/data/link_ropelength.tsv (8 n tan(pi/n) and 3 x 2 n tan(pi/n) at n = 128; Cantarella,
+  # Kusner and Sullivan 2002 for the Hopf link's ideal shape).
+  shared=${TIGHTROPE_SHARED_DIR:-$src/../shared}
+  [ -f "$shared/data/tightknot_ropelength.tsv" ] || { echo "no $shared/data: skipped"; exit 77; }
+  SHARED=$shared bash "$src/bench/knot_table_manifest.sh" 8 >knots.tsv || fail "knot manifest"
+  SHARED=$shared bash "$src/bench/link_table_manifest.sh" 7 --scale --time-limit 30 >links.tsv || fail "link manifest"
+  [ "$(names knots.tsv | wc -l)" = 35 ] || fail "knots to 8 crossings: $(names knots.tsv | wc -l)"
+  [ "$(names links.tsv | wc -l)" = 21 ] || fail "links to 7 crossings: $(names links.tsv | wc -l)"
+  [ "$(awk -F'\t' '$1 == "2.2.1" { print $3 }' links.tsv)" = 128 ] || fail "Hopf link's N"
+  [ "$(awk -F'\t' '$1 == "7.2.1" { print $3 }' links.tsv)" = 196 ] || fail "7.2.1's N (56 x 7 / 2)"
+  for m in knots.tsv links.tsv; do
+    "$tr" batch $m -o list_$m --list >names.txt 2>err || fail "batch --list $m: $(cat err)"
+    [ "$(wc -l <names.txt)" = "$(names $m | wc -l)" ] || fail "batch --list $m"
+  done
+  ref=$src/bench/data/link_ropelength.tsv
+  for k in 2.2.1 0.3.1; do
+    "$tr" batch links.tsv -o out --only $k --compare "$ref" --quiet 2>>err.log || fail "batch $k: $(cat err.log)"
+  done
+  for k in 2.2.1 0.3.1; do
+    d=$(col out/table.tsv $k diff)
+    awk -v d="$d" 'BEGIN { exit !(d != "" && d + 0 >= -1e-9 && d + 0 <= 1e-5) }' || fail "$k: ours - closed form = '$d'"
+  done
+  ;;
 *) fail "unknown case $case_" ;;
 esac
 echo ok
