@@ -64,7 +64,6 @@ void tr_newton_params_default(tr_newton_params *p)
  * 0.21, to 38 400 0.29 (warm_start.c). */
 #define MINRAD_ROW_SCALE_LOOSE 4.0
 #define MINRAD_ROW_SCALE_TIGHT 0.1
-#define TIGHT_RESIDUAL 0.7
 
 /* ---- the Newton step ---- */
 

@@ -135,5 +135,8 @@ int tr_newton_i_rebuild(solver *s, const double *y, tr_error *err);
 /* the first multipliers (s->lam_m, s->sp[].lam) that best balance the unit
  * tension at y, and s->warm_residual, the share they leave unbalanced */
 int tr_newton_i_warm_multipliers(solver *s, const double *y, tr_error *err);
+/* A start is tight when its warm multipliers balance all but this of the
+ * tension (newton.c has why) */
+#define TIGHT_RESIDUAL 0.7
 
 #endif
