@@ -176,8 +176,9 @@ double tr_newton_i_al_eval(solver *s, const double *y, double *grad, int hess)
         double w2 = v3_dot(w, w), S = s->scale_m[k];
         double g = (c - w2) / S, pi;
         f += ineq_term(g, s->lam_m[i], mu, &pi);
-        if (0.5 * (w2 / c - 1.0) > vm) {
-            vm = 0.5 * (w2 / c - 1.0);
+        double over = 0.5 * (w2 / c - 1.0);
+        if (over > vm) {
+            vm = over;
             wm = i;
         }
         if (!grad)
