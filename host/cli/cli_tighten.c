@@ -81,13 +81,15 @@ static void usage(FILE *out)
             "                     without it the solver still takes a tight finest level (a\n"
             "                     tightened knot refined or resampled by --n) first\n"
             "  --no-newton        never the second-order solver\n"
-            "  --tries K          K roads (default 1), each with an equal share of the time\n"
-            "                     left; the shortest result at the finest N is written.\n"
-            "                     With levels (--refine-to): the start as given, then the\n"
-            "                     start again from other coarse counts (--n or N/4, times\n"
-            "                     1, 1.25, 0.8, 1.5, ...), every other road inflated 1.5\n"
-            "                     times (the coarse level picks the local minimum). With one\n"
-            "                     level: the shortest result so far moved by a smooth random\n"
+            "  --tries K          K roads (default 1); the shortest result at the finest N is\n"
+            "                     written. With levels (--refine-to): K scouts share half\n"
+            "                     the time, each tightening its coarse level only: the start\n"
+            "                     as given, then the start again from other coarse counts\n"
+            "                     (--n or N/4, times 1, 1.25, 0.8, 1.5, ...), every other one\n"
+            "                     inflated 1.5 times (the coarse level picks the local\n"
+            "                     minimum); the shortest scout is then refined to N with the\n"
+            "                     time left. With one level: each road an equal share of the\n"
+            "                     time, the shortest result so far moved by a smooth random\n"
             "                     displacement (under half the rope's diameter, so the knot\n"
             "                     stays the same) and tightened again\n"
             "  --seed S           the displacements' seed (default 1): the same S, the same roads\n"
@@ -177,6 +179,7 @@ typedef struct tighten_opts {
     int try_index; /* which of --tries this run is (0: the start as given) */
     double inflate; /* --tries: the start scaled up by this after --scale (1: not) */
     const tr_curve *road_from; /* --tries: the shortest result so far, this road's start */
+    int road_as_is; /* road_from is refined as it is, not moved off its minimum */
     double target, residual, time_limit, ckpt_every;
     int residual_given; /* the default residual is a stopping rule, not a goal */
     int json, quiet, no_polish, newton, no_newton, scale, kkt; /* kkt -1: up to KKT_AUTO_MAX_N */
@@ -443,26 +446,45 @@ static int other_road(const tighten_opts *o, tr_curve *c, tr_error *err)
  * all ended at 50.4078, the TightKnot table has 49.484). Another coarse count
  * is another road from the same start: 4_1 from --n 90 ends at 45.13, from
  * 100, 110 and 128 near 42.2; 5_2 from 100 reaches 49.482. So road t >= 1
- * starts afresh from IN at the coarse count base * ROAD_COARSE_FACTOR[...],
- * base being --n or else a quarter of the finest count (at least 64), and
- * every other road from the start inflated by ROAD_INFLATE: a looser start
- * has room to slide before its strands meet, and takes another road (5_2 at
- * --n 100: 50.4077 from thickness 1, 49.4822 from KnotPlot's own 1.48). */
-static const double ROAD_COARSE_FACTOR[] = {1.0, 1.25, 0.8, 1.5, 0.67, 1.12, 0.9, 1.75};
-#define ROAD_FACTORS ((int)(sizeof ROAD_COARSE_FACTOR / sizeof ROAD_COARSE_FACTOR[0]))
+ * starts afresh from IN at the coarse count base * ROADS[t - 1].factor,
+ * base being --n or else a quarter of the finest count (at least 64), some
+ * roads from the start inflated by ROAD_INFLATE: a looser start has room to
+ * slide before its strands meet, and takes another road (5_2 at --n 100:
+ * 50.4077 from thickness 1, 49.4822 from KnotPlot's own 1.48). The roads
+ * listed first are those that found the table's minimum where others did
+ * not: 5_2 (1, inflated), 7_4 (1: 64.82 at 114 vertices, the others 64.88 to
+ * 65.56), 6_2 (1.5 and 0.6: 57.22 and 57.23, the others 57.6 to 58.3); past
+ * the list the factors repeat, 5 % larger each round. */
+static const struct {
+    double factor;
+    int inflated;
+} ROADS[] = {{1.0, 1},  {1.0, 0},  {1.5, 0},  {0.6, 0},  {1.25, 0}, {0.8, 1},  {0.8, 0},
+             {0.67, 0}, {1.12, 0}, {0.9, 0},  {1.75, 0}, {1.37, 0}, {1.25, 1}, {1.5, 1}};
+#define ROAD_COUNT ((int)(sizeof ROADS / sizeof ROADS[0]))
 #define ROAD_INFLATE 1.5
+/* Scouting: the local minimum is chosen on the coarse level, and a coarse
+ * level costs a few seconds where the route to the finest count costs
+ * minutes, so with --tries on a route of levels every road stops at its
+ * coarse level, in this share of the time, and only the shortest of them is
+ * refined. Measured on the KnotPlot starts (bench/RESULTS.md): 6_2 at N =
+ * 407, ten scouts in 101 s, the shortest (152 vertices, 57.22 where the
+ * others ended at 57.6 to 58.3) refined in 104 s to 57.0440, against 57.8283
+ * for three full roads in 200 s; 7_4 at 459: 64.2908 against 65.1461. */
+#define SCOUT_SHARE 0.5
 
 static int multi_level(const tighten_opts *o) { return o->refine_to > 0 && !o->resume && o->in; }
 
 static long road_coarse_n(const tighten_opts *o, int t)
 {
     long base = o->n > 0 ? o->n : (o->refine_to / 4 > 64 ? o->refine_to / 4 : 64);
-    double f = ROAD_COARSE_FACTOR[(t - 1) % ROAD_FACTORS];
+    double f = ROADS[(t - 1) % ROAD_COUNT].factor * (1.0 + 0.05 * (double)((t - 1) / ROAD_COUNT));
     long n = lround((double)base * f);
     if (n >= o->refine_to)
         n = o->refine_to / 2;
     return n < 16 ? 16 : n;
 }
+
+static double road_inflate(int t) { return ROADS[(t - 1) % ROAD_COUNT].inflated ? ROAD_INFLATE : 1.0; }
 
 /* Resamples c along a spline so that no component's edges are INFLATED_EDGE
  * or longer, with as few vertices as that takes (none added where they are
@@ -503,7 +525,7 @@ static int read_start(const tighten_opts *o, tr_curve *c, tr_error *err)
     if (o->road_from) {
         /* a later road of --tries: the shortest result so far, moved off
          * its local minimum (it is at thickness 1 and at the run's N) */
-        if ((rc = tr_curve_copy(c, o->road_from, err)) || (rc = other_road(o, c, err)))
+        if ((rc = tr_curve_copy(c, o->road_from, err)) || (!o->road_as_is && (rc = other_road(o, c, err))))
             tr_curve_free(c);
         return rc;
     }
@@ -977,23 +999,42 @@ int tr_tighten_command(int argc, char **argv, tr_tighten_report *rep)
     /* --tries: the roads one after the other, each with an equal share of
      * the time left; of the certified ones the finest, then the shortest,
      * is kept. A road that fails after the first is skipped (said on
-     * stderr); SIGINT ends the series. */
+     * stderr); SIGINT ends the series. On a route of levels the roads are
+     * scouts: each tightens its coarse level only, in SCOUT_SHARE of the
+     * time, and the shortest of them alone is refined to --refine-to with
+     * the rest (scouting). */
     tr_engine *e = NULL;
     tighten_result r = {0};
-    int have = 0;
+    int have = 0, scouting = o.tries > 1 && multi_level(&o);
     double t0 = tr_clock_seconds();
-    for (long t = 0; t < o.tries && !(have && stop_requested); t++) {
+    double budget = o.time_limit > 0 && scouting ? SCOUT_SHARE * o.time_limit : o.time_limit;
+    for (long t = 0; t < o.tries + scouting && !(have && stop_requested); t++) {
         tighten_opts ot = o;
         ot.try_index = (int)t;
-        if (t > 0 && multi_level(&o)) {
-            ot.n = road_coarse_n(&o, (int)t);
-            ot.inflate = t % 2 ? ROAD_INFLATE : 1.0;
+        int refining = scouting && t == o.tries;
+        if (refining) {
+            /* the shortest scout, refined as it is */
+            ot.road_from = &r.fin;
+            ot.road_as_is = 1;
+            ot.n = 0;
+            ot.scale = 0;
+            budget = o.time_limit;
+        } else if (scouting) {
+            ot.refine_to = 0;
+            if (t > 0) {
+                ot.n = road_coarse_n(&o, (int)t);
+                ot.inflate = road_inflate((int)t);
+            }
         } else
             ot.road_from = have ? &r.fin : NULL;
         /* a road that jams early leaves its time to the roads after it */
         if (o.time_limit > 0)
-            ot.time_limit = fmax(o.time_limit - (tr_clock_seconds() - t0), 0.05 * o.time_limit) / (double)(o.tries - t);
-        if (o.tries > 1 && t > 0 && !o.quiet)
+            ot.time_limit = refining ? fmax(o.time_limit - (tr_clock_seconds() - t0), 0.05 * o.time_limit)
+                                     : fmax(budget - (tr_clock_seconds() - t0), 0.05 * budget) / (double)(o.tries - t);
+        if (refining && !o.quiet)
+            fprintf(stderr, "tightrope tighten: the shortest scout (road %d, N %zu) refined to %ld vertices\n",
+                    r.best_try + 1, r.fin.nv, o.refine_to);
+        else if (o.tries > 1 && t > 0 && !o.quiet)
             fprintf(stderr, "tightrope tighten: road %ld of %ld: %s\n", t + 1, o.tries,
                     ot.road_from ? "the shortest result so far, moved"
                     : ot.inflate != 1.0 ? "the start again, inflated 1.5 times, from another coarse count"
@@ -1004,27 +1045,40 @@ int tr_tighten_command(int argc, char **argv, tr_tighten_report *rep)
         if (rc >= 0) {
             if (!have)
                 return rc;
-            fprintf(stderr, "tightrope tighten: road %ld of %ld skipped\n", t + 1, o.tries);
+            if (refining)
+                fprintf(stderr, "tightrope tighten: the refinement failed; the shortest scout is written\n");
+            else
+                fprintf(stderr, "tightrope tighten: road %ld of %ld skipped\n", t + 1, o.tries);
             continue;
         }
-        if (o.tries > 1 && !o.quiet)
-            fprintf(stderr, "tightrope tighten: road %ld of %ld: ropelength %.9f\n", t + 1, o.tries, rt.th.ropelength);
+        if (o.tries > 1 && !o.quiet) {
+            if (refining)
+                fprintf(stderr, "tightrope tighten: refined: N %zu, ropelength %.9f\n", rt.fin.nv, rt.th.ropelength);
+            else
+                fprintf(stderr, "tightrope tighten: road %ld of %ld: ropelength %.9f\n", t + 1, o.tries,
+                        rt.th.ropelength);
+        }
         /* a road that ran out of time on a coarse level has not reached
-         * the N asked for: the finest road wins, then the shortest */
-        if (!have || rt.fin.nv > r.fin.nv || (rt.fin.nv == r.fin.nv && rt.th.ropelength < r.th.ropelength)) {
+         * the N asked for: the finest road wins, then the shortest; among
+         * scouts (each at its own coarse count) the shortest */
+        int better = !have || (scouting && !refining ? rt.th.ropelength < r.th.ropelength
+                                                     : rt.fin.nv > r.fin.nv ||
+                                                           (rt.fin.nv == r.fin.nv && rt.th.ropelength < r.th.ropelength));
+        if (better) {
+            int scout = r.best_try;
             if (have) {
                 tr_curve_free(&r.fin);
                 tr_engine_destroy(e);
             }
             e = et;
             r = rt;
-            r.best_try = (int)t;
+            r.best_try = refining ? scout : (int)t;
             have = 1;
         } else {
             tr_curve_free(&rt.fin);
             tr_engine_destroy(et);
         }
-        r.tries = (int)t + 1;
+        r.tries = (int)(t < o.tries ? t + 1 : o.tries);
     }
     /* an interrupted series is an interrupted run, whichever road is kept */
     if (stop_requested)

@@ -20,19 +20,24 @@ awk -v b="$best" -v g="$got" 'BEGIN { d = b - g; if (d < 0) d = -d; exit !(d < 1
 grep -Eq '^# tries 3, seed 7: the shortest was road [1-3]$' "$work/a.vect" || fail "no tries comment"
 # the same seed, the same roads
 cmp -s <(grep -v '^#' "$work/a.vect") <(grep -v '^#' "$work/b.vect") || fail "seed 7 twice gave two curves"
-# with levels (--refine-to), roads after the first start again from the start, at other coarse
-# counts and every other one inflated, and the shortest road is written
+# with levels (--refine-to) the roads are scouts: after the first they start again from the
+# start, at other coarse counts, the second inflated; each stops at its coarse level, and the
+# shortest scout alone is refined to --refine-to and written
 "$tr" tighten "$work/s.vect" -o "$work/l.vect" --n 80 --refine-to 160 --steps 400 --tries 3 --no-kkt --device reference \
   >"$work/l.out" 2>"$work/l.err" || fail "tighten with levels: $(cat "$work/l.err")"
 grep -q '^tightrope tighten: road 2 of 3: the start again, inflated 1.5 times, from another coarse count$' "$work/l.err" ||
   fail "road 2 is not the inflated start: $(cat "$work/l.err")"
 grep -q '^tightrope tighten: road 3 of 3: the start again, from another coarse count$' "$work/l.err" ||
   fail "road 3 is not the start: $(cat "$work/l.err")"
-best=$(awk '/road [0-9] of 3: ropelength/ { if (m == "" || $NF < m) m = $NF } END { print m }' "$work/l.err")
+best=$(awk '/road [0-9] of 3: ropelength/ { if (m == "" || $NF < m) { m = $NF; k = $4 } } END { print k }' "$work/l.err")
+grep -Eq "^tightrope tighten: the shortest scout \(road $best, N [0-9]+\) refined to 160 vertices$" "$work/l.err" ||
+  fail "the shortest scout was road $best, not what was refined: $(cat "$work/l.err")"
+refined=$(awk '/^tightrope tighten: refined: N 160, ropelength/ { print $NF }' "$work/l.err")
+[ -n "$refined" ] || fail "no refinement to 160: $(cat "$work/l.err")"
 got=$("$tr" measure "$work/l.vect" | awk '$1 == "curve" { print $2, $7 }')
 [ "${got%% *}" = 160 ] || fail "levels: wrote ${got%% *} vertices, not 160"
-awk -v b="$best" -v g="${got#* }" 'BEGIN { d = b - g; if (d < 0) d = -d; exit !(d < 1e-8 * b) }' ||
-  fail "levels: wrote ${got#* }, the shortest road was $best"
+awk -v b="$refined" -v g="${got#* }" 'BEGIN { d = b - g; if (d < 0) d = -d; exit !(d < 1e-8 * b) }' ||
+  fail "levels: wrote ${got#* }, the refined scout was $refined"
 # bad values and a resumed run are refused
 for bad in 0 1001 x; do
   "$tr" tighten "$work/s.vect" -o "$work/x.vect" --tries $bad 2>"$work/bad.err" && fail "--tries $bad accepted"
