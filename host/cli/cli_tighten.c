@@ -85,7 +85,7 @@ static void usage(FILE *out)
             "                     written. With levels (--refine-to): K scouts share half\n"
             "                     the time, each tightening its coarse level only: the start\n"
             "                     as given, then the start again from other coarse counts\n"
-            "                     (--n or N/4, times 1, 1.25, 0.8, 1.5, ...), every other one\n"
+            "                     (--n or N/4, times 1, 1, 1.5, 0.6, 1.25, 0.8, ...), some\n"
             "                     inflated 1.5 times (the coarse level picks the local\n"
             "                     minimum); the shortest scout is then refined to N with the\n"
             "                     time left. With one level: each road an equal share of the\n"
@@ -1007,18 +1007,16 @@ int tr_tighten_command(int argc, char **argv, tr_tighten_report *rep)
     tighten_result r = {0};
     int have = 0, scouting = o.tries > 1 && multi_level(&o);
     double t0 = tr_clock_seconds();
-    double budget = o.time_limit > 0 && scouting ? SCOUT_SHARE * o.time_limit : o.time_limit;
+    const double budget = scouting ? SCOUT_SHARE * o.time_limit : o.time_limit; /* the scouts' */
     for (long t = 0; t < o.tries + scouting && !(have && stop_requested); t++) {
         tighten_opts ot = o;
         ot.try_index = (int)t;
         int refining = scouting && t == o.tries;
         if (refining) {
-            /* the shortest scout, refined as it is */
+            /* the shortest scout, refined as it is (read_start takes
+             * road_from before --n and --scale) */
             ot.road_from = &r.fin;
             ot.road_as_is = 1;
-            ot.n = 0;
-            ot.scale = 0;
-            budget = o.time_limit;
         } else if (scouting) {
             ot.refine_to = 0;
             if (t > 0) {
@@ -1061,18 +1059,19 @@ int tr_tighten_command(int argc, char **argv, tr_tighten_report *rep)
         /* a road that ran out of time on a coarse level has not reached
          * the N asked for: the finest road wins, then the shortest; among
          * scouts (each at its own coarse count) the shortest */
-        int better = !have || (scouting && !refining ? rt.th.ropelength < r.th.ropelength
-                                                     : rt.fin.nv > r.fin.nv ||
-                                                           (rt.fin.nv == r.fin.nv && rt.th.ropelength < r.th.ropelength));
+        int shorter = rt.th.ropelength < r.th.ropelength;
+        int better = !have || (scouting && !refining ? shorter
+                                                     : rt.fin.nv > r.fin.nv || (rt.fin.nv == r.fin.nv && shorter));
         if (better) {
-            int scout = r.best_try;
+            /* the refined scout keeps the scout's number */
+            int best_try = refining ? r.best_try : (int)t;
             if (have) {
                 tr_curve_free(&r.fin);
                 tr_engine_destroy(e);
             }
             e = et;
             r = rt;
-            r.best_try = refining ? scout : (int)t;
+            r.best_try = best_try;
             have = 1;
         } else {
             tr_curve_free(&rt.fin);
