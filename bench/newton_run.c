@@ -79,9 +79,12 @@ int main(int argc, char **argv)
     p.progress = show;
     if (argc > 4)
         p.time_limit = atof(argv[4]);
-    /* the bend cap, for measuring it (newton.h max_bend) */
+    /* the bend cap and the pass's end, for measuring them (newton.h
+     * max_bend, inner_decrement; 0 turns the latter off) */
     if (getenv("NEWTON_MAX_BEND"))
         p.max_bend = atof(getenv("NEWTON_MAX_BEND"));
+    if (getenv("NEWTON_INNER_DECREMENT"))
+        p.inner_decrement = atof(getenv("NEWTON_INNER_DECREMENT"));
     char ckpt[4096];
     if (argc > 5) {
         snprintf(ckpt, sizeof ckpt, "%s.ckpt", argv[2]);

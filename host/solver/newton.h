@@ -36,7 +36,8 @@
  * nearly singular matrix is inaccurate) or that would move a vertex more
  * than 4 max_move (a soft mode nothing holds yet: the whole rope shrinking
  * before any contact is active) is computed again with a 100 times larger
- * shift. When the inner gradient is small (or after max_inner steps) the
+ * shift. When the inner gradient is small (or a full step predicts a decrease
+ * below inner_decrement of the length, or after max_inner steps) the
  * multipliers are updated, lambda <- pi, and mu grows tenfold (up to
  * mu_max) if the violation did not fall by 4 in a solved pass (newton.c:
  * an unfinished pass says nothing about mu). Inactive rows near their
@@ -133,6 +134,7 @@ typedef struct tr_newton_params {
     double mu_max;     /* largest penalty, likewise */
     double viol_tol;   /* converged: worst relative violation below this ... */
     double stat_tol;   /* ... and relative unbalanced force below this */
+    double inner_decrement; /* a pass ends after a full step predicting less decrease than this x length */
     int warm_start;    /* first multipliers by least squares (warm_start.c); 0: cold */
     int tight_only;    /* give up at once (not accepted) unless the warm start finds the start tight */
     volatile sig_atomic_t *stop; /* raised by a signal handler: stop as at the time limit */
