@@ -547,9 +547,13 @@ static int grow_count(tr_curve *c, double edge, tr_error *err)
  * knot again, to ropelength about 110-120 for 8_4, where the engine takes
  * over in seconds). The same --seed and road number, the same start.
  * Measured (bench/RESULTS.md, 2026-11-27): 8_4 from KnotPlot, four such
- * starts tightened at --n 128 for 25 s: 71.67 (N 280), 77.13, 77.02, 76.90;
- * the first refined to N = 514: 71.5865, below the table's 72.0301, writhe
- * 1.635. */
+ * starts (made by hand, seeds 1-4) tightened at --n 128 for 25 s: 71.67
+ * (N 280), 77.13, 77.02, 76.90; the first refined to N = 514: 71.5865,
+ * writhe 1.635. --scale --refine-to N --time-limit 240 --tries 10
+ * --shuffles 5: 8_4 71.5869 (table 72.0301), 8_11 72.9185 (73.5029), and
+ * 7_1, 7_6, 8_7, 8_21 below the table, all from shuffled roads, where every
+ * road of before ended above; 8_1, 8_5, 8_8, 8_12, 8_13, 8_17 stayed above
+ * (8_12 and 8_17 went below with --shuffles 9 --seed 2). */
 #define SHUFFLE_N 96
 #define SHUFFLE_INFLATE 4.0
 #define SHUFFLE_MOVES 20000
