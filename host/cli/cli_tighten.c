@@ -24,6 +24,7 @@
 #include "engine/engine.h"
 #include "curve/generate.h"
 #include "curve/perturb.h"
+#include "engine/shuffle.h"
 #include "util/json.h"
 #include "oracle/kkt.h"
 #include "util/clock.h"
@@ -92,7 +93,11 @@ static void usage(FILE *out)
             "                     time, the shortest result so far moved by a smooth random\n"
             "                     displacement (under half the rope's diameter, so the knot\n"
             "                     stays the same) and tightened again\n"
-            "  --seed S           the displacements' seed (default 1): the same S, the same roads\n"
+            "  --shuffles S       the last S of the K roads start from the start shuffled: the\n"
+            "                     rope inflated 4 times is walked by random crankshaft moves\n"
+            "                     (the knot type kept), compacted again and tightened; another\n"
+            "                     conformation, where the other roads keep the start's (default 0)\n"
+            "  --seed S           the roads' seed (default 1): the same S, the same roads\n"
             "  --no-polish        skip the polish stage at every level (a serial augmented-\n"
             "                     Lagrangian / L-BFGS minimisation on the host, which ends each\n"
             "                     coarse level and at the finest takes the last 80%% of its time\n"
@@ -175,11 +180,12 @@ static void scale_curve(tr_curve *c, double f)
 /* The command line's options. */
 typedef struct tighten_opts {
     const char *in, *out, *ckpt, *resume, *device;
-    long n, refine_to, steps, device_from, tries, seed;
+    long n, refine_to, steps, device_from, tries, seed, shuffles;
     int try_index; /* which of --tries this run is (0: the start as given) */
     double inflate; /* --tries: the start scaled up by this after --scale (1: not) */
     const tr_curve *road_from; /* --tries: the shortest result so far, this road's start */
     int road_as_is; /* road_from is refined as it is, not moved off its minimum */
+    int shuffled; /* --shuffles: this road starts from IN shuffled (shuffle_start) */
     double target, residual, time_limit, ckpt_every;
     int residual_given; /* the default residual is a stopping rule, not a goal */
     int json, quiet, no_polish, newton, no_newton, scale, kkt; /* kkt -1: up to KKT_AUTO_MAX_N */
@@ -193,12 +199,14 @@ static int parse_options(int argc, char **argv, tighten_opts *o)
     *o = (tighten_opts){.inflate = 1.0, .device_from = -1, .residual = 1e-4, .ckpt_every = 300, .kkt = -1, .tries = 1, .seed = 1};
     static const char *valued[] = {"-o", "--output", "--n", "--refine-to", "--target", "--residual",
                                    "--steps", "--time-limit", "--checkpoint", "--checkpoint-every",
-                                   "--resume", "--device", "--device-from", "--tries", "--seed"};
+                                   "--resume", "--device", "--device-from", "--tries", "--seed",
+                                   "--shuffles"};
     /* what a bad value of each should have been, in the order of valued */
     static const char *wants[] = {"", "", "an integer >= 4, vertices per component",
                                   "an integer >= 4, vertices per component", "a number > 0", "a number >= 0",
                                   "an integer >= 1", "a number > 0 (seconds)", "", "a number > 0 (seconds)", "",
-                                  "", "an integer >= 0", "an integer from 1 to 1000", "an integer >= 0"};
+                                  "", "an integer >= 0", "an integer from 1 to 1000", "an integer >= 0",
+                                  "an integer from 0 to --tries - 1"};
     unsigned char given[sizeof valued / sizeof valued[0]] = {0};
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
@@ -285,6 +293,8 @@ static int parse_options(int argc, char **argv, tighten_opts *o)
                 bad = tr_arg_long(v, 1, 1000, &o->tries);
             else if (!strcmp(a, "--seed"))
                 bad = tr_arg_long(v, 0, LONG_MAX, &o->seed);
+            else if (!strcmp(a, "--shuffles"))
+                bad = tr_arg_long(v, 0, 999, &o->shuffles);
             else
                 o->device = v;
             if (bad) {
@@ -316,6 +326,11 @@ static int parse_options(int argc, char **argv, tighten_opts *o)
     }
     if (o->resume && o->tries > 1) {
         fprintf(stderr, "tightrope tighten: --resume continues one road; --tries starts several\n");
+        return 2;
+    }
+    if (o->shuffles >= o->tries) {
+        fprintf(stderr, "tightrope tighten: --shuffles %ld: at most --tries - 1 (%ld) of the roads are shuffled; "
+                        "the first is the start as given\n", o->shuffles, o->tries - 1);
         return 2;
     }
     if (o->newton && o->no_newton) {
@@ -515,6 +530,76 @@ static int grow_count(tr_curve *c, double edge, tr_error *err)
     return rc;
 }
 
+/* --shuffles: another kind of road, for knots whose every coarse road
+ * above ends in the same local minimum. Smooth starts at other counts, kicks
+ * under the rope's radius and random walks of the rope inflated 1.3 and 2
+ * times at fixed thickness all left 8_4 at 76.98-77.7 (the TightKnot table:
+ * 72.03): the start's conformation, not its discretisation, picks the
+ * basin. Ours had writhe 1.95 where the table's has 1.62 (in absolute value;
+ * ACN 15.4 against 14.6), so the way out goes through other conformations.
+ * A shuffled road makes one: the start, resampled along a spline to
+ * SHUFFLE_N vertices per component, is inflated SHUFFLE_INFLATE times (the
+ * rope is then thin against the knot's size) and walked by SHUFFLE_MOVES
+ * crankshaft moves that keep its thickness at least 1 and the knot type
+ * (engine/shuffle.h), which loses the start's shape; then
+ * SHUFFLE_ANNEAL more moves, each kept only if the thickness stays at least
+ * SHUFFLE_RATCHET times the largest reached (a ratchet: the walk compacts the
+ * knot again, to ropelength about 110-120 for 8_4, where the engine takes
+ * over in seconds). The same --seed and road number, the same start.
+ * Measured (bench/RESULTS.md, 2026-11-27): 8_4 from KnotPlot, four such
+ * starts (made by hand, seeds 1-4) tightened at --n 128 for 25 s: 71.67
+ * (N 280), 77.13, 77.02, 76.90; the first refined to N = 514: 71.5865,
+ * writhe 1.635. --scale --refine-to N --time-limit 240 --tries 10
+ * --shuffles 5: 8_4 71.5869 (table 72.0301), 8_11 72.9185 (73.5029), and
+ * 7_1, 7_6, 8_7, 8_21 below the table, all from shuffled roads, where every
+ * road of before ended above; 8_1, 8_5, 8_8, 8_12, 8_13, 8_17 stayed above
+ * (8_12 and 8_17 went below with --shuffles 9 --seed 2, 8_5 and 8_13 with
+ * --shuffles 9 --seed 3; 8_1 and 8_8 with none tried). */
+#define SHUFFLE_N 96
+#define SHUFFLE_INFLATE 4.0
+#define SHUFFLE_MOVES 20000
+#define SHUFFLE_ANNEAL 100000
+#define SHUFFLE_RATCHET 0.98
+static int shuffle_start(const tighten_opts *o, tr_curve *c, tr_error *err)
+{
+    if (c->ncst > 0)
+        return tr_fail(err, TR_EINVAL, "--shuffles: %s has constraints; a clasp's ends on their planes cannot be "
+                                       "shuffled", o->in);
+    size_t *per = malloc((size_t)c->ncomp * sizeof *per);
+    if (!per)
+        return tr_fail(err, TR_ENOMEM, "out of memory");
+    for (int k = 0; k < c->ncomp; k++)
+        per[k] = SHUFFLE_N;
+    tr_curve r;
+    int rc = tr_resample_smooth(c, per, &r, err);
+    free(per);
+    if (rc)
+        return rc;
+    tr_thickness t;
+    uint64_t seed = (uint64_t)o->seed * 1000003u + (uint64_t)o->try_index;
+    if ((rc = tr_thickness_measure(&r, NULL, &t, NULL, err)))
+        goto out;
+    if (!(t.thickness > 0 && isfinite(t.thickness))) {
+        rc = tr_fail(err, TR_EGEOMETRY, "--shuffles: %s resampled to %d vertices has thickness %g", o->in, SHUFFLE_N,
+                     t.thickness);
+        goto out;
+    }
+    scale_curve(&r, SHUFFLE_INFLATE / t.thickness);
+    if ((rc = tr_curve_shuffle(&r, SHUFFLE_MOVES, 1.0, 0.0, seed, NULL, err)) ||
+        (rc = tr_curve_shuffle(&r, SHUFFLE_ANNEAL, 1.0, SHUFFLE_RATCHET, seed + 7, NULL, err)) ||
+        (rc = tr_thickness_measure(&r, NULL, &t, NULL, err)))
+        goto out;
+    scale_curve(&r, 1.0 / t.thickness);
+out:
+    if (rc) {
+        tr_curve_free(&r);
+        return rc;
+    }
+    tr_curve_free(c);
+    *c = r;
+    return TR_OK;
+}
+
 /* Reads the start curve IN into c, resampled with --n and scaled with
  * --scale, and checks that it can be tightened: its open ends are held and
  * its thickness is at a scale the engine can work in. */
@@ -532,6 +617,10 @@ static int read_start(const tighten_opts *o, tr_curve *c, tr_error *err)
     rc = tr_curve_read(in, TR_FORMAT_AUTO, c, err);
     if (rc != TR_OK)
         return rc;
+    if (o->shuffled && (rc = shuffle_start(o, c, err))) {
+        tr_curve_free(c);
+        return rc;
+    }
     if (o->n > 0) {
         size_t *per = malloc((size_t)c->ncomp * sizeof *per);
         tr_curve r;
@@ -596,7 +685,9 @@ static int read_start(const tighten_opts *o, tr_curve *c, tr_error *err)
                      "%s has thickness %.3g, too far from 1 to tighten in its own units (squared "
                      "distances would %s); --scale scales a start to thickness 1",
                      in, t0.thickness, tr_curve_scale_exponent(c) > 0 ? "overflow" : "underflow");
-    if (rc == TR_OK && o->scale) {
+    /* a shuffled start is ours, at thickness 1 before --n resampled it: it
+     * is brought back to thickness 1 as --scale would */
+    if (rc == TR_OK && (o->scale || o->shuffled)) {
         if (!(t0.thickness > 0 && isfinite(t0.thickness)))
             rc = tr_fail(err, TR_EGEOMETRY, "--scale: %s has thickness %g; no scale makes it a rope", in,
                          t0.thickness);
@@ -1019,11 +1110,17 @@ int tr_tighten_command(int argc, char **argv, tr_tighten_report *rep)
             ot.road_as_is = 1;
         } else if (scouting) {
             ot.refine_to = 0;
-            if (t > 0) {
+            if (t > 0 && t >= o.tries - o.shuffles) {
+                /* a shuffled road, at the first road's coarse count */
+                ot.shuffled = 1;
+                ot.n = road_coarse_n(&o, 1);
+            } else if (t > 0) {
                 ot.n = road_coarse_n(&o, (int)t);
                 ot.inflate = road_inflate((int)t);
             }
-        } else
+        } else if (t > 0 && t >= o.tries - o.shuffles)
+            ot.shuffled = 1;
+        else
             ot.road_from = have ? &r.fin : NULL;
         /* a road that jams early leaves its time to the roads after it */
         if (o.time_limit > 0)
@@ -1035,6 +1132,7 @@ int tr_tighten_command(int argc, char **argv, tr_tighten_report *rep)
         else if (o.tries > 1 && t > 0 && !o.quiet)
             fprintf(stderr, "tightrope tighten: road %ld of %ld: %s\n", t + 1, o.tries,
                     ot.road_from ? "the shortest result so far, moved"
+                    : ot.shuffled ? "the start shuffled (crankshaft moves of the thin rope, then compacted)"
                     : ot.inflate != 1.0 ? "the start again, inflated 1.5 times, from another coarse count"
                                         : "the start again, from another coarse count");
         tr_engine *et;

@@ -38,6 +38,20 @@ got=$("$tr" measure "$work/l.vect" | awk '$1 == "curve" { print $2, $7 }')
 [ "${got%% *}" = 160 ] || fail "levels: wrote ${got%% *} vertices, not 160"
 awk -v b="$refined" -v g="${got#* }" 'BEGIN { d = b - g; if (d < 0) d = -d; exit !(d < 1e-8 * b) }' ||
   fail "levels: wrote ${got#* }, the refined scout was $refined"
+# --shuffles S: the last S roads start from the start shuffled (engine/shuffle.h), the same
+# with the same seed
+for run in s1 s2; do
+  "$tr" tighten "$work/s.vect" -o "$work/$run.vect" --n 80 --refine-to 160 --steps 300 --tries 2 --shuffles 1 --seed 5 \
+    --no-kkt --device reference >"$work/$run.out" 2>"$work/$run.err" || fail "--shuffles ($run): $(cat "$work/$run.err")"
+done
+grep -q '^tightrope tighten: road 2 of 2: the start shuffled' "$work/s1.err" || fail "road 2 not shuffled: $(cat "$work/s1.err")"
+grep -q '^tightrope tighten: road 2 of 2: ropelength' "$work/s1.err" || fail "the shuffled road did not end: $(cat "$work/s1.err")"
+cmp -s <(grep -v '^#' "$work/s1.vect") <(grep -v '^#' "$work/s2.vect") || fail "--shuffles, seed 5 twice gave two curves"
+for bad in "--tries 2 --shuffles 2" "--shuffles 1" "--tries 3 --shuffles -1"; do
+  # shellcheck disable=SC2086
+  "$tr" tighten "$work/s.vect" -o "$work/x.vect" $bad 2>"$work/bad.err" && fail "$bad accepted"
+  grep -q -- "--shuffles" "$work/bad.err" || fail "$bad: $(cat "$work/bad.err")"
+done
 # bad values and a resumed run are refused
 for bad in 0 1001 x; do
   "$tr" tighten "$work/s.vect" -o "$work/x.vect" --tries $bad 2>"$work/bad.err" && fail "--tries $bad accepted"

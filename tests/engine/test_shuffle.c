@@ -1,0 +1,226 @@
+/* The crankshaft shuffle (engine/shuffle.h), the start of tighten's
+ * shuffled roads. Checked against the physics, not against its own output:
+ * every kept move, replayed one at a time, moves no vertex by as much as
+ * the thickness the oracle measures before it (so no two strands can meet
+ * on the way: the knot type is kept) and leaves the thickness at or above
+ * the gate; edge lengths are kept (rigid turns of an arc); the walk really
+ * changes the shape (vertices move by several rope diameters, far beyond
+ * the kicks under the radius of --tries); a shuffled Hopf link keeps its
+ * Gauss linking number +-1; the ratchet compacts a thin rope (its
+ * ropelength falls); the same seed gives the same curve, another seed
+ * another; constrained or open curves and a start thinner than the gate are
+ * refused. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "curve/generate.h"
+#include "engine/shuffle.h"
+#include "oracle/thickness.h"
+#include "testlib.h"
+#include "util/vec3.h"
+
+#ifndef M_PI
+#define M_PI 3.14159265358979323846
+#endif
+
+static double thickness(const tr_curve *c)
+{
+    tr_thickness t;
+    tr_error err;
+    CHECK_OK(tr_thickness_measure(c, NULL, &t, NULL, &err));
+    return t.thickness;
+}
+
+static double ropelength(const tr_curve *c)
+{
+    tr_thickness t;
+    tr_error err;
+    CHECK_OK(tr_thickness_measure(c, NULL, &t, NULL, &err));
+    return t.ropelength;
+}
+
+static void scale(tr_curve *c, double f)
+{
+    for (size_t i = 0; i < 3 * c->nv; i++)
+        c->x[i] *= f;
+}
+
+/* the largest relative change of an edge's length from a to b */
+static double edge_change(const tr_curve *a, const tr_curve *b)
+{
+    double worst = 0.0;
+    for (int k = 0; k < a->ncomp; k++) {
+        size_t s = a->start[k], n = tr_comp_nv(a, k);
+        for (size_t i = 0; i < n; i++) {
+            size_t j = s + (i + 1) % n;
+            double la = sqrt(v3_dist2(a->x + 3 * (s + i), a->x + 3 * j));
+            double lb = sqrt(v3_dist2(b->x + 3 * (s + i), b->x + 3 * j));
+            worst = fmax(worst, fabs(lb - la) / la);
+        }
+    }
+    return worst;
+}
+
+static double largest_move(const tr_curve *a, const tr_curve *b)
+{
+    double m = 0.0;
+    for (size_t i = 0; i < a->nv; i++)
+        m = fmax(m, sqrt(v3_dist2(a->x + 3 * i, b->x + 3 * i)));
+    return m;
+}
+
+/* Gauss linking number as a double sum of the exact solid angles of
+ * segment pairs (Klenin & Langowski 2000, eq. 15), as tests/engine/test_polish.c */
+static double linking_number(const tr_curve *c)
+{
+    size_t s0 = c->start[0], n0 = tr_comp_nv(c, 0), s1 = c->start[1], n1 = tr_comp_nv(c, 1);
+    double sum = 0.0;
+    for (size_t i = 0; i < n0; i++)
+        for (size_t j = 0; j < n1; j++) {
+            const double *p1 = c->x + 3 * (s0 + i), *p2 = c->x + 3 * (s0 + (i + 1) % n0);
+            const double *p3 = c->x + 3 * (s1 + j), *p4 = c->x + 3 * (s1 + (j + 1) % n1);
+            double r13[3], r14[3], r23[3], r24[3], r12[3], r34[3], n[4][3];
+            v3_sub(r13, p3, p1);
+            v3_sub(r14, p4, p1);
+            v3_sub(r23, p3, p2);
+            v3_sub(r24, p4, p2);
+            v3_sub(r12, p2, p1);
+            v3_sub(r34, p4, p3);
+            v3_cross(n[0], r13, r14);
+            v3_cross(n[1], r14, r24);
+            v3_cross(n[2], r24, r23);
+            v3_cross(n[3], r23, r13);
+            double om = 0.0;
+            int ok = 1;
+            for (int k = 0; k < 4; k++) {
+                double l = v3_norm(n[k]);
+                if (l == 0.0)
+                    ok = 0;
+                else
+                    v3_scale(n[k], 1.0 / l, n[k]);
+            }
+            if (!ok)
+                continue;
+            for (int k = 0; k < 4; k++) {
+                double d = v3_dot(n[k], n[(k + 1) % 4]);
+                om += asin(d > 1 ? 1 : (d < -1 ? -1 : d));
+            }
+            double cr[3];
+            v3_cross(cr, r34, r12);
+            sum += v3_dot(cr, r13) > 0 ? om : -om;
+        }
+    return sum / (4.0 * M_PI);
+}
+
+/* a trefoil of 96 vertices inflated to thickness 4: a thin rope (gate 1) */
+static void thin_trefoil(tr_curve *c)
+{
+    tr_error err;
+    CHECK_OK(tr_make_torus(c, 2, 3, 96, &err));
+    scale(c, 4.0 / thickness(c));
+}
+
+static void test_moves_are_isotopies(void)
+{
+    tr_curve c, prev;
+    tr_error err;
+    thin_trefoil(&c);
+    CHECK_OK(tr_curve_copy(&prev, &c, &err));
+    tr_curve start;
+    CHECK_OK(tr_curve_copy(&start, &c, &err));
+    long kept = 0, tried = 3000;
+    double worst_ratio = 0.0, worst_gate = INFINITY, worst_edge = 0.0;
+    for (long k = 0; k < tried; k++) {
+        double t0 = thickness(&c);
+        memcpy(prev.x, c.x, 3 * c.nv * sizeof *c.x);
+        long kk;
+        CHECK_OK(tr_curve_shuffle(&c, 1, 1.0, 0.0, 1000u + (uint64_t)k, &kk, &err));
+        if (!kk) {
+            CHECK(memcmp(prev.x, c.x, 3 * c.nv * sizeof *c.x) == 0); /* a refused move changes nothing */
+            continue;
+        }
+        kept++;
+        worst_ratio = fmax(worst_ratio, largest_move(&prev, &c) / t0);
+        worst_gate = fmin(worst_gate, thickness(&c));
+        worst_edge = fmax(worst_edge, edge_change(&prev, &c));
+    }
+    double walked = largest_move(&start, &c);
+    printf("trefoil: %ld of %ld moves kept; largest move / thickness before %.4f; thinnest %.4f; edge change "
+           "%.2e; farthest vertex from the start %.2f (the rope's diameter at the gate: 2)\n",
+           kept, tried, worst_ratio, worst_gate, worst_edge, walked);
+    CHECK(kept > tried / 2);
+    CHECK(worst_ratio < 0.9);
+    CHECK(worst_gate >= 1.0);
+    CHECK(worst_edge < 1e-12);
+    CHECK(walked > 10.0);
+    tr_curve_free(&start);
+    tr_curve_free(&prev);
+    tr_curve_free(&c);
+}
+
+static void test_hopf_keeps_linking(void)
+{
+    tr_curve c;
+    tr_error err;
+    CHECK_OK(tr_make_hopf(&c, 48, &err));
+    scale(&c, 4.0 / thickness(&c));
+    double lk0 = linking_number(&c);
+    long kept;
+    CHECK_OK(tr_curve_shuffle(&c, 5000, 1.0, 0.0, 3, &kept, &err));
+    double lk1 = linking_number(&c);
+    printf("hopf: %ld of 5000 moves kept, linking number %.9f -> %.9f, thickness %.4f\n", kept, lk0, lk1,
+           thickness(&c));
+    CHECK(kept > 1000);
+    CHECK_NEAR(fabs(lk0), 1.0, 1e-6);
+    CHECK_NEAR(lk1, lk0, 1e-6);
+    CHECK(thickness(&c) >= 1.0);
+    tr_curve_free(&c);
+}
+
+static void test_ratchet_and_seed(void)
+{
+    tr_curve a, b, d;
+    tr_error err;
+    thin_trefoil(&a);
+    CHECK_OK(tr_curve_shuffle(&a, 5000, 1.0, 0.0, 11, NULL, &err));
+    CHECK_OK(tr_curve_copy(&b, &a, &err));
+    CHECK_OK(tr_curve_copy(&d, &a, &err));
+    double before = ropelength(&a);
+    long kept;
+    CHECK_OK(tr_curve_shuffle(&a, 20000, 1.0, 0.98, 12, &kept, &err));
+    double after = ropelength(&a);
+    printf("ratchet 0.98: %ld of 20000 moves kept, ropelength %.3f -> %.3f\n", kept, before, after);
+    CHECK(after < 0.97 * before);
+    CHECK(thickness(&a) >= 1.0);
+    /* the same seed, the same curve; another seed, another */
+    CHECK_OK(tr_curve_shuffle(&b, 20000, 1.0, 0.98, 12, NULL, &err));
+    CHECK(memcmp(a.x, b.x, 3 * a.nv * sizeof *a.x) == 0);
+    CHECK_OK(tr_curve_shuffle(&d, 20000, 1.0, 0.98, 13, NULL, &err));
+    CHECK(largest_move(&a, &d) > 1.0);
+    tr_curve_free(&a);
+    tr_curve_free(&b);
+    tr_curve_free(&d);
+}
+
+static void test_refused(void)
+{
+    tr_curve c, k;
+    tr_error err;
+    thin_trefoil(&c);
+    CHECK(tr_curve_shuffle(&c, 10, 5.0, 0.0, 1, NULL, &err) == TR_EGEOMETRY);
+    CHECK_OK(tr_make_clasp(&k, 100, 1.5, &err));
+    CHECK(tr_curve_shuffle(&k, 10, 0.5, 0.0, 1, NULL, &err) == TR_EINVAL);
+    tr_curve_free(&k);
+    tr_curve_free(&c);
+}
+
+int main(void)
+{
+    test_moves_are_isotopies();
+    test_hopf_keeps_linking();
+    test_ratchet_and_seed();
+    test_refused();
+    return tr_test_finish("test_shuffle");
+}
