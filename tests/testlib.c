@@ -2,6 +2,8 @@
  * (testlib.h). */
 #include "testlib.h"
 
+#include "util/vec3.h"
+
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -89,4 +91,44 @@ void tr_test_expect_cl_error(const char *function, const char *error)
 {
     printf("oclgrind-expect: %s %s\n", function, error);
     fflush(stdout);
+}
+
+double tr_test_linking_number(const double *x0, size_t n0, const double *x1, size_t n1)
+{
+    double sum = 0.0;
+    for (size_t i = 0; i < n0; i++)
+        for (size_t j = 0; j < n1; j++) {
+            const double *p1 = x0 + 3 * i, *p2 = x0 + 3 * ((i + 1) % n0);
+            const double *p3 = x1 + 3 * j, *p4 = x1 + 3 * ((j + 1) % n1);
+            double r13[3], r14[3], r23[3], r24[3], r12[3], r34[3], n[4][3];
+            v3_sub(r13, p3, p1);
+            v3_sub(r14, p4, p1);
+            v3_sub(r23, p3, p2);
+            v3_sub(r24, p4, p2);
+            v3_sub(r12, p2, p1);
+            v3_sub(r34, p4, p3);
+            v3_cross(n[0], r13, r14);
+            v3_cross(n[1], r14, r24);
+            v3_cross(n[2], r24, r23);
+            v3_cross(n[3], r23, r13);
+            double om = 0.0;
+            int ok = 1;
+            for (int k = 0; k < 4; k++) {
+                double l = v3_norm(n[k]);
+                if (l == 0.0)
+                    ok = 0;
+                else
+                    v3_scale(n[k], 1.0 / l, n[k]);
+            }
+            if (!ok)
+                continue;
+            for (int k = 0; k < 4; k++) {
+                double d = v3_dot(n[k], n[(k + 1) % 4]);
+                om += asin(d > 1 ? 1 : (d < -1 ? -1 : d));
+            }
+            double cr[3];
+            v3_cross(cr, r34, r12);
+            sum += v3_dot(cr, r13) > 0 ? om : -om;
+        }
+    return sum / (4.0 * 3.14159265358979323846);
 }

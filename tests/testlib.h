@@ -86,6 +86,12 @@ int tr_test_small(void);
  * announced reports, as many as announced, and fails on any other. */
 void tr_test_expect_cl_error(const char *function, const char *error);
 
+/* Gauss linking number of two closed polygons (n0 and n1 vertices, 3 n
+ * coordinates each), exactly, as a sum of the signed solid angles of
+ * segment pairs (Klenin & Langowski 2000, eq. 15): a knot invariant the
+ * engine does not compute, for checking that a link stayed the same. */
+double tr_test_linking_number(const double *x0, size_t n0, const double *x1, size_t n1);
+
 /* Writes "dir/name" into buf; dir is TR_SHARED_DIR or TR_SOURCE_DIR. */
 const char *tr_shared_path(char *buf, size_t n, const char *rel);
 const char *tr_source_path(char *buf, size_t n, const char *rel);

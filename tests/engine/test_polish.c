@@ -188,47 +188,10 @@ static void polish_loose_figure_eight(void)
     tr_curve_free(&k);
 }
 
-/* Gauss linking number as a double sum of the exact solid angles of
- * segment pairs (Klenin & Langowski 2000, eq. 15), independent of polish. */
+/* the two components' linking number (testlib.h) */
 static double linking_number(const tr_curve *c)
 {
-    size_t s0 = c->start[0], n0 = tr_comp_nv(c, 0), s1 = c->start[1], n1 = tr_comp_nv(c, 1);
-    double sum = 0.0;
-    for (size_t i = 0; i < n0; i++)
-        for (size_t j = 0; j < n1; j++) {
-            const double *p1 = c->x + 3 * (s0 + i), *p2 = c->x + 3 * (s0 + (i + 1) % n0);
-            const double *p3 = c->x + 3 * (s1 + j), *p4 = c->x + 3 * (s1 + (j + 1) % n1);
-            double r13[3], r14[3], r23[3], r24[3], r12[3], r34[3], n[4][3];
-            v3_sub(r13, p3, p1);
-            v3_sub(r14, p4, p1);
-            v3_sub(r23, p3, p2);
-            v3_sub(r24, p4, p2);
-            v3_sub(r12, p2, p1);
-            v3_sub(r34, p4, p3);
-            v3_cross(n[0], r13, r14);
-            v3_cross(n[1], r14, r24);
-            v3_cross(n[2], r24, r23);
-            v3_cross(n[3], r23, r13);
-            double om = 0.0;
-            int ok = 1;
-            for (int k = 0; k < 4; k++) {
-                double l = v3_norm(n[k]);
-                if (l == 0.0)
-                    ok = 0;
-                else
-                    v3_scale(n[k], 1.0 / l, n[k]);
-            }
-            if (!ok)
-                continue;
-            for (int k = 0; k < 4; k++) {
-                double d = v3_dot(n[k], n[(k + 1) % 4]);
-                om += asin(d > 1 ? 1 : (d < -1 ? -1 : d));
-            }
-            double cr[3];
-            v3_cross(cr, r34, r12);
-            sum += v3_dot(cr, r13) > 0 ? om : -om;
-        }
-    return sum / (4.0 * M_PI);
+    return tr_test_linking_number(c->x + 3 * c->start[0], tr_comp_nv(c, 0), c->x + 3 * c->start[1], tr_comp_nv(c, 1));
 }
 
 /* The engine's run loop with refinement (72 -> 144), levels ended early
