@@ -554,7 +554,8 @@ static int grow_count(tr_curve *c, double edge, tr_error *err)
  * 7_1, 7_6, 8_7, 8_21 below the table, all from shuffled roads, where every
  * road of before ended above; 8_1, 8_5, 8_8, 8_12, 8_13, 8_17 stayed above
  * (8_12 and 8_17 went below with --shuffles 9 --seed 2, 8_5 and 8_13 with
- * --shuffles 9 --seed 3; 8_1 and 8_8 with none tried). */
+ * --shuffles 9 --seed 3, 8_8 with --tries 12 --shuffles 11 --seed 5; 8_1
+ * with none tried). */
 #define SHUFFLE_N 96
 #define SHUFFLE_INFLATE 4.0
 #define SHUFFLE_MOVES 20000
