@@ -1104,6 +1104,8 @@ int tr_tighten_command(int argc, char **argv, tr_tighten_report *rep)
         tighten_opts ot = o;
         ot.try_index = (int)t;
         int refining = scouting && t == o.tries;
+        /* the last --shuffles roads (never the first: --shuffles < --tries) */
+        int shuffled_road = !refining && t >= o.tries - o.shuffles;
         if (refining) {
             /* the shortest scout, refined as it is (read_start takes
              * road_from before --n and --scale) */
@@ -1111,7 +1113,7 @@ int tr_tighten_command(int argc, char **argv, tr_tighten_report *rep)
             ot.road_as_is = 1;
         } else if (scouting) {
             ot.refine_to = 0;
-            if (t > 0 && t >= o.tries - o.shuffles) {
+            if (shuffled_road) {
                 /* a shuffled road, at the first road's coarse count */
                 ot.shuffled = 1;
                 ot.n = road_coarse_n(&o, 1);
@@ -1119,7 +1121,7 @@ int tr_tighten_command(int argc, char **argv, tr_tighten_report *rep)
                 ot.n = road_coarse_n(&o, (int)t);
                 ot.inflate = road_inflate((int)t);
             }
-        } else if (t > 0 && t >= o.tries - o.shuffles)
+        } else if (shuffled_road)
             ot.shuffled = 1;
         else
             ot.road_from = have ? &r.fin : NULL;
