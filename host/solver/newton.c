@@ -15,6 +15,7 @@
 
 #include "geometry/neighbour_search.h"
 #include "geometry/struts.h"
+#include "solver/bend.h"
 #include "solver/newton_internal.h"
 #include "solver/solver_rows.h"
 #include "oracle/thickness.h"
@@ -263,35 +264,32 @@ static int solver_init(solver *s, const tr_curve *cv, double scale, tr_error *er
     return tr_nsearch_build(&s->ns, &s->w, err);
 }
 
-/* The largest change of a vertex's curvature along dir, |dw| / l0^2 (w the
- * second difference x_{i+1} - 2 x_i + x_{i-1}, |w| = l0^2 kappa): the
- * MinRad rows the Newton matrix leaves out (inactive) see only the model's
- * tension, which resists a kink of angle phi by l0 phi^2 / 8 alone, so a
+/* The bend bound (bend.h). A step's change of a vertex's curvature, |dw| /
+ * l0^2 (w the second difference x_{i+1} - 2 x_i + x_{i-1}, |w| = l0^2
+ * kappa), matters because the MinRad rows the Newton matrix leaves out
+ * (inactive) see only the model's tension, which resists a kink of angle phi by l0 phi^2 / 8 alone, so a
  * step's second differences must stay small against l0^2, a scale that
  * falls like 1 / N^2 (at N = 38 400 the first steps, 2.5e-3 long, took
  * MinRad's violation from 0.05 to 0.37, and the solve wandered for 1500
  * steps; capped at 0.05 it settled in 405). The cap is p->max_bend, on a
- * tight start whose start multipliers are poor only (CAUTIOUS_RESIDUAL). */
+ * tight start whose start multipliers are poor only (CAUTIOUS_RESIDUAL).
+ * On a clasp it cuts the whole step (tr_bend_max_change). On a closed knot
+ * the vertices a step would bend past it are taken back one by one instead
+ * (tr_bend_take_back): with the cap the whole step was cut to 0.1 to 0.3
+ * of Newton's at N = 38 400, bound by the one vertex at the end of a MinRad
+ * stretch (kappa 0.97 to 1) that the direction bent by 0.3, and that vertex
+ * moved on along the rope one or two vertices a step for hundreds of
+ * steps; with its bend taken back the rest of the rope takes its full
+ * step, and the solve settled in 263 steps against 455 (bench/RESULTS.md).
+ * The Armijo test judges the point reached, and a short enough step takes
+ * nothing back (every vertex's bound lies max_bend beyond where it is), so
+ * the backtracking ends where a straight one would. */
 /* The start multipliers (conjugate gradients, warm_start.c) leave 0.30 and
  * 0.58 of the tension unbalanced at N = 9600 and 19 200 from the N = 2400
  * trefoil, 0.99 at 38 400 from the converged 19 200. Below this the
  * curvature cap only slows the solve (9600: 375 steps against 225 at 0.05,
  * 300 at 0.1, 240 at 0.2); above it, it is what settled the 38 400 solve. */
 #define CAUTIOUS_RESIDUAL 0.75
-static double max_bend_change(const solver *s, const double *dir)
-{
-    double m = 0.0;
-    for (size_t i = 0; i < s->nv; i++) {
-        size_t ip = s->prev[i], in = s->next[i];
-        if (ip == NONE || in == NONE)
-            continue;
-        double dw[3], l0 = s->l0[s->comp[i]];
-        for (int d = 0; d < 3; d++)
-            dw[d] = dir[3 * in + (size_t)d] - 2.0 * dir[3 * i + (size_t)d] + dir[3 * ip + (size_t)d];
-        m = fmax(m, v3_norm(dw) / (l0 * l0));
-    }
-    return m;
-}
 
 /* The largest vertex displacement of dir (3 nv entries). */
 static double max_vertex_move(const double *dir, size_t nv)
@@ -408,11 +406,17 @@ static int minimise(solver *s, double *y, tr_newton_stats *st, double t0, tr_err
     const tr_newton_params *p = s->p;
     size_t n = s->n, nv = s->nv;
     double *grad = malloc(n * sizeof *grad), *dir = malloc(n * sizeof *dir), *yt = malloc(n * sizeof *yt);
+    /* the gauge's vertices stay where they are when bends are taken back */
+    unsigned char *held = calloc(nv ? nv : 1, 1);
+    tr_bend_chain chain = {.nv = nv, .prev = s->prev, .next = s->next, .comp = s->comp, .l0 = s->l0, .held = held};
     int rc = TR_OK;
-    if (!grad || !dir || !yt) {
+    if (!grad || !dir || !yt || !held) {
         rc = tr_fail(err, TR_ENOMEM, "out of memory (Newton solver)");
         goto done;
     }
+    for (int k = 0; k < s->nfixed; k++)
+        if (s->fixed[k] < 3 * nv)
+            held[s->fixed[k] / 3] = 1;
     s->mu = p->mu0 / s->l0min;
     s->t_ckpt = t0;
     s->band = 1.0;
@@ -524,7 +528,7 @@ static int minimise(solver *s, double *y, tr_newton_stats *st, double t0, tr_err
             cap = 1.0;
             if (mv > p->max_move)
                 cap = p->max_move / mv;
-            double bend = isfinite(s->max_bend) ? max_bend_change(s, dir) : 0.0;
+            double bend = isfinite(s->max_bend) && s->bend_cap ? tr_bend_max_change(&chain, dir) : 0.0;
             if (bend * cap > s->max_bend)
                 cap = s->max_bend / bend;
             for (int k = 0; k < s->nc; k++) {
@@ -541,6 +545,8 @@ static int minimise(solver *s, double *y, tr_newton_stats *st, double t0, tr_err
             for (int ls = 0; ls < 20 && slope < 0.0; ls++) {
                 for (size_t k = 0; k < n; k++)
                     yt[k] = y[k] + alpha * dir[k];
+                if (isfinite(s->max_bend) && !s->bend_cap)
+                    tr_bend_take_back(&chain, y, yt, s->max_bend);
                 ft = tr_newton_i_al_eval(s, yt, NULL, 0);
                 double dlen = 0.0;
                 for (int k = 0; k < s->nc; k++)
@@ -600,6 +606,7 @@ static int minimise(solver *s, double *y, tr_newton_stats *st, double t0, tr_err
     }
 done:
     free(grad);
+    free(held);
     free(dir);
     free(yt);
     return rc;
@@ -719,10 +726,14 @@ int tr_newton(tr_curve *cv, const tr_newton_params *prm, tr_newton_stats *st, tr
     if ((overshoot && s.warm_residual < TIGHT_RESIDUAL) || minrad_pressed) {
         /* a tight start's steps are small: where the multipliers it
          * starts with hold less than a quarter of the tension, the
-         * curvature cap holds them to the model (max_bend_change); a loose
+         * curvature cap holds them to the model (bend.h); a loose
          * start's steps may not be small */
         if (s.start_residual > CAUTIOUS_RESIDUAL)
             s.max_bend = prm->max_bend;
+        /* a clasp keeps the cap on the whole step: without it a refined
+         * clasp's first steps folded a straight end through itself, and
+         * bends taken back one vertex at a time have not been tried there */
+        s.bend_cap = constrained;
         /* the same rows, rescaled: the multipliers scale with them */
         double f = MINRAD_ROW_SCALE_TIGHT / MINRAD_ROW_SCALE_LOOSE;
         for (int k = 0; k < s.nc; k++)

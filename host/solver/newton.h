@@ -30,9 +30,11 @@
  * dense row per component for l_k) and factored by CHOLMOD (LL^T; when it is
  * not positive definite a multiple of I is added, Levenberg-Marquardt), the
  * step is capped so no vertex moves more than max_move (and, on a tight
- * start with poor first multipliers, no vertex's curvature changes by more
- * than max_bend; newton.c), and an Armijo line
- * search on L_A accepts it. A direction that is no descent (the factor of a
+ * start with poor first multipliers, no vertex's curvature rises more than
+ * max_bend above max(its own, 1): on a clasp by cutting the whole step, on
+ * a closed knot by taking those vertices back along their bend, a curved
+ * search path that a short enough step leaves straight; newton.c), and an
+ * Armijo line search on L_A accepts it. A direction that is no descent (the factor of a
  * nearly singular matrix is inaccurate) or that would move a vertex more
  * than 4 max_move (a soft mode nothing holds yet: the whole rope shrinking
  * before any contact is active) is computed again with a 100 times larger
@@ -129,7 +131,8 @@ typedef struct tr_newton_params {
     int max_inner;     /* Newton steps between multiplier updates */
     double skin;       /* strut list cutoff 2 + skin */
     double max_move;   /* per-vertex cap on one step (<= skin / 8) */
-    double max_bend;   /* per-vertex cap on one step's change of curvature, |dw| / l0^2 */
+    double max_bend;   /* per-vertex bound on one step's bend (|w| / l0^2; newton.c): a clasp's step changes
+                        * none by more, a closed knot's raises none more above max(its own, 1) */
     double mu0;        /* first penalty, in units of 1 / l0 */
     double mu_max;     /* largest penalty, likewise */
     double viol_tol;   /* converged: worst relative violation below this ... */
