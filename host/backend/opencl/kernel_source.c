@@ -118,13 +118,15 @@ char *tr_kernel_log_locate(const char *log, const char *const *src, int nsrc)
         while (t > done && !strchr(" \t\n'\"(", t[-1]))
             t--;
         size_t tlen = (size_t)(p - t);
-        if (!tlen || !(ends_with(t, tlen, ".cl") || ends_with(t, tlen, ".clh")))
+        /* NVIDIA's compiler names the whole program "<kernel>" */
+        int program = tlen == 8 && !memcmp(t, "<kernel>", 8);
+        if (!tlen || !(program || ends_with(t, tlen, ".cl") || ends_with(t, tlen, ".clh")))
             continue;
         int named = 0, in = -1;
         for (int i = 0; i < nsrc; i++) {
             /* the end of a name (the token stops at a space or a quote in it) */
             size_t nlen = strlen(names[i]);
-            named |= nlen >= tlen && !memcmp(names[i] + nlen - tlen, t, tlen);
+            named |= !program && nlen >= tlen && !memcmp(names[i] + nlen - tlen, t, tlen);
             if (line > first[i] && line < first[i + 1])
                 in = i;
         }

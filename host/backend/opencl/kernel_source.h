@@ -28,7 +28,8 @@ int tr_kernel_source_load(const char *name, char **text, tr_error *err);
  * tr_kernel_source_load returns it) with every location "X.cl:LINE:" that
  * counts lines of the whole program turned into the file and line it
  * points to. For compilers whose messages ignore #line: Oclgrind's name
- * "input.cl:908:1"; PoCL's already name the file. A new string, NULL when
+ * "input.cl:908:1", NVIDIA's "<kernel>:1164:1"; PoCL's already name the
+ * file. A new string, NULL when
  * out of memory. */
 char *tr_kernel_log_locate(const char *log, const char *const *src, int nsrc);
 

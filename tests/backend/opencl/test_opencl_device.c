@@ -126,6 +126,13 @@ static void test_log_locate(void)
     if (got && strcmp(got, want))
         fprintf(stderr, "located log: %s\n", got);
     free(got);
+    /* NVIDIA's compiler ignores #line too, and calls the program "<kernel>" */
+    got = tr_kernel_log_locate("<kernel>:8:1: error: unknown type name 'q'\n<kernel>:42:1: note: r", src, 3);
+    want = "kernels/tension.cl:2:1: error: unknown type name 'q'\n<kernel>:42:1: note: r";
+    CHECK(got && !strcmp(got, want));
+    if (got && strcmp(got, want))
+        fprintf(stderr, "located log: %s\n", got);
+    free(got);
 }
 
 /* The macro jumps to the cleanup ladder with the message filled in. */
