@@ -27,6 +27,12 @@ double tr_bend_max_change(const tr_bend_chain *c, const double *dir)
     return m;
 }
 
+/* A vertex taken back lands between its trial position and the midpoint
+ * of its neighbours' (x_i + f w1 with 0 < f < 1/2). Those lie within the
+ * step's largest vertex move of where they were, and the old midpoint within
+ * |w0| / 2 (a few l0^2) of x_i, so the step's bound on how far a vertex
+ * moves, on which the strut list's safety rests (newton.h, "Never a
+ * different knot"), still holds to within a few l0^2 a sweep. */
 size_t tr_bend_take_back(const tr_bend_chain *c, const double *y, double *yt, double bend)
 {
     size_t moved = 0;
