@@ -6,25 +6,16 @@
 #include <stdlib.h>
 
 #include "curve/polyline.h"
+#include "util/splitmix64.h"
 
 #ifndef M_PI
 #define M_PI 3.14159265358979323846
 #endif
 
-/* splitmix64 (Steele, Lea and Flood 2014): a seeded stream whose state is
- * the caller's, so two perturbations never share one */
-static uint64_t splitmix64(uint64_t *state)
-{
-    uint64_t z = (*state += 0x9e3779b97f4a7c15ULL);
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-    return z ^ (z >> 31);
-}
-
 /* uniform in [-1, 1] */
 static double uniform(uint64_t *state)
 {
-    return (double)(splitmix64(state) >> 11) * 0x1.0p-52 - 1.0;
+    return (double)(tr_splitmix64(state) >> 11) * 0x1.0p-52 - 1.0;
 }
 
 int tr_curve_perturb(tr_curve *c, double amplitude, uint64_t seed, tr_error *err)

@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "oracle/thickness.h"
+#include "util/splitmix64.h"
 
 #ifndef M_PI
 #define M_PI 3.14159265358979323846
@@ -22,17 +23,8 @@ static double thickness_of(const tr_curve *c, double *x, tr_error *err, int *rc)
     return *rc ? 0.0 : t.thickness;
 }
 
-/* splitmix64 (Steele, Lea and Flood 2014), as curve/perturb.c */
-static uint64_t shuffle_splitmix64(uint64_t *state)
-{
-    uint64_t z = (*state += 0x9e3779b97f4a7c15ULL);
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-    return z ^ (z >> 31);
-}
-
 /* uniform in [0, 1) */
-static double shuffle_uniform(uint64_t *state) { return (double)(shuffle_splitmix64(state) >> 11) * 0x1.0p-53; }
+static double shuffle_uniform(uint64_t *state) { return (double)(tr_splitmix64(state) >> 11) * 0x1.0p-53; }
 
 /* turns the m - 1 vertices after vertex a (cyclically, on a component of
  * n vertices from vertex s0) about the axis through p with unit direction
