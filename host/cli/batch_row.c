@@ -9,10 +9,11 @@
 #include "cli/cli_args.h"
 #include "util/json.h"
 
-#define NCOLS 12
+#define NCOLS 14
+#define NCOLS_OLD 12 /* before seed and road */
 
 static const char header[] =
-    "knot\tN\tropelength\tthickness\tMinRad\tdcsd\tkkt_residual\ttime_s\ttries\tsteps\tstop\tresumed";
+    "knot\tN\tropelength\tthickness\tMinRad\tdcsd\tkkt_residual\ttime_s\ttries\tsteps\tstop\tresumed\tseed\troad";
 
 const char *tr_batch_row_header(void) { return header; }
 
@@ -41,7 +42,15 @@ void tr_batch_row_format(tr_text *t, const tr_batch_row *r)
     num(t, "%.3e", r->kkt_residual);
     tr_text_printf(t, "\t");
     num(t, "%.2f", r->time_s);
-    tr_text_printf(t, "\t%d\t%ld\t%s\t%d", r->tries, r->steps, r->stop, r->resumed);
+    tr_text_printf(t, "\t%d\t%ld\t%s\t%d\t", r->tries, r->steps, r->stop, r->resumed);
+    if (r->seed >= 0)
+        tr_text_printf(t, "%ld", r->seed);
+    else
+        tr_text_printf(t, "-");
+    if (r->road > 0)
+        tr_text_printf(t, "\t%d", r->road);
+    else
+        tr_text_printf(t, "\t-");
 }
 
 void tr_batch_row_json_fields(tr_text *t, const tr_batch_row *r)
@@ -62,7 +71,15 @@ void tr_batch_row_json_fields(tr_text *t, const tr_batch_row *r)
     tr_json_number(t, "%.2f", r->time_s);
     tr_text_printf(t, ", \"tries\": %d, \"steps\": %ld, \"stop\": ", r->tries, r->steps);
     tr_json_string(t, r->stop);
-    tr_text_printf(t, ", \"resumed\": %s", r->resumed ? "true" : "false");
+    tr_text_printf(t, ", \"resumed\": %s, \"seed\": ", r->resumed ? "true" : "false");
+    if (r->seed >= 0)
+        tr_text_printf(t, "%ld", r->seed);
+    else
+        tr_text_printf(t, "null");
+    if (r->road > 0)
+        tr_text_printf(t, ", \"road\": %d", r->road);
+    else
+        tr_text_printf(t, ", \"road\": null");
 }
 
 int tr_batch_row_write(const char *path, const tr_batch_row *r, tr_error *err)
@@ -84,13 +101,24 @@ static int field_double(const char *s, double *v)
     return tr_arg_double(s, -HUGE_VAL, HUGE_VAL, v);
 }
 
-/* Parses the record's second line (tabs cut into NUL-separated fields). */
-static int parse_fields(char *line, tr_batch_row *r)
+/* An optional count: '-' is unknown (-1). */
+static int field_long(const char *s, long max, long *v)
+{
+    if (!strcmp(s, "-")) {
+        *v = -1;
+        return 0;
+    }
+    return tr_arg_long(s, 0, max, v);
+}
+
+/* Parses the record's second line (tabs cut into NUL-separated fields),
+ * ncols of them. */
+static int parse_fields(char *line, int ncols, tr_batch_row *r)
 {
     char *f[NCOLS];
     int nf = 0;
     for (char *p = line;;) {
-        if (nf == NCOLS)
+        if (nf == ncols)
             return -1; /* more fields than columns */
         f[nf++] = p;
         char *tab = strchr(p, '\t');
@@ -99,19 +127,22 @@ static int parse_fields(char *line, tr_batch_row *r)
         *tab = '\0';
         p = tab + 1;
     }
-    long n, tries, resumed;
-    if (nf != NCOLS || strlen(f[0]) > TR_BATCH_NAME_MAX || strlen(f[10]) >= sizeof r->stop ||
+    long n, tries, resumed, seed = -1, road = 0;
+    if (nf != ncols || strlen(f[0]) > TR_BATCH_NAME_MAX || strlen(f[10]) >= sizeof r->stop ||
         tr_arg_long(f[1], 0, 1000000000, &n) || field_double(f[2], &r->ropelength) ||
         field_double(f[3], &r->thickness) || field_double(f[4], &r->minrad) || field_double(f[5], &r->dcsd) ||
         field_double(f[6], &r->kkt_residual) || field_double(f[7], &r->time_s) ||
         tr_arg_long(f[8], 0, 1000000, &tries) || tr_arg_long(f[9], 0, LONG_MAX, &r->steps) ||
-        tr_arg_long(f[11], 0, 1, &resumed))
+        tr_arg_long(f[11], 0, 1, &resumed) ||
+        (ncols == NCOLS && (field_long(f[12], LONG_MAX, &seed) || field_long(f[13], 1000000, &road))))
         return -1;
     strcpy(r->knot, f[0]);
     strcpy(r->stop, f[10]);
     r->n = (size_t)n;
     r->tries = (int)tries;
     r->resumed = (int)resumed;
+    r->seed = seed;
+    r->road = road > 0 ? (int)road : 0;
     return 0;
 }
 
@@ -121,7 +152,15 @@ int tr_batch_row_read(const char *path, tr_batch_row *r, tr_error *err)
     int rc = tr_read_text_file(path, &text, NULL, err);
     if (rc != TR_OK)
         return rc;
-    size_t hl = strlen(header);
+    /* the header of before is this one's first NCOLS_OLD columns */
+    size_t hl = strlen(header), hl_old = 0;
+    for (int c = 0; c < NCOLS_OLD; c++)
+        hl_old += strcspn(header + hl_old, "\t") + (c + 1 < NCOLS_OLD);
+    int ncols = NCOLS;
+    if (!strncmp(text, header, hl_old) && text[hl_old] == '\n') {
+        ncols = NCOLS_OLD;
+        hl = hl_old;
+    }
     char *line = text + hl + 1;
     if (strncmp(text, header, hl) || text[hl] != '\n')
         rc = tr_fail(err, TR_EPARSE, "%s:1: not a batch record (expected the header '%s')", path, header);
@@ -132,9 +171,9 @@ int tr_batch_row_read(const char *path, tr_batch_row *r, tr_error *err)
         else {
             *nl = '\0';
             *r = (tr_batch_row){0};
-            if (parse_fields(line, r))
+            if (parse_fields(line, ncols, r))
                 rc = tr_fail(err, TR_EPARSE, "%s:2: expected %d tab-separated fields as the header names", path,
-                             NCOLS);
+                             ncols);
         }
     }
     free(text);

@@ -22,6 +22,8 @@ typedef struct tr_batch_row {
     long steps;
     char stop[32]; /* why the run stopped (tr_stop_reason_name) */
     int resumed;   /* 1: its last run continued from a checkpoint */
+    long seed;     /* the roads' --seed; -1 unknown (a resumed run, a record of before) */
+    int road;      /* the road written, 1-based; 0 unknown */
 } tr_batch_row;
 
 /* The table's column names, tab-separated, no newline. */
@@ -37,7 +39,8 @@ void tr_batch_row_json_fields(tr_text *t, const tr_batch_row *r);
 /* Writes r to path atomically (the header line and its line). */
 int tr_batch_row_write(const char *path, const tr_batch_row *r, tr_error *err);
 
-/* Reads a record; TR_EPARSE "PATH:LINE: ..." for anything else. */
+/* Reads a record; TR_EPARSE "PATH:LINE: ..." for anything else. A record
+ * written before the seed and road columns is read with them unknown. */
 int tr_batch_row_read(const char *path, tr_batch_row *r, tr_error *err);
 
 #endif

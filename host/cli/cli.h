@@ -27,6 +27,8 @@ typedef struct tr_tighten_report {
     double elapsed;      /* seconds, the runs before a resumed checkpoint included */
     long steps;
     int tries;           /* tightenings whose best result was kept (1: one road) */
+    long seed;           /* --seed: with tries and the options, what makes the roads again; -1 resumed */
+    int road;            /* the road written, 1-based (1: the start's own); 0 resumed */
 } tr_tighten_report;
 
 /* tighten with argv as tr_cmd_tighten takes it (argv[0] the command's

@@ -12,7 +12,9 @@
  * --only NAME and --job I --jobs J select independent parts, which GNU
  * parallel or a SLURM array (scripts/slurm_batch.sh) run at once into the
  * same OUT; each rewrites the table under a lock, and --table-only
- * rebuilds it from the records. */
+ * rebuilds it from the records. --merge OTHER keeps the shorter of two
+ * batches' results per knot (batch_merge.h): the roads of another seed,
+ * run anywhere, join the table. */
 #include <errno.h>
 #include <fcntl.h>
 #include <math.h>
@@ -24,6 +26,7 @@
 #include <unistd.h>
 
 #include "cli/batch_manifest.h"
+#include "cli/batch_merge.h"
 #include "cli/batch_row.h"
 #include "cli/batch_table.h"
 #include "cli/cli.h"
@@ -31,6 +34,7 @@
 #include "curve/curve.h"
 #include "curve/curve_io.h"
 #include "util/clock.h"
+#include "util/text_file.h"
 
 static void usage(FILE *out)
 {
@@ -49,6 +53,9 @@ static void usage(FILE *out)
             "                     one of J independent jobs (a SLURM array, scripts/slurm_batch.sh)\n"
             "  --list             print the selected knots' names, one a line, and tighten nothing\n"
             "  --table-only       tighten nothing: rebuild the table from the knots done in OUT\n"
+            "  --merge OTHER      tighten nothing: take each selected knot's result from OTHER (a batch\n"
+            "                     output folder of the same knots, e.g. another --seed) where OUT has\n"
+            "                     none or OTHER's is shorter at the same N; then rebuild the table\n"
             "  --compare REF      add a reference table's N and ropelength (a TSV with a header: knot\n"
             "                     name first, a column 'ropelength...'; '.' and '_' match in names)\n"
             "                     and the difference, ours - reference, absolute and in %%\n"
@@ -63,7 +70,7 @@ static void usage(FILE *out)
 }
 
 typedef struct batch_opts {
-    const char *src, *out, *only, *compare;
+    const char *src, *out, *only, *compare, *merge;
     long job, jobs; /* jobs 0: all */
     double ckpt_every;
     int list, table_only, quiet;
@@ -95,7 +102,7 @@ static int parse_options(int argc, char **argv, batch_opts *o)
             continue;
         }
         static const char *valued[] = {"-o", "--out", "--only", "--compare", "--job", "--jobs",
-                                       "--checkpoint-every"};
+                                       "--checkpoint-every", "--merge"};
         size_t k = 0;
         while (k < sizeof valued / sizeof valued[0] && strcmp(a, valued[k]))
             k++;
@@ -128,6 +135,8 @@ static int parse_options(int argc, char **argv, batch_opts *o)
             bad = tr_arg_long(v, 0, 1000000000, &o->job);
         else if (k == 5)
             bad = tr_arg_long(v, 1, 1000000000, &o->jobs);
+        else if (k == 7)
+            o->merge = v;
         else
             bad = tr_arg_double(v, 0, 1e9, &o->ckpt_every) || o->ckpt_every <= 0;
         if (bad) {
@@ -149,6 +158,10 @@ static int parse_options(int argc, char **argv, batch_opts *o)
         bad = "--only and --job select differently; give one";
     else if (o->table_only && (o->only || o->jobs > 0 || o->list))
         bad = "--table-only rebuilds the whole table; it takes no --only, --job or --list";
+    else if (o->merge && (o->table_only || o->list))
+        bad = "--merge tightens nothing already; it takes no --table-only or --list";
+    else if (o->merge && o->ntopts > 0)
+        bad = "--merge tightens nothing; it takes no tighten options after --";
     for (int j = 0; !bad && j < o->ntopts; j++)
         if (tr_batch_reserved_option(o->topts[j])) {
             fprintf(stderr, "tightrope batch: tighten option %s: %s\n", o->topts[j],
@@ -276,7 +289,8 @@ static int run_knot(const batch_opts *o, const tr_batch_knot *k, tr_tighten_repo
     }
     tr_batch_row r = {.n = rep->n, .ropelength = rep->ropelength, .thickness = rep->thickness,
                       .minrad = rep->minrad, .dcsd = rep->dcsd, .kkt_residual = rep->kkt_residual,
-                      .time_s = rep->elapsed, .tries = rep->tries, .steps = rep->steps, .resumed = resume};
+                      .time_s = rep->elapsed, .tries = rep->tries, .steps = rep->steps, .resumed = resume,
+                      .seed = rep->seed, .road = rep->road};
     snprintf(r.knot, sizeof r.knot, "%s", k->name);
     snprintf(r.stop, sizeof r.stop, "%s", rep->stop);
     /* the record last: with it the knot is done, and its checkpoint is
@@ -442,6 +456,49 @@ static int run_all(const batch_opts *o, const tr_batch_list *l, const size_t *se
     return status;
 }
 
+/* --merge: each selected knot's result from o->merge where it is shorter
+ * (batch_merge.h), under the knot's lock. Returns the exit status. */
+static int merge_all(const batch_opts *o, const tr_batch_list *l, const size_t *sel, size_t nsel)
+{
+    if (tr_same_file(o->merge, o->out)) {
+        fprintf(stderr, "tightrope batch: --merge %s is the output folder itself\n", o->merge);
+        return 2;
+    }
+    if (access(o->merge, F_OK)) {
+        fprintf(stderr, "tightrope batch: --merge: no folder %s: %s\n", o->merge, strerror(errno));
+        return 2;
+    }
+    size_t counts[4] = {0};
+    for (size_t s = 0; s < nsel; s++) {
+        const char *name = l->knots[sel[s]].name;
+        int lock = lock_knot(o->out, name);
+        if (lock == -2)
+            return 2;
+        if (lock == -1) {
+            if (!o->quiet)
+                fprintf(stderr, "batch merge [%zu/%zu] %s: another batch process is running it, left\n", s + 1,
+                        nsel, name);
+            continue;
+        }
+        tr_merge_outcome how;
+        char what[512];
+        tr_error err;
+        int rc = tr_batch_merge_knot(o->out, o->merge, name, &how, what, sizeof what, &err);
+        close(lock);
+        if (rc != TR_OK) {
+            fprintf(stderr, "tightrope batch: --merge: %s\n", err.msg);
+            return rc == TR_ENOMEM ? 1 : 2;
+        }
+        counts[how]++;
+        if (!o->quiet)
+            fprintf(stderr, "batch merge [%zu/%zu] %s: %s\n", s + 1, nsel, name, what);
+    }
+    if (!o->quiet)
+        fprintf(stderr, "batch merge: %zu taken, %zu shorter, %zu kept, %zu not in %s\n", counts[TR_MERGE_TAKEN],
+                counts[TR_MERGE_SHORTER], counts[TR_MERGE_KEPT], counts[TR_MERGE_ABSENT], o->merge);
+    return 0;
+}
+
 int tr_cmd_batch(int argc, char **argv)
 {
     batch_opts o;
@@ -490,7 +547,7 @@ int tr_cmd_batch(int argc, char **argv)
         status = 2;
     }
     if (status < 0) {
-        status = o.table_only ? 0 : run_all(&o, &l, sel, nsel);
+        status = o.table_only ? 0 : o.merge ? merge_all(&o, &l, sel, nsel) : run_all(&o, &l, sel, nsel);
         size_t rows = 0;
         int ts = write_table(&o, &l, o.compare ? &ref : NULL, &rows);
         if (ts > status)

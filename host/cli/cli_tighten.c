@@ -1035,7 +1035,7 @@ static int final_status(const tighten_opts *o, const tighten_result *r)
 }
 
 /* The report batch reads: what print_summary prints, as numbers. */
-static void fill_report(const tighten_result *r, tr_tighten_report *rep)
+static void fill_report(const tighten_opts *o, const tighten_result *r, tr_tighten_report *rep)
 {
     rep->written = 1;
     rep->interrupted = r->why == TR_STOP_SIGNAL;
@@ -1049,6 +1049,9 @@ static void fill_report(const tighten_result *r, tr_tighten_report *rep)
     rep->elapsed = r->p.elapsed;
     rep->steps = r->p.steps;
     rep->tries = r->tries > 0 ? r->tries : 1;
+    /* a resumed run continues one road of a run whose seed it does not know */
+    rep->seed = o->resume ? -1 : o->seed;
+    rep->road = o->resume ? 0 : r->tries > 0 ? r->best_try + 1 : 1;
 }
 
 int tr_tighten_stop_requested(void) { return stop_requested != 0; }
@@ -1192,7 +1195,7 @@ int tr_tighten_command(int argc, char **argv, tr_tighten_report *rep)
         return 2;
     }
     if (rep)
-        fill_report(&r, rep);
+        fill_report(&o, &r, rep);
     else
         print_summary(&o, e, &r);
     rc = final_status(&o, &r);

@@ -201,6 +201,46 @@ jobs)
   "$tr" batch m.tsv -o out --job 0 --jobs 2 2>>err.log || fail "job 0: $(cat err.log)"
   check_table out
   ;;
+merge)
+  # --merge: the shorter of two batches' results per knot, curve and record together, at the
+  # same N only; merging again changes nothing; each row names the seed and road it came from.
+  make_knots - - -
+  # a's knots stopped early, so b's trefoil is shorter (whichever is, the merge keeps it)
+  "$tr" batch m.tsv -o a -- --steps 40 2>err.log || fail "batch a: $(cat err.log)"
+  "$tr" batch m.tsv -o b --only trefoil -- --seed 5 2>err.log || fail "batch b: $(cat err.log)"
+  [ "$(col a/table.tsv trefoil seed) $(col a/table.tsv trefoil road)" = "1 1" ] || fail "a's seed and road"
+  [ "$(col b/table.tsv trefoil seed) $(col b/table.tsv trefoil road)" = "5 1" ] || fail "b's seed and road"
+  cp -r a c
+  "$tr" batch m.tsv -o c --merge b 2>err.log || fail "merge: $(cat err.log)"
+  grep -q 'trefoil: .* -> .* from b' err.log || fail "b's shorter trefoil not taken: $(cat err.log)"
+  ra=$(col a/table.tsv trefoil ropelength) rb=$(col b/table.tsv trefoil ropelength) rc=$(col c/table.tsv trefoil ropelength)
+  best=$(awk -v a="$ra" -v b="$rb" 'BEGIN { print (b < a ? b : a) }')
+  [ "$rc" = "$best" ] || fail "merged trefoil $rc, a $ra, b $rb"
+  for k in hopf t25; do
+    [ "$(col c/table.tsv $k ropelength)" = "$(col a/table.tsv $k ropelength)" ] || fail "merge changed $k"
+  done
+  check_table c
+  cp c/table.tsv merged.before
+  "$tr" batch m.tsv -o c --merge b 2>err.log || fail "merge again: $(cat err.log)"
+  cmp -s merged.before c/table.tsv || fail "merging twice changed the table"
+  # into a new folder: the one knot b has
+  "$tr" batch m.tsv -o d --merge b 2>err.log || fail "merge into d: $(cat err.log)"
+  [ "$(names d/table.tsv | tr '\n' ' ')" = "trefoil " ] || fail "d: $(names d/table.tsv)"
+  cmp -s b/trefoil.vect d/trefoil.vect || fail "d's curve is not b's"
+  # a record written before the seed and road columns is read with them unknown
+  cut -f1-12 d/trefoil.row.tsv >old.tsv && mv old.tsv d/trefoil.row.tsv
+  "$tr" batch m.tsv -o d --table-only 2>err.log || fail "old record: $(cat err.log)"
+  [ "$(col d/table.tsv trefoil seed) $(col d/table.tsv trefoil road)" = "- -" ] || fail "old record's seed and road"
+  # another N is another problem: kept, whatever its length
+  sed 's/^hopf\thopf.vect\t-/hopf\thopf.vect\t50/' m.tsv >m50.tsv
+  "$tr" batch m50.tsv -o e --only hopf 2>err.log || fail "batch e: $(cat err.log)"
+  "$tr" batch m.tsv -o c --merge e --only hopf 2>err.log || fail "merge e: $(cat err.log)"
+  grep -q "kept (e's N 100 is not this one's 80)" err.log || fail "N not compared: $(cat err.log)"
+  cmp -s a/hopf.vect c/hopf.vect || fail "another N replaced hopf"
+  "$tr" batch m.tsv -o c --merge nowhere 2>err.log && fail "merge from a missing folder succeeded"
+  grep -q 'no folder nowhere' err.log || fail "missing folder message: $(cat err.log)"
+  "$tr" batch m.tsv -o c --merge b -- --seed 2 2>err.log && fail "--merge with tighten options succeeded"
+  ;;
 parallel)
   # The GNU parallel route, for real: one job per knot, two at once, into one folder.
   command -v parallel >/dev/null || { echo "GNU parallel not installed (scripts/deps.sh installs it)"; exit 77; }

@@ -1,0 +1,30 @@
+/* Merging one batch's results into another's (tightrope batch --merge):
+ * the same knots tightened elsewhere (another seed, another machine, a
+ * SLURM array on another cluster) are compared knot by knot, and the
+ * shorter tight curve stays with its record. */
+#ifndef TR_BATCH_MERGE_H
+#define TR_BATCH_MERGE_H
+
+#include <stddef.h>
+
+#include "util/error.h"
+
+typedef enum tr_merge_outcome {
+    TR_MERGE_ABSENT,  /* OTHER has no record of the knot */
+    TR_MERGE_TAKEN,   /* OUT had none: OTHER's result is now OUT's */
+    TR_MERGE_SHORTER, /* OTHER's was shorter at the same N and replaced OUT's */
+    TR_MERGE_KEPT,    /* OUT's is as short or shorter (or at another N) */
+} tr_merge_outcome;
+
+/* Merges knot name of folder other into folder out: OTHER/NAME.vect and
+ * its record replace OUT's when OUT has no record, or when OTHER's
+ * ropelength is smaller at the same N. The curve is copied first and the
+ * record last, both atomically, so a merge killed at any moment and run
+ * again ends the same, and merging twice changes nothing. A checkpoint of
+ * the knot in OUT is removed once OUT has a record. The caller holds the
+ * knot's lock in OUT. *outcome says what happened; what (size what_size)
+ * gets a short phrase for the progress line. */
+int tr_batch_merge_knot(const char *out, const char *other, const char *name, tr_merge_outcome *outcome,
+                        char *what, size_t what_size, tr_error *err);
+
+#endif
