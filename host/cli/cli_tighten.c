@@ -499,6 +499,17 @@ static long road_coarse_n(const tighten_opts *o, int t)
     return n < 16 ? 16 : n;
 }
 
+/* Whether every component of c has the --refine-to count (0: no such count). */
+static int at_refine_n(const tighten_opts *o, const tr_curve *c)
+{
+    if (o->refine_to <= 0)
+        return 0;
+    for (int k = 0; k < c->ncomp; k++)
+        if ((long)tr_comp_nv(c, k) != o->refine_to)
+            return 0;
+    return 1;
+}
+
 static double road_inflate(int t) { return ROADS[(t - 1) % ROAD_COUNT].inflated ? ROAD_INFLATE : 1.0; }
 
 /* Resamples c along a spline so that no component's edges are INFLATED_EDGE
@@ -1106,6 +1117,8 @@ int tr_tighten_command(int argc, char **argv, tr_tighten_report *rep)
     for (long t = 0; t < o.tries + scouting && !(have && stop_requested); t++) {
         tighten_opts ot = o;
         ot.try_index = (int)t;
+        tr_curve scout_at_n = {0};
+        int resampled = 0;
         int refining = scouting && t == o.tries;
         /* the last --shuffles roads (never the first: --shuffles < --tries) */
         int shuffled_road = !refining && t >= o.tries - o.shuffles;
@@ -1114,6 +1127,30 @@ int tr_tighten_command(int argc, char **argv, tr_tighten_report *rep)
              * road_from before --n and --scale) */
             ot.road_from = &r.fin;
             ot.road_as_is = 1;
+            /* a scout the engine gave more vertices than asked for (a
+             * short knot at small N: the inflated roads add vertices) is
+             * resampled to N first, not refused */
+            int finer = 0;
+            size_t *per = malloc((size_t)r.fin.ncomp * sizeof *per);
+            for (int k = 0; per && k < r.fin.ncomp; k++) {
+                per[k] = tr_comp_nv(&r.fin, k);
+                if ((long)per[k] > o.refine_to) {
+                    per[k] = (size_t)o.refine_to;
+                    finer = 1;
+                }
+            }
+            tr_error rerr;
+            tr_thickness th;
+            if (finer && per && tr_resample(&r.fin, per, &scout_at_n, &rerr) == TR_OK) {
+                /* fewer vertices cut the tight polygon's corners: at
+                 * thickness 1 again, the constrained ropes as they are */
+                if (scout_at_n.ncst == 0 && tr_thickness_measure(&scout_at_n, NULL, &th, NULL, &rerr) == TR_OK &&
+                    th.thickness > 0 && isfinite(th.thickness))
+                    scale_curve(&scout_at_n, 1.0 / th.thickness);
+                ot.road_from = &scout_at_n;
+                resampled = 1;
+            }
+            free(per);
         } else if (scouting) {
             ot.refine_to = 0;
             if (shuffled_road) {
@@ -1133,8 +1170,8 @@ int tr_tighten_command(int argc, char **argv, tr_tighten_report *rep)
             ot.time_limit = refining ? fmax(o.time_limit - (tr_clock_seconds() - t0), 0.05 * o.time_limit)
                                      : fmax(budget - (tr_clock_seconds() - t0), 0.05 * budget) / (double)(o.tries - t);
         if (refining && !o.quiet)
-            fprintf(stderr, "tightrope tighten: the shortest scout (road %d, N %zu) refined to %ld vertices\n",
-                    r.best_try + 1, r.fin.nv, o.refine_to);
+            fprintf(stderr, "tightrope tighten: the shortest scout (road %d, N %zu) %s to %ld vertices\n",
+                    r.best_try + 1, r.fin.nv, resampled ? "resampled" : "refined", o.refine_to);
         else if (o.tries > 1 && t > 0 && !o.quiet)
             fprintf(stderr, "tightrope tighten: road %ld of %ld: %s\n", t + 1, o.tries,
                     ot.road_from ? "the shortest result so far, moved"
@@ -1144,6 +1181,8 @@ int tr_tighten_command(int argc, char **argv, tr_tighten_report *rep)
         tr_engine *et;
         tighten_result rt;
         rc = one_road(&ot, &et, &rt);
+        if (resampled)
+            tr_curve_free(&scout_at_n);
         if (rc >= 0) {
             if (!have)
                 return rc;
@@ -1163,9 +1202,11 @@ int tr_tighten_command(int argc, char **argv, tr_tighten_report *rep)
         /* a road that ran out of time on a coarse level has not reached
          * the N asked for: the finest road wins, then the shortest; among
          * scouts (each at its own coarse count) the shortest */
-        int shorter = rt.th.ropelength < r.th.ropelength;
-        int better = !have || (scouting && !refining ? shorter
-                                                     : rt.fin.nv > r.fin.nv || (rt.fin.nv == r.fin.nv && shorter));
+        /* ... but a road at exactly the N asked for wins over one the
+         * engine took past it */
+        int shorter = rt.th.ropelength < r.th.ropelength, at_n = at_refine_n(&o, &rt.fin),
+            finer = at_n != at_refine_n(&o, &r.fin) ? at_n : rt.fin.nv > r.fin.nv;
+        int better = !have || (scouting && !refining ? shorter : finer || (rt.fin.nv == r.fin.nv && shorter));
         if (better) {
             /* the refined scout keeps the scout's number */
             int best_try = refining ? r.best_try : (int)t;

@@ -38,6 +38,15 @@ got=$("$tr" measure "$work/l.vect" | awk '$1 == "curve" { print $2, $7 }')
 [ "${got%% *}" = 160 ] || fail "levels: wrote ${got%% *} vertices, not 160"
 awk -v b="$refined" -v g="${got#* }" 'BEGIN { d = b - g; if (d < 0) d = -d; exit !(d < 1e-8 * b) }' ||
   fail "levels: wrote ${got#* }, the refined scout was $refined"
+# a scout the engine took past N (a short knot at small N: the inflated road adds vertices)
+# is resampled to N and written at N, not refused
+"$tr" make torus 2 3 --n 64 -o "$work/s64.vect" >/dev/null || fail "make 64"
+"$tr" tighten "$work/s64.vect" -o "$work/p.vect" --refine-to 80 --steps 600 --tries 2 --seed 5 --no-kkt \
+  --device reference >"$work/p.out" 2>"$work/p.err" || fail "past N: $(cat "$work/p.err")"
+grep -q 'shortest scout (road 2, N 96) resampled to 80 vertices' "$work/p.err" ||
+  fail "past N: the inflated scout was not past N or not resampled: $(cat "$work/p.err")"
+got=$("$tr" measure "$work/p.vect" | awk '$1 == "curve" { print $2 }')
+[ "$got" = 80 ] || fail "past N: wrote $got vertices, not 80: $(cat "$work/p.err")"
 # --shuffles S: the last S roads start from the start shuffled (engine/shuffle.h), the same
 # with the same seed
 for run in s1 s2; do
