@@ -26,6 +26,15 @@ static void num(tr_text *t, const char *fmt, double v)
         tr_text_printf(t, "-");
 }
 
+/* A count known from least on, else the text for unknown. */
+static void known(tr_text *t, long v, long least, const char *unknown)
+{
+    if (v >= least)
+        tr_text_printf(t, "%ld", v);
+    else
+        tr_text_printf(t, "%s", unknown);
+}
+
 void tr_batch_row_format(tr_text *t, const tr_batch_row *r)
 {
     /* ropelength to 10 decimals, as the TightKnot table; the record is read
@@ -43,14 +52,9 @@ void tr_batch_row_format(tr_text *t, const tr_batch_row *r)
     tr_text_printf(t, "\t");
     num(t, "%.2f", r->time_s);
     tr_text_printf(t, "\t%d\t%ld\t%s\t%d\t", r->tries, r->steps, r->stop, r->resumed);
-    if (r->seed >= 0)
-        tr_text_printf(t, "%ld", r->seed);
-    else
-        tr_text_printf(t, "-");
-    if (r->road > 0)
-        tr_text_printf(t, "\t%d", r->road);
-    else
-        tr_text_printf(t, "\t-");
+    known(t, r->seed, 0, "-");
+    tr_text_printf(t, "\t");
+    known(t, r->road, 1, "-");
 }
 
 void tr_batch_row_json_fields(tr_text *t, const tr_batch_row *r)
@@ -72,14 +76,9 @@ void tr_batch_row_json_fields(tr_text *t, const tr_batch_row *r)
     tr_text_printf(t, ", \"tries\": %d, \"steps\": %ld, \"stop\": ", r->tries, r->steps);
     tr_json_string(t, r->stop);
     tr_text_printf(t, ", \"resumed\": %s, \"seed\": ", r->resumed ? "true" : "false");
-    if (r->seed >= 0)
-        tr_text_printf(t, "%ld", r->seed);
-    else
-        tr_text_printf(t, "null");
-    if (r->road > 0)
-        tr_text_printf(t, ", \"road\": %d", r->road);
-    else
-        tr_text_printf(t, ", \"road\": null");
+    known(t, r->seed, 0, "null");
+    tr_text_printf(t, ", \"road\": ");
+    known(t, r->road, 1, "null");
 }
 
 int tr_batch_row_write(const char *path, const tr_batch_row *r, tr_error *err)
