@@ -456,6 +456,21 @@ static int run_all(const batch_opts *o, const tr_batch_list *l, const size_t *se
     return status;
 }
 
+/* Whether path is a folder; else says so for option opt. */
+static int is_folder(const char *path, const char *opt)
+{
+    struct stat st;
+    if (stat(path, &st)) {
+        fprintf(stderr, "tightrope batch: %s: no folder %s: %s\n", opt, path, strerror(errno));
+        return 0;
+    }
+    if (!S_ISDIR(st.st_mode)) {
+        fprintf(stderr, "tightrope batch: %s: %s is not a folder\n", opt, path);
+        return 0;
+    }
+    return 1;
+}
+
 /* --merge: each selected knot's result from o->merge where it is shorter
  * (batch_merge.h), under the knot's lock. Returns the exit status. */
 static int merge_all(const batch_opts *o, const tr_batch_list *l, const size_t *sel, size_t nsel)
@@ -464,10 +479,7 @@ static int merge_all(const batch_opts *o, const tr_batch_list *l, const size_t *
         fprintf(stderr, "tightrope batch: --merge %s is the output folder itself\n", o->merge);
         return 2;
     }
-    if (access(o->merge, F_OK)) {
-        fprintf(stderr, "tightrope batch: --merge: no folder %s: %s\n", o->merge, strerror(errno));
-        return 2;
-    }
+
     size_t counts[4] = {0};
     for (size_t s = 0; s < nsel; s++) {
         const char *name = l->knots[sel[s]].name;
@@ -539,6 +551,8 @@ int tr_cmd_batch(int argc, char **argv)
         for (size_t s = 0; s < nsel; s++)
             printf("%s\n", l.knots[sel[s]].name);
         status = 0;
+    } else if (status < 0 && o.merge && !is_folder(o.merge, "--merge")) {
+        status = 2;
     } else if (status < 0 && o.table_only && access(o.out, F_OK)) {
         fprintf(stderr, "tightrope batch: --table-only: no output folder %s: %s\n", o.out, strerror(errno));
         status = 2;

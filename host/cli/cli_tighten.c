@@ -1141,7 +1141,10 @@ int tr_tighten_command(int argc, char **argv, tr_tighten_report *rep)
             }
             tr_error rerr;
             tr_thickness th;
-            if (finer && per && tr_resample(&r.fin, per, &scout_at_n, &rerr) == TR_OK) {
+            if (finer && tr_resample(&r.fin, per, &scout_at_n, &rerr) != TR_OK)
+                fprintf(stderr, "tightrope tighten: warning: the scout could not be resampled to N %ld: %s\n",
+                        o.refine_to, rerr.msg);
+            else if (finer) {
                 /* fewer vertices cut the tight polygon's corners: at
                  * thickness 1 again, the constrained ropes as they are */
                 if (scout_at_n.ncst == 0 && tr_thickness_measure(&scout_at_n, NULL, &th, NULL, &rerr) == TR_OK &&
@@ -1205,8 +1208,8 @@ int tr_tighten_command(int argc, char **argv, tr_tighten_report *rep)
         /* ... but a road at exactly the N asked for wins over one the
          * engine took past it */
         int shorter = rt.th.ropelength < r.th.ropelength, at_n = at_refine_n(&o, &rt.fin),
-            finer = at_n != at_refine_n(&o, &r.fin) ? at_n : rt.fin.nv > r.fin.nv;
-        int better = !have || (scouting && !refining ? shorter : finer || (rt.fin.nv == r.fin.nv && shorter));
+            same_n = at_n == at_refine_n(&o, &r.fin), finer = same_n ? rt.fin.nv > r.fin.nv : at_n;
+        int better = !have || (scouting && !refining ? shorter : finer || (same_n && rt.fin.nv == r.fin.nv && shorter));
         if (better) {
             /* the refined scout keeps the scout's number */
             int best_try = refining ? r.best_try : (int)t;

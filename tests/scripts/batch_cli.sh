@@ -239,6 +239,9 @@ merge)
   cmp -s a/hopf.vect c/hopf.vect || fail "another N replaced hopf"
   "$tr" batch m.tsv -o c --merge nowhere 2>err.log && fail "merge from a missing folder succeeded"
   grep -q 'no folder nowhere' err.log || fail "missing folder message: $(cat err.log)"
+  "$tr" batch m.tsv -o fresh --merge m.tsv 2>err.log && fail "merge from a file succeeded"
+  grep -q 'm.tsv is not a folder' err.log || fail "not a folder message: $(cat err.log)"
+  [ -e fresh ] && fail "a refused merge made its output folder"
   "$tr" batch m.tsv -o c --merge b -- --seed 2 2>err.log && fail "--merge with tighten options succeeded"
   ;;
 parallel)
