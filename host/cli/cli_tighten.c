@@ -510,6 +510,39 @@ static int at_refine_n(const tighten_opts *o, const tr_curve *c)
     return 1;
 }
 
+/* A scout the engine gave more vertices than --refine-to asks for in some
+ * component (a short knot at small N: the inflated roads add vertices),
+ * resampled to that N into *out instead of refused, and at thickness 1
+ * again (fewer vertices cut the tight polygon's corners; a constrained rope
+ * as it is). Returns 1 with *out filled; 0 when no component is past N, or
+ * (said on stderr) when it cannot be resampled: the scout is refined as it
+ * is. */
+static int scout_at_refine_n(const tighten_opts *o, const tr_curve *scout, tr_curve *out)
+{
+    int finer = 0;
+    size_t *per = malloc((size_t)scout->ncomp * sizeof *per);
+    for (int k = 0; per && k < scout->ncomp; k++) {
+        per[k] = tr_comp_nv(scout, k);
+        if ((long)per[k] > o->refine_to) {
+            per[k] = (size_t)o->refine_to;
+            finer = 1;
+        }
+    }
+    tr_error err;
+    tr_thickness th;
+    int rc = finer ? tr_resample(scout, per, out, &err) : TR_OK;
+    free(per);
+    if (rc != TR_OK)
+        fprintf(stderr, "tightrope tighten: warning: the scout could not be resampled to N %ld: %s\n", o->refine_to,
+                err.msg);
+    if (!finer || rc != TR_OK)
+        return 0;
+    if (out->ncst == 0 && tr_thickness_measure(out, NULL, &th, NULL, &err) == TR_OK && th.thickness > 0 &&
+        isfinite(th.thickness))
+        scale_curve(out, 1.0 / th.thickness);
+    return 1;
+}
+
 static double road_inflate(int t) { return ROADS[(t - 1) % ROAD_COUNT].inflated ? ROAD_INFLATE : 1.0; }
 
 /* Resamples c along a spline so that no component's edges are INFLATED_EDGE
@@ -1127,33 +1160,8 @@ int tr_tighten_command(int argc, char **argv, tr_tighten_report *rep)
              * road_from before --n and --scale) */
             ot.road_from = &r.fin;
             ot.road_as_is = 1;
-            /* a scout the engine gave more vertices than asked for (a
-             * short knot at small N: the inflated roads add vertices) is
-             * resampled to N first, not refused */
-            int finer = 0;
-            size_t *per = malloc((size_t)r.fin.ncomp * sizeof *per);
-            for (int k = 0; per && k < r.fin.ncomp; k++) {
-                per[k] = tr_comp_nv(&r.fin, k);
-                if ((long)per[k] > o.refine_to) {
-                    per[k] = (size_t)o.refine_to;
-                    finer = 1;
-                }
-            }
-            tr_error rerr;
-            tr_thickness th;
-            if (finer && tr_resample(&r.fin, per, &scout_at_n, &rerr) != TR_OK)
-                fprintf(stderr, "tightrope tighten: warning: the scout could not be resampled to N %ld: %s\n",
-                        o.refine_to, rerr.msg);
-            else if (finer) {
-                /* fewer vertices cut the tight polygon's corners: at
-                 * thickness 1 again, the constrained ropes as they are */
-                if (scout_at_n.ncst == 0 && tr_thickness_measure(&scout_at_n, NULL, &th, NULL, &rerr) == TR_OK &&
-                    th.thickness > 0 && isfinite(th.thickness))
-                    scale_curve(&scout_at_n, 1.0 / th.thickness);
+            if ((resampled = scout_at_refine_n(&o, &r.fin, &scout_at_n)))
                 ot.road_from = &scout_at_n;
-                resampled = 1;
-            }
-            free(per);
         } else if (scouting) {
             ot.refine_to = 0;
             if (shuffled_road) {
