@@ -80,7 +80,9 @@ int main(int argc, char **argv)
     if (argc > 4)
         p.time_limit = atof(argv[4]);
     /* the bend cap and the pass's end, for measuring them (newton.h
-     * max_bend, inner_decrement; 0 turns the latter off) */
+     * max_bend, inner_decrement, minrad_guard; 0 turns the latter two off) */
+    if (getenv("NEWTON_MINRAD_GUARD"))
+        p.minrad_guard = atof(getenv("NEWTON_MINRAD_GUARD"));
     if (getenv("NEWTON_MAX_BEND"))
         p.max_bend = atof(getenv("NEWTON_MAX_BEND"));
     if (getenv("NEWTON_INNER_DECREMENT"))

@@ -41,6 +41,7 @@ void tr_newton_params_default(tr_newton_params *p)
     p->warm_start = 1;
     p->mu_max = 1e5;
     p->inner_decrement = 1e-11;
+    p->minrad_guard = 0.1;
     p->viol_tol = 1e-11;
     p->stat_tol = 1e-7;
 }
@@ -730,6 +731,10 @@ int tr_newton(tr_curve *cv, const tr_newton_params *prm, tr_newton_stats *st, tr
          * start's steps may not be small */
         if (s.start_residual > CAUTIOUS_RESIDUAL)
             s.max_bend = prm->max_bend;
+        /* the guard goes with the bends taken back: both are for the
+         * inactive MinRad rows the model does not see (newton_rows.c) */
+        if (isfinite(s.max_bend) && !constrained)
+            s.guard = prm->minrad_guard;
         /* a clasp keeps the cap on the whole step: without it a refined
          * clasp's first steps folded a straight end through itself, and
          * bends taken back one vertex at a time have not been tried there */

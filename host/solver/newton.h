@@ -138,6 +138,9 @@ typedef struct tr_newton_params {
     double viol_tol;   /* converged: worst relative violation below this ... */
     double stat_tol;   /* ... and relative unbalanced force below this */
     double inner_decrement; /* a pass ends after a full step predicting less decrease than this x length */
+    double minrad_guard; /* where bends are taken back, the Newton matrix sees the inactive MinRad rows near
+                          * their bound as a barrier would, with this weight times the band (newton_rows.c);
+                          * 0: not at all */
     int warm_start;    /* first multipliers by least squares (warm_start.c); 0: cold */
     int tight_only;    /* give up at once (not accepted) unless the warm start finds the start tight */
     volatile sig_atomic_t *stop; /* raised by a signal handler: stop as at the time limit */

@@ -71,6 +71,7 @@ typedef struct solver {
     double viol_kind[3]; /* viol by kind of row: edges, MinRad, struts */
     size_t worst_m;      /* the vertex of the worst MinRad violation */
     double max_bend;     /* the step's curvature cap (p->max_bend on a tight start, else none) */
+    double guard;        /* the MinRad guard's weight (p->minrad_guard where bends are taken back, else 0) */
     int bend_cap;        /* the cap cuts the whole step (a constrained rope); else bends are taken back (newton.c) */
     size_t active;
     cholmod_common cm;

@@ -103,6 +103,39 @@ static void row_terms(solver *s, int m, const size_t *idx, const double *gr, con
  * solver"); at mu0 the band is as before. */
 #define NEAR_ACTIVE 1e-6
 
+/* The MinRad guard (s->guard > 0, where bends are taken back: newton.c).
+ * An inactive MinRad row is not in the Newton matrix, yet it is quadratic in
+ * a second difference w of size l0^2 kappa, so a step's vertex-scale
+ * wiggles of a few l0^2 (1.8e-7 at N = 76 800), which the tension hardly
+ * resists, bend a vertex at kappa 0.95 past 1; the bends were taken back in
+ * 94 % of the first 50 steps at N = 38 400 (bench/RESULTS.md). So the
+ * matrix sees each inactive row with 0 < g < g_s (g_s = l0^4 / S, the row
+ * at kappa = 0) as the barrier -nu log g would: nu / g^2 grad g grad g^T -
+ * nu / g hess g (positive semidefinite: g is concave in x), with nu = eta
+ * lambda_bar g_s, lambda_bar the mean multiplier of the active MinRad rows.
+ * The barrier's force nu / g would then equal an active row's at g = eta
+ * g_s, so a row within eta of its bound is held by the model about as
+ * firmly as an active one; below that g is taken as eta g_s (a row at
+ * rounding from its bound would otherwise make the matrix singular). The
+ * value and the gradient are L_A's own: the guard changes the path (a
+ * positive semidefinite change of the matrix keeps the direction one of
+ * descent), not the solution. eta = guard * band falls with the band as mu
+ * grows, so the end game is Newton's on L_A again (at a fixed eta the
+ * N = 38 400 trefoil settled 2e-7 long in 186 steps). Measured at N = 38 400
+ * from the converged 19 200: 178 steps and 32.7429351298, against 263-310
+ * and 32.7429351323-1406 without (bench/RESULTS.md, "The MinRad guard"). */
+static double minrad_guard_lambda(const solver *s)
+{
+    double sum = 0.0;
+    size_t n = 0;
+    for (size_t i = 0; i < s->nv; i++)
+        if (s->lam_m[i] > 0.0) {
+            sum += s->lam_m[i];
+            n++;
+        }
+    return n ? sum / (double)n : 0.0;
+}
+
 /* The PHR term of an inequality row g >= 0: value; *pi = max(0, lam - mu g) */
 static double ineq_term(double g, double lam, double mu, double *pi)
 {
@@ -167,6 +200,7 @@ double tr_newton_i_al_eval(solver *s, const double *y, double *grad, int hess)
         row_terms(s, 7, idx, gr, H, mu, -pi, pi, grad, hess);
     }
     /* MinRad */
+    double eta = s->guard * s->band, lam_bar = hess && eta > 0.0 ? minrad_guard_lambda(s) : 0.0;
     for (size_t i = 0; i < nv; i++) {
         double c, dc, d2c, w[3];
         if (!tr_newton_i_minrad_row(s, x, l, i, w, &c, &dc, &d2c))
@@ -184,7 +218,17 @@ double tr_newton_i_al_eval(solver *s, const double *y, double *grad, int hess)
         if (!grad)
             continue;
         s->pi_m[i] = pi;
-        if (pi == 0.0 && !(hess && g < s->band * NEAR_ACTIVE * s->l0[k] * s->l0[k]))
+        int near = hess && g < s->band * NEAR_ACTIVE * s->l0[k] * s->l0[k];
+        double guard_cg = 0.0, guard_cH = 0.0;
+        if (pi == 0.0 && lam_bar > 0.0 && g > 0.0) {
+            double l02 = s->l0[k] * s->l0[k], gs = l02 * l02 / S;
+            if (g < gs) {
+                double nu = eta * lam_bar * gs, ge = fmax(g, eta * gs);
+                guard_cg = nu / (ge * ge);
+                guard_cH = -nu / ge;
+            }
+        }
+        if (pi == 0.0 && !near && guard_cg == 0.0)
             continue;
         static const double v[3] = {1.0, -2.0, 1.0};
         size_t vx[3] = {ip, i, in};
@@ -201,7 +245,8 @@ double tr_newton_i_al_eval(solver *s, const double *y, double *grad, int hess)
         idx[9] = 3 * nv + (size_t)k;
         gr[9] = dc / S;
         H[99] = d2c / S;
-        row_terms(s, 10, idx, gr, H, mu, -pi, pi, grad, hess);
+        /* a row within the band keeps its penalty term as well */
+        row_terms(s, 10, idx, gr, H, (near || pi > 0.0 ? mu : 0.0) + guard_cg, -pi + guard_cH, pi, grad, hess);
     }
     /* struts */
     size_t active = 0;
