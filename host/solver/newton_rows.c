@@ -111,15 +111,18 @@ static void row_terms(solver *s, int m, const size_t *idx, const double *gr, con
  * 94 % of the first 50 steps at N = 38 400 (bench/RESULTS.md). So the
  * matrix sees each inactive row with 0 < g < g_s (g_s = l0^4 / S, the row
  * at kappa = 0) as the barrier -nu log g would: nu / g^2 grad g grad g^T -
- * nu / g hess g (positive semidefinite: g is concave in x), with nu = eta
+ * nu / g hess g (positive semidefinite over the vertices, g being concave
+ * in x; along the edge length l_k, where c(l) is convex, it can be
+ * indefinite by O(lambda_bar), against the edges' n_k mu there), with nu = eta
  * lambda_bar g_s, lambda_bar the mean multiplier of the active MinRad rows.
  * The barrier's force nu / g would then equal an active row's at g = eta
  * g_s, so a row within eta of its bound is held by the model about as
  * firmly as an active one; below that g is taken as eta g_s (a row at
  * rounding from its bound would otherwise make the matrix singular). The
  * value and the gradient are L_A's own: the guard changes the path (a
- * positive semidefinite change of the matrix keeps the direction one of
- * descent), not the solution. eta = guard * band falls with the band as mu
+ * change of the matrix that keeps it positive definite keeps the direction
+ * one of descent, and the Levenberg shift stands behind that), not the
+ * solution. eta = guard * band falls with the band as mu
  * grows, so the end game is Newton's on L_A again (at a fixed eta the
  * N = 38 400 trefoil settled 2e-7 long in 186 steps). Measured at N = 38 400
  * from the converged 19 200: 178 steps and 32.7429351298, against 263-310
