@@ -73,8 +73,7 @@ void tr_newton_params_default(tr_newton_params *p)
 /* Factors the assembled Hessian (plus the smallest Levenberg shift that
  * makes it positive definite) and solves H dir = -grad. *lm: the shift
  * tried first on entry, the one used on return. */
-static int newton_dir(solver *s, const double *grad, double *dir, double *lm, tr_newton_stats *st,
-                      tr_error *err)
+int tr_newton_i_dir(solver *s, const double *grad, double *dir, double *lm, tr_newton_stats *st, tr_error *err)
 {
     double t0 = tr_clock_seconds();
     cholmod_common *cm = &s->cm;
@@ -201,6 +200,7 @@ static void solver_free(solver *s)
     free(s->pat_i);
     free(s->pat_p);
     free(s->best_y);
+    free(s->restored);
     free(s->cv);
     tr_curve_free(&s->probe);
     tr_solver_rows_free(&s->rows);
@@ -327,6 +327,8 @@ static void update_multipliers(solver *s)
  * iterate if it is the shortest yet. Only near feasibility: further out the
  * rescaled curve is long anyway and the oracle's time would be wasted. */
 #define BEST_VIOL 1e-3
+/* the end's two restorations take up to a few factorizations each */
+#define RESTORE_RESERVE 8.0
 
 /* A constrained curve is not rescaled (its planes stay where they are), so
  * its ropelength is its length at thickness 1: the oracle's length /
@@ -349,10 +351,23 @@ static int has_constrained_vertex(const tr_curve *c)
     return 0;
 }
 
-static int keep_best(solver *s, const double *y, tr_error *err)
+/* y's ropelength as the oracle measures it (*th), at thickness 1 */
+static int measure_iterate(solver *s, const double *y, double *rl, tr_thickness *th, tr_error *err)
 {
-    if (!(s->viol < BEST_VIOL))
-        return TR_OK;
+    memcpy(s->probe.x, y, 3 * s->nv * sizeof *y);
+    int rc = tr_thickness_measure(&s->probe, NULL, th, NULL, err);
+    if (rc)
+        return rc;
+    *rl = th->ropelength;
+    if (s->ncv > 0)
+        *rl = th->thickness >= 1.0 - CONSTRAINED_OUT_TOL ? constrained_ropelength(th) : INFINITY;
+    if (!(th->thickness > 0))
+        *rl = INFINITY;
+    return TR_OK;
+}
+
+static int ensure_best(solver *s, tr_error *err)
+{
     if (!s->probe.x) {
         int rc = tr_curve_copy(&s->probe, &s->w, err);
         if (rc)
@@ -360,35 +375,72 @@ static int keep_best(solver *s, const double *y, tr_error *err)
     }
     if (!s->best_y) {
         s->best_y = malloc(s->n * sizeof *s->best_y);
-        if (!s->best_y)
+        s->restored = malloc(s->n * sizeof *s->restored);
+        if (!s->best_y || !s->restored)
             return tr_fail(err, TR_ENOMEM, "out of memory (Newton solver)");
         s->best_rl = INFINITY;
     }
-    memcpy(s->probe.x, y, 3 * s->nv * sizeof *y);
+    return TR_OK;
+}
+
+/* cand (its violation viol) becomes the best if the oracle measures it
+ * shorter than the best yet */
+static int consider(solver *s, const double *cand, double viol, tr_error *err)
+{
     tr_thickness th;
-    int rc = tr_thickness_measure(&s->probe, NULL, &th, NULL, err);
+    double rl;
+    int rc = measure_iterate(s, cand, &rl, &th, err);
     if (rc)
         return rc;
-    double rl = th.ropelength;
-    if (s->ncv > 0)
-        rl = th.thickness >= 1.0 - CONSTRAINED_OUT_TOL ? constrained_ropelength(&th) : INFINITY;
-    if (th.thickness > 0 && isfinite(rl) && rl < s->best_rl) {
+    if (isfinite(rl) && rl < s->best_rl) {
         s->best_rl = rl;
-        memcpy(s->best_y, y, s->n * sizeof *y);
-        const tr_newton_params *p = s->p;
-        /* a checkpoint is a valid rope (equal edges to 1e-6, as --resume
-         * asks), so only a nearly feasible iterate goes out */
-        if (p->checkpoint && p->checkpoint_every > 0 && s->viol <= 1e-7 &&
-            tr_clock_seconds() - s->t_ckpt >= p->checkpoint_every) {
-            /* at thickness 1; a constrained rope as it is (within
-             * CONSTRAINED_OUT_TOL of it), its planes do not scale */
-            for (size_t i = 0; s->ncv == 0 && i < 3 * s->nv; i++)
-                s->probe.x[i] /= th.thickness;
-            tr_error ce = {0};
-            p->checkpoint(p->user, &s->probe, &ce);
-            s->t_ckpt = tr_clock_seconds();
-        }
+        s->best_viol = viol;
+        s->best_thickness = th.thickness;
+        memcpy(s->best_y, cand, s->n * sizeof *cand);
     }
+    return TR_OK;
+}
+
+/* y restored onto its rows (restore.c) as a candidate for the best: it is
+ * one wherever a row of y is over by more than rounding */
+static int consider_restored(solver *s, const double *y, double deadline, tr_error *err)
+{
+    if (s->ncv > 0)
+        return TR_OK;
+    double rv;
+    memcpy(s->restored, y, s->n * sizeof *y);
+    int rc = tr_newton_i_restore(s, s->restored, deadline, &rv, err);
+    if (rc)
+        return rc;
+    return consider(s, s->restored, rv, err);
+}
+
+static int keep_best(solver *s, const double *y, double deadline, tr_error *err)
+{
+    if (!(s->viol < BEST_VIOL))
+        return TR_OK;
+    int rc = ensure_best(s, err);
+    if (!rc)
+        rc = consider(s, y, s->viol, err);
+    const tr_newton_params *p = s->p;
+    if (rc || !p->checkpoint || !(p->checkpoint_every > 0) || tr_clock_seconds() - s->t_ckpt < p->checkpoint_every)
+        return rc;
+    /* a checkpoint is due: the iterate restored (a few factorizations, so
+     * only here and at the end, not at every pass) */
+    if ((rc = consider_restored(s, y, deadline, err)))
+        return rc;
+    s->t_ckpt = tr_clock_seconds();
+    /* a checkpoint is a valid rope (equal edges to 1e-6, as --resume
+     * asks), so only a nearly feasible best goes out: at thickness 1; a
+     * constrained rope as it is (within CONSTRAINED_OUT_TOL of it), its
+     * planes do not scale */
+    if (!(s->best_viol <= 1e-7))
+        return TR_OK;
+    memcpy(s->probe.x, s->best_y, 3 * s->nv * sizeof *s->best_y);
+    for (size_t i = 0; s->ncv == 0 && i < 3 * s->nv; i++)
+        s->probe.x[i] /= s->best_thickness;
+    tr_error ce = {0};
+    p->checkpoint(p->user, &s->probe, &ce);
     return TR_OK;
 }
 
@@ -420,6 +472,7 @@ static int minimise(solver *s, double *y, tr_newton_stats *st, double t0, tr_err
             held[s->fixed[k] / 3] = 1;
     s->mu = p->mu0 / s->l0min;
     s->t_ckpt = t0;
+    double deadline = p->time_limit > 0 ? t0 + p->time_limit : INFINITY;
     s->band = 1.0;
     /* A MinRad row's second difference w ~ l0^2 kappa is computed from
      * coordinates of size R, so its relative violation carries rounding of
@@ -433,7 +486,12 @@ static int minimise(solver *s, double *y, tr_newton_stats *st, double t0, tr_err
     double omega = 1e-2, prev_viol = INFINITY, lm = 0.0, prev_len = INFINITY;
     int inner = 0, settled = 0, last_full = 0, moved = 0, stuck = 0, inner_done = 0;
     for (int it = 0; it < p->max_iter; it++) {
-        if ((p->time_limit > 0 && tr_clock_seconds() - t0 > p->time_limit) || (p->stop && *p->stop))
+        /* a time-limited run leaves the end's restorations (keep_best)
+         * RESTORE_RESERVE mean steps of its time */
+        double now = tr_clock_seconds();
+        double reserve = st->iters ? RESTORE_RESERVE * (now - t0) / st->iters : 0.0;
+        if ((p->time_limit > 0 && now - t0 > p->time_limit - fmin(reserve, 0.1 * p->time_limit)) ||
+            (p->stop && *p->stop))
             break;
         double te = tr_clock_seconds();
         s->oom = 0;
@@ -482,7 +540,7 @@ static int minimise(solver *s, double *y, tr_newton_stats *st, double t0, tr_err
             } else
                 settled = 0;
             prev_len = s->length;
-            if ((rc = keep_best(s, y, err)))
+            if ((rc = keep_best(s, y, deadline, err)))
                 goto done;
             update_multipliers(s);
             /* mu grows only when the pass was solved (small gradient, or
@@ -523,7 +581,7 @@ static int minimise(solver *s, double *y, tr_newton_stats *st, double t0, tr_err
         for (int lmtry = 0; lmtry < 6 && !ok; lmtry++) {
             if (lmtry > 0)
                 lm = fmax(100.0 * lm, 1e-6 / s->l0min);
-            if ((rc = newton_dir(s, grad, dir, &lm, st, err)))
+            if ((rc = tr_newton_i_dir(s, grad, dir, &lm, st, err)))
                 goto done;
             mv = max_vertex_move(dir, nv);
             cap = 1.0;
@@ -750,10 +808,19 @@ int tr_newton(tr_curve *cv, const tr_newton_params *prm, tr_newton_stats *st, tr
         goto done;
     /* the last iterate, or the best one the passes met */
     tr_newton_i_al_eval(&s, y, NULL, 0);
-    if ((rc = keep_best(&s, y, err)))
-        goto done;
-    if (s.best_y)
+    double deadline = prm->time_limit > 0 ? t0 + prm->time_limit : INFINITY;
+    if (s.viol < BEST_VIOL) {
+        if ((rc = ensure_best(&s, err)) || (rc = consider(&s, y, s.viol, err)) ||
+            (rc = consider_restored(&s, y, deadline, err)))
+            goto done;
+    }
+    if (s.best_y) {
+        /* the best by the oracle may be an earlier iterate, further over */
         memcpy(y, s.best_y, s.n * sizeof *y);
+        if ((rc = consider_restored(&s, y, deadline, err)))
+            goto done;
+        memcpy(y, s.best_y, s.n * sizeof *y);
+    }
     /* the oracle decides: rescale to thickness 1 (a constrained curve:
      * its vertices exactly on their constraints instead), keep if shorter */
     memcpy(s.w.x, y, 3 * s.nv * sizeof *y);
@@ -796,3 +863,49 @@ done:
     solver_free(&s);
     return rc;
 }
+
+int tr_newton_restore(tr_curve *cv, const tr_newton_params *prm, double *before, double *after, tr_error *err)
+{
+    tr_newton_params p;
+    if (prm)
+        p = *prm;
+    else
+        tr_newton_params_default(&p);
+    /* the rows as they stand: no multipliers to start with */
+    p.warm_start = 0;
+    *before = *after = NAN;
+    if (has_constrained_vertex(cv))
+        return tr_fail(err, TR_EINVAL, "restore: a curve with constrained vertices keeps its planes (not restored)");
+    tr_thickness th0;
+    int rc = tr_thickness_measure(cv, NULL, &th0, NULL, err);
+    if (rc)
+        return rc;
+    if (!(th0.thickness > 0) || !isfinite(th0.thickness))
+        return tr_fail(err, TR_EGEOMETRY, "restore: the curve has no finite positive thickness");
+    solver s;
+    memset(&s, 0, sizeof s);
+    s.p = &p;
+    double *y = NULL;
+    tr_newton_stats st;
+    memset(&st, 0, sizeof st);
+    if ((rc = prepare(&s, cv, 1.0, &y, &st, err)))
+        goto done;
+    s.max_bend = INFINITY;
+    tr_newton_i_al_eval(&s, y, NULL, 0);
+    *before = s.viol;
+    if ((rc = ensure_best(&s, err)) || (rc = tr_newton_i_restore(&s, y, INFINITY, after, err)))
+        goto done;
+    tr_thickness th;
+    double rl;
+    if ((rc = measure_iterate(&s, y, &rl, &th, err)))
+        goto done;
+    /* kept where the oracle measures it shorter than the curve rescaled */
+    if (rl < th0.ropelength)
+        for (size_t i = 0; i < 3 * s.nv; i++)
+            cv->x[i] = y[i] / th.thickness;
+done:
+    free(y);
+    solver_free(&s);
+    return rc;
+}
+

@@ -88,7 +88,11 @@
  * pair is closer than 1 is cut back.
  *
  * The result is accepted if the thickness oracle (thickness.h) says it is
- * shorter, after rescaling it to thickness exactly 1.
+ * shorter, after rescaling it to thickness exactly 1. The candidates are
+ * the best iterate the passes met and the last one, each also restored
+ * (restore.c: moved onto its rows by a small correction, since the
+ * rescaling charges a violation of a few rows to the whole length); a
+ * checkpoint is the best so far, restored likewise.
  *
  * Vertex constraints (clasp ends on planes, lines, fixed points) are
  * eliminated: each row's gradient and Hessian are taken on the motions the
@@ -189,5 +193,14 @@ typedef struct tr_newton_stats {
 
 /* Tightens c in place (only if accepted; the result is at thickness 1). */
 int tr_newton(tr_curve *c, const tr_newton_params *p, tr_newton_stats *st, tr_error *err);
+
+/* Moves a nearly feasible c (closed components, no vertex constraints) onto
+ * its rows by a small correction instead of a rescaling (restore.c: the
+ * proximal penalty projection on the solver's rows, at c's own scale) and
+ * replaces c by the result at thickness 1 where the oracle measures it
+ * shorter than c rescaled. *before, *after: the worst row's violation
+ * (relative) before and after. tr_newton does the same to its iterates
+ * at each checkpoint and at its end. */
+int tr_newton_restore(tr_curve *c, const tr_newton_params *p, double *before, double *after, tr_error *err);
 
 #endif

@@ -41,6 +41,8 @@ typedef struct solver {
      * peer drifted away from its best at N = 19 200) */
     tr_curve probe;
     double *best_y, best_rl;
+    double best_viol, best_thickness; /* the best's violation and thickness */
+    double *restored; /* scratch: the iterate restored (restore.c) */
     double t_ckpt; /* when the last checkpoint went out (or the solve began) */
     double warm_residual; /* |t - J^T lambda| / |t| after the warm start; 1 without one */
     double start_residual; /* the same for the multipliers the solve starts with (1 without) */
@@ -126,6 +128,20 @@ void tr_newton_i_tri_push(solver *s, size_t i, size_t j, double v);
  * estimates, with hess the Hessian's triplets; sets viol, dmin, length,
  * active */
 double tr_newton_i_al_eval(solver *s, const double *y, double *grad, int hess);
+
+/* ---- the Newton direction (newton.c) ---- */
+
+/* dir = -(H + shift I)^-1 grad, H the Hessian al_eval last assembled, with
+ * the smallest shift from *lm up that factors (*lm: the shift used) */
+int tr_newton_i_dir(solver *s, const double *grad, double *dir, double *lm, tr_newton_stats *st, tr_error *err);
+
+/* ---- the restoration (restore.c) ---- */
+
+/* y moved onto the rows it violates by a small correction (the proximal
+ * penalty projection of restore.c), until the clock passes deadline or a
+ * stop is asked for; *viol the violation left (as al_eval measures it). A
+ * constrained rope is left as it is. */
+int tr_newton_i_restore(solver *s, double *y, double deadline, double *viol, tr_error *err);
 
 /* ---- the strut list (strut_list.c) ---- */
 
