@@ -383,9 +383,9 @@ static int ensure_best(solver *s, tr_error *err)
     return TR_OK;
 }
 
-/* cand (its violation viol) becomes the best if the oracle measures it
- * shorter than the best yet */
-static int consider(solver *s, const double *cand, double viol, tr_error *err)
+/* cand (viol_edge: its edges' violation) becomes the best if the oracle
+ * measures it shorter than the best yet */
+static int consider(solver *s, const double *cand, double viol_edge, tr_error *err)
 {
     tr_thickness th;
     double rl;
@@ -394,7 +394,7 @@ static int consider(solver *s, const double *cand, double viol, tr_error *err)
         return rc;
     if (isfinite(rl) && rl < s->best_rl) {
         s->best_rl = rl;
-        s->best_viol = viol;
+        s->best_viol_edge = viol_edge;
         s->best_thickness = th.thickness;
         memcpy(s->best_y, cand, s->n * sizeof *cand);
     }
@@ -412,6 +412,7 @@ static int consider_restored(solver *s, const double *y, double deadline, tr_err
     int rc = tr_newton_i_restore(s, s->restored, deadline, &rv, err);
     if (rc)
         return rc;
+    /* the restoration's violation bounds its edges' */
     return consider(s, s->restored, rv, err);
 }
 
@@ -421,7 +422,7 @@ static int keep_best(solver *s, const double *y, double deadline, tr_error *err)
         return TR_OK;
     int rc = ensure_best(s, err);
     if (!rc)
-        rc = consider(s, y, s->viol, err);
+        rc = consider(s, y, s->viol_kind[0], err);
     const tr_newton_params *p = s->p;
     if (rc || !p->checkpoint || !(p->checkpoint_every > 0) || tr_clock_seconds() - s->t_ckpt < p->checkpoint_every)
         return rc;
@@ -431,10 +432,11 @@ static int keep_best(solver *s, const double *y, double deadline, tr_error *err)
         return rc;
     s->t_ckpt = tr_clock_seconds();
     /* a checkpoint is a valid rope (equal edges to 1e-6, as --resume
-     * asks), so only a nearly feasible best goes out: at thickness 1; a
-     * constrained rope as it is (within CONSTRAINED_OUT_TOL of it), its
-     * planes do not scale */
-    if (!(s->best_viol <= 1e-7))
+     * asks), so only a best whose edges are equal to 1e-7 goes out, at
+     * thickness 1 (its MinRad and strut rows are met by the rescaling; a
+     * constrained rope as it is, within CONSTRAINED_OUT_TOL of it, its
+     * planes do not scale) */
+    if (!(s->best_viol_edge <= 1e-7))
         return TR_OK;
     memcpy(s->probe.x, s->best_y, 3 * s->nv * sizeof *s->best_y);
     for (size_t i = 0; s->ncv == 0 && i < 3 * s->nv; i++)
@@ -810,7 +812,7 @@ int tr_newton(tr_curve *cv, const tr_newton_params *prm, tr_newton_stats *st, tr
     tr_newton_i_al_eval(&s, y, NULL, 0);
     double deadline = prm->time_limit > 0 ? t0 + prm->time_limit : INFINITY;
     if (s.viol < BEST_VIOL) {
-        if ((rc = ensure_best(&s, err)) || (rc = consider(&s, y, s.viol, err)) ||
+        if ((rc = ensure_best(&s, err)) || (rc = consider(&s, y, s.viol_kind[0], err)) ||
             (rc = consider_restored(&s, y, deadline, err)))
             goto done;
     }

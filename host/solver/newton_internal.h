@@ -41,7 +41,7 @@ typedef struct solver {
      * peer drifted away from its best at N = 19 200) */
     tr_curve probe;
     double *best_y, best_rl;
-    double best_viol, best_thickness; /* the best's violation and thickness */
+    double best_viol_edge, best_thickness; /* the best's edge violation and thickness */
     double *restored; /* scratch: the iterate restored (restore.c) */
     double t_ckpt; /* when the last checkpoint went out (or the solve began) */
     double warm_residual; /* |t - J^T lambda| / |t| after the warm start; 1 without one */
