@@ -407,13 +407,12 @@ static int consider_restored(solver *s, const double *y, double deadline, tr_err
 {
     if (s->ncv > 0)
         return TR_OK;
-    double rv;
+    double rv, rv_edge;
     memcpy(s->restored, y, s->n * sizeof *y);
-    int rc = tr_newton_i_restore(s, s->restored, deadline, &rv, err);
+    int rc = tr_newton_i_restore(s, s->restored, deadline, &rv, &rv_edge, err);
     if (rc)
         return rc;
-    /* the restoration's violation bounds its edges' */
-    return consider(s, s->restored, rv, err);
+    return consider(s, s->restored, rv_edge, err);
 }
 
 static int keep_best(solver *s, const double *y, double deadline, tr_error *err)
@@ -895,7 +894,8 @@ int tr_newton_restore(tr_curve *cv, const tr_newton_params *prm, double *before,
     s.max_bend = INFINITY;
     tr_newton_i_al_eval(&s, y, NULL, 0);
     *before = s.viol;
-    if ((rc = ensure_best(&s, err)) || (rc = tr_newton_i_restore(&s, y, INFINITY, after, err)))
+    double after_edge;
+    if ((rc = ensure_best(&s, err)) || (rc = tr_newton_i_restore(&s, y, INFINITY, after, &after_edge, err)))
         goto done;
     tr_thickness th;
     double rl;

@@ -139,9 +139,9 @@ int tr_newton_i_dir(solver *s, const double *grad, double *dir, double *lm, tr_n
 
 /* y moved onto the rows it violates by a small correction (the proximal
  * penalty projection of restore.c), until the clock passes deadline or a
- * stop is asked for; *viol the violation left (as al_eval measures it). A
- * constrained rope is left as it is. */
-int tr_newton_i_restore(solver *s, double *y, double deadline, double *viol, tr_error *err);
+ * stop is asked for; *viol the violation left (as al_eval measures it),
+ * *viol_edge its edges' part. A constrained rope is left as it is. */
+int tr_newton_i_restore(solver *s, double *y, double deadline, double *viol, double *viol_edge, tr_error *err);
 
 /* ---- the strut list (strut_list.c) ---- */
 

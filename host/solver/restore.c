@@ -56,10 +56,11 @@ typedef struct {
     size_t worst_m, active;
 } saved_state;
 
-int tr_newton_i_restore(solver *s, double *y, double deadline, double *viol, tr_error *err)
+int tr_newton_i_restore(solver *s, double *y, double deadline, double *viol, double *viol_edge, tr_error *err)
 {
     size_t nv = s->nv, n = s->n;
     *viol = s->viol;
+    *viol_edge = s->viol_kind[0];
     if (s->ncv > 0)
         return TR_OK;
     saved_state sv = {s->mu, s->band, s->guard, s->viol, s->dmin, s->length, {s->viol_kind[0], s->viol_kind[1],
@@ -109,6 +110,7 @@ int tr_newton_i_restore(solver *s, double *y, double deadline, double *viol, tr_
         if (step == 0)
             v0 = s->viol;
         *viol = s->viol;
+        *viol_edge = s->viol_kind[0];
         if (s->viol <= RESTORE_SHARE * v0 || s->viol <= s->p->viol_tol)
             break;
         /* al_eval's gradient has the length's in it: not this objective's */
@@ -147,6 +149,7 @@ int tr_newton_i_restore(solver *s, double *y, double deadline, double *viol, tr_
     }
     tr_newton_i_al_eval(s, y, NULL, 0);
     *viol = s->viol;
+    *viol_edge = s->viol_kind[0];
 done:
     if (keep) {
         memcpy(s->lam_e, keep, nv * sizeof *keep);
