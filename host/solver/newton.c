@@ -383,9 +383,10 @@ static int ensure_best(solver *s, tr_error *err)
     return TR_OK;
 }
 
-/* cand (viol_edge: its edges' violation) becomes the best if the oracle
- * measures it shorter than the best yet */
-static int consider(solver *s, const double *cand, double viol_edge, tr_error *err)
+/* cand (viol_edge: its edges' violation; restored: a restoration's
+ * result) becomes the best if the oracle measures it shorter than the best
+ * yet */
+static int consider(solver *s, const double *cand, double viol_edge, int restored, tr_error *err)
 {
     tr_thickness th;
     double rl;
@@ -396,6 +397,7 @@ static int consider(solver *s, const double *cand, double viol_edge, tr_error *e
         s->best_rl = rl;
         s->best_viol_edge = viol_edge;
         s->best_thickness = th.thickness;
+        s->best_restored = restored;
         memcpy(s->best_y, cand, s->n * sizeof *cand);
     }
     return TR_OK;
@@ -412,7 +414,7 @@ static int consider_restored(solver *s, const double *y, double deadline, tr_err
     int rc = tr_newton_i_restore(s, s->restored, deadline, &rv, &rv_edge, err);
     if (rc)
         return rc;
-    return consider(s, s->restored, rv_edge, err);
+    return consider(s, s->restored, rv_edge, 1, err);
 }
 
 static int keep_best(solver *s, const double *y, double deadline, tr_error *err)
@@ -421,7 +423,7 @@ static int keep_best(solver *s, const double *y, double deadline, tr_error *err)
         return TR_OK;
     int rc = ensure_best(s, err);
     if (!rc)
-        rc = consider(s, y, s->viol_kind[0], err);
+        rc = consider(s, y, s->viol_kind[0], 0, err);
     const tr_newton_params *p = s->p;
     if (rc || !p->checkpoint || !(p->checkpoint_every > 0) || tr_clock_seconds() - s->t_ckpt < p->checkpoint_every)
         return rc;
@@ -810,16 +812,21 @@ int tr_newton(tr_curve *cv, const tr_newton_params *prm, tr_newton_stats *st, tr
     /* the last iterate, or the best one the passes met */
     tr_newton_i_al_eval(&s, y, NULL, 0);
     double deadline = prm->time_limit > 0 ? t0 + prm->time_limit : INFINITY;
+    double best_before = s.best_y ? s.best_rl : INFINITY;
     if (s.viol < BEST_VIOL) {
-        if ((rc = ensure_best(&s, err)) || (rc = consider(&s, y, s.viol_kind[0], err)) ||
+        if ((rc = ensure_best(&s, err)) || (rc = consider(&s, y, s.viol_kind[0], 0, err)) ||
             (rc = consider_restored(&s, y, deadline, err)))
             goto done;
     }
     if (s.best_y) {
-        /* the best by the oracle may be an earlier iterate, further over */
-        memcpy(y, s.best_y, s.n * sizeof *y);
-        if ((rc = consider_restored(&s, y, deadline, err)))
-            goto done;
+        /* the best by the oracle may be an earlier iterate, further over,
+         * or a restoration that a second round takes further: restored
+         * (again), unless it is the last iterate as it was, restored above */
+        if (!(s.best_rl < best_before && !s.best_restored)) {
+            memcpy(y, s.best_y, s.n * sizeof *y);
+            if ((rc = consider_restored(&s, y, deadline, err)))
+                goto done;
+        }
         memcpy(y, s.best_y, s.n * sizeof *y);
     }
     /* the oracle decides: rescale to thickness 1 (a constrained curve:

@@ -42,6 +42,7 @@ typedef struct solver {
     tr_curve probe;
     double *best_y, best_rl;
     double best_viol_edge, best_thickness; /* the best's edge violation and thickness */
+    int best_restored;                     /* the best is a restoration's result */
     double *restored; /* scratch: the iterate restored (restore.c) */
     double t_ckpt; /* when the last checkpoint went out (or the solve began) */
     double warm_residual; /* |t - J^T lambda| / |t| after the warm start; 1 without one */
