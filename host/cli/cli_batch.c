@@ -14,7 +14,10 @@
  * same OUT; each rewrites the table under a lock, and --table-only
  * rebuilds it from the records. --merge OTHER keeps the shorter of two
  * batches' results per knot (batch_merge.h): the roads of another seed,
- * run anywhere, join the table. */
+ * run anywhere, join the table. --retry R (with --compare) does the same
+ * within the batch: a knot still above its reference is tightened again
+ * with the next seed, up to R times, each round into OUT/retry-J, and the
+ * shorter result kept. */
 #include <errno.h>
 #include <fcntl.h>
 #include <math.h>
@@ -59,6 +62,10 @@ static void usage(FILE *out)
             "  --compare REF      add a reference table's N and ropelength (a TSV with a header: knot\n"
             "                     name first, a column 'ropelength...'; '.' and '_' match in names)\n"
             "                     and the difference, ours - reference, absolute and in %%\n"
+            "  --retry R          with --compare: a knot whose ropelength is above the reference's is\n"
+            "                     tightened again, up to R times, each time with the next seed (the\n"
+            "                     options' --seed S, or 1, plus the round) into OUT/retry-ROUND/, and the\n"
+            "                     shorter result kept in OUT (as --merge would)\n"
             "  --checkpoint-every S  seconds between a knot's checkpoints (default 30)\n"
             "  --quiet            no progress lines\n"
             "A knot done (its NAME.row.tsv exists) is skipped; one with a checkpoint resumes from it.\n"
@@ -72,6 +79,7 @@ static void usage(FILE *out)
 typedef struct batch_opts {
     const char *src, *out, *only, *compare, *merge;
     long job, jobs; /* jobs 0: all */
+    long retry;     /* rounds of retries above the reference */
     double ckpt_every;
     int list, table_only, quiet;
     char **topts; /* tighten options after -- */
@@ -102,7 +110,7 @@ static int parse_options(int argc, char **argv, batch_opts *o)
             continue;
         }
         static const char *valued[] = {"-o", "--out", "--only", "--compare", "--job", "--jobs",
-                                       "--checkpoint-every", "--merge"};
+                                       "--checkpoint-every", "--merge", "--retry"};
         size_t k = 0;
         while (k < sizeof valued / sizeof valued[0] && strcmp(a, valued[k]))
             k++;
@@ -137,11 +145,14 @@ static int parse_options(int argc, char **argv, batch_opts *o)
             bad = tr_arg_long(v, 1, 1000000000, &o->jobs);
         else if (k == 7)
             o->merge = v;
+        else if (k == 8)
+            bad = tr_arg_long(v, 0, 1000, &o->retry);
         else
             bad = tr_arg_double(v, 0, 1e9, &o->ckpt_every) || o->ckpt_every <= 0;
         if (bad) {
             fprintf(stderr, "tightrope batch: bad %s '%s' (%s)\n", a, v,
-                    k == 4 ? "an integer >= 0" : k == 5 ? "an integer >= 1" : "a number > 0 (seconds)");
+                    k == 4 ? "an integer >= 0" : k == 5 ? "an integer >= 1" : k == 8 ? "an integer from 0 to 1000"
+                                                                                : "a number > 0 (seconds)");
             return 2;
         }
     }
@@ -162,6 +173,10 @@ static int parse_options(int argc, char **argv, batch_opts *o)
         bad = "--merge tightens nothing already; it takes no --table-only or --list";
     else if (o->merge && o->ntopts > 0)
         bad = "--merge tightens nothing; it takes no tighten options after --";
+    else if (o->retry > 0 && !o->compare)
+        bad = "--retry needs --compare REF (a knot is retried while it is above the reference)";
+    else if (o->retry > 0 && (o->merge || o->table_only || o->list))
+        bad = "--retry tightens; it takes no --merge, --table-only or --list";
     for (int j = 0; !bad && j < o->ntopts; j++)
         if (tr_batch_reserved_option(o->topts[j])) {
             fprintf(stderr, "tightrope batch: tighten option %s: %s\n", o->topts[j],
@@ -204,11 +219,14 @@ static int start_only(char **opts, int j)
     return !strcmp(opts[j], "--n") || !strcmp(opts[j], "--tries") || !strcmp(opts[j], "--seed") ? 2 : 0;
 }
 
-/* Appends the options to args, leaving out the start's when resuming. */
-static void add_opts(char **args, int *na, char **opts, int nopts, int resume)
+/* Appends the options to args, leaving out the start's when resuming, and
+ * --seed where the batch sets its own (a retry round). */
+static void add_opts(char **args, int *na, char **opts, int nopts, int resume, int own_seed)
 {
     for (int j = 0; j < nopts; j++) {
         int skip = resume ? start_only(opts, j) : 0;
+        if (own_seed && !strcmp(opts[j], "--seed"))
+            skip = 2;
         if (skip) {
             j += skip - 1;
             continue;
@@ -235,15 +253,16 @@ static const char *n_option(const tr_batch_knot *k, int resume, tr_error *err, i
     return most > (size_t)k->n ? "--n" : "--refine-to";
 }
 
-/* Runs tighten on knot k (or resumes it) and writes its record. Returns
- * tighten's exit status, or 2 when the record cannot be written; *rep
- * says what the run came to. */
-static int run_knot(const batch_opts *o, const tr_batch_knot *k, tr_tighten_report *rep)
+/* Runs tighten on knot k (or resumes it) into folder dir, with --seed
+ * seed where seed >= 0, and writes its record. Returns tighten's exit
+ * status, or 2 when the record cannot be written; *rep says what the run
+ * came to. */
+static int run_knot(const batch_opts *o, const tr_batch_knot *k, const char *dir, long seed, tr_tighten_report *rep)
 {
-    char vect[PATH_SIZE], ckpt[PATH_SIZE], row[PATH_SIZE], nbuf[32], every[32];
-    knot_path(vect, sizeof vect, o->out, k->name, "vect");
-    knot_path(ckpt, sizeof ckpt, o->out, k->name, "ckpt");
-    knot_path(row, sizeof row, o->out, k->name, "row.tsv");
+    char vect[PATH_SIZE], ckpt[PATH_SIZE], row[PATH_SIZE], nbuf[32], every[32], sbuf[32];
+    knot_path(vect, sizeof vect, dir, k->name, "vect");
+    knot_path(ckpt, sizeof ckpt, dir, k->name, "ckpt");
+    knot_path(row, sizeof row, dir, k->name, "row.tsv");
     int resume = exists(ckpt);
     char **args = malloc((size_t)(16 + o->ntopts + k->nopts) * sizeof *args);
     if (!args) {
@@ -276,8 +295,14 @@ static int run_knot(const batch_opts *o, const tr_batch_knot *k, tr_tighten_repo
         args[na++] = (char *)opt;
         args[na++] = nbuf;
     }
-    add_opts(args, &na, o->topts, o->ntopts, resume);
-    add_opts(args, &na, k->opts, k->nopts, resume);
+    int own_seed = seed >= 0;
+    add_opts(args, &na, o->topts, o->ntopts, resume, own_seed);
+    add_opts(args, &na, k->opts, k->nopts, resume, own_seed);
+    if (own_seed && !resume) {
+        snprintf(sbuf, sizeof sbuf, "%ld", seed);
+        args[na++] = "--seed";
+        args[na++] = sbuf;
+    }
     args[na] = NULL;
     int status = tr_tighten_command(na, args, rep);
     free(args);
@@ -397,8 +422,90 @@ static void progress_line(const batch_opts *o, const batch_progress *p, const ch
     fprintf(stderr, ")\n");
 }
 
-/* Tightens the selected knots in turn. Returns the exit status. */
-static int run_all(const batch_opts *o, const tr_batch_list *l, const size_t *sel, size_t nsel)
+/* The seed of the knot's own runs: the last --seed of its options (the
+ * manifest's after the batch's, as tighten reads them), or tighten's 1 */
+static long base_seed(const batch_opts *o, const tr_batch_knot *k)
+{
+    long seed = 1, v;
+    for (int j = 0; j + 1 < o->ntopts; j++)
+        if (!strcmp(o->topts[j], "--seed") && !tr_arg_long(o->topts[j + 1], 0, 1000000000, &v))
+            seed = v;
+    for (int j = 0; j + 1 < k->nopts; j++)
+        if (!strcmp(k->opts[j], "--seed") && !tr_arg_long(k->opts[j + 1], 0, 1000000000, &v))
+            seed = v;
+    return seed;
+}
+
+/* --retry: knot k, done in OUT (its lock held), tightened again while its
+ * record is above the reference's, round r into OUT/retry-r with the seed
+ * base + r, each round's result merged into OUT (batch_merge.h). A round
+ * with a record is not run again, one with a checkpoint resumes: a batch
+ * killed during a retry and started again ends with the same table.
+ * Returns 0, 1 (interrupted, or a run failed) or 2 (a record or folder
+ * could not be read or written). */
+static int retry_knot(const batch_opts *o, const tr_batch_knot *k, const tr_batch_ref *ref, batch_progress *p)
+{
+    long line = tr_batch_ref_find(ref, k->name);
+    if (line < 0)
+        return 0;
+    double target = ref->ropelength[line];
+    char row[PATH_SIZE], dir[PATH_SIZE / 2], rrow[PATH_SIZE], what[700];
+    knot_path(row, sizeof row, o->out, k->name, "row.tsv");
+    long base = base_seed(o, k);
+    for (long r = 1; r <= o->retry; r++) {
+        tr_batch_row cur;
+        tr_error err;
+        if (tr_batch_row_read(row, &cur, &err)) {
+            fprintf(stderr, "tightrope batch: %s\n", err.msg);
+            return 2;
+        }
+        if (isfinite(cur.ropelength) && cur.ropelength <= target)
+            return 0;
+        if (snprintf(dir, sizeof dir, "%s/retry-%ld", o->out, r) >= (int)sizeof dir) {
+            fprintf(stderr, "tightrope batch: the output folder's name is too long for --retry\n");
+            return 2;
+        }
+        if (mkdir(dir, 0777) && errno != EEXIST) {
+            fprintf(stderr, "tightrope batch: cannot make the folder %s: %s\n", dir, strerror(errno));
+            return 2;
+        }
+        knot_path(rrow, sizeof rrow, dir, k->name, "row.tsv");
+        if (!exists(rrow)) {
+            snprintf(what, sizeof what, "%.6f is above the reference's %.6f: retry %ld of %ld, seed %ld", cur.ropelength,
+                     target, r, o->retry, base + r);
+            progress_line(o, p, k->name, "%s", what);
+            double t = tr_clock_seconds();
+            tr_tighten_report rep;
+            int rc = run_knot(o, k, dir, base + r, &rep);
+            p->run_seconds += tr_clock_seconds() - t;
+            if (rep.interrupted || tr_tighten_stop_requested()) {
+                if (!o->quiet)
+                    fprintf(stderr, "batch: interrupted; %s's retry %ld goes on when the batch is run again\n",
+                            k->name, r);
+                return 1;
+            }
+            if (!rep.written || rc == 2) {
+                snprintf(what, sizeof what, "retry %ld FAILED (tighten's exit status %d; its message above)", r, rc);
+                progress_line(o, p, k->name, "%s", what);
+                return rc == 2 ? 2 : 1;
+            }
+        }
+        tr_merge_outcome how;
+        char merged[512];
+        int mc = tr_batch_merge_knot(o->out, dir, k->name, &how, merged, sizeof merged, &err);
+        if (mc != TR_OK) {
+            fprintf(stderr, "tightrope batch: %s\n", err.msg);
+            return mc == TR_ENOMEM ? 1 : 2;
+        }
+        snprintf(what, sizeof what, "retry %ld: %s", r, merged);
+        progress_line(o, p, k->name, "%s", what);
+    }
+    return 0;
+}
+
+/* Tightens the selected knots in turn (and retries them: --retry).
+ * Returns the exit status. */
+static int run_all(const batch_opts *o, const tr_batch_list *l, const size_t *sel, size_t nsel, const tr_batch_ref *ref)
 {
     batch_progress p = {.total = nsel, .t0 = tr_clock_seconds()};
     int status = 0;
@@ -422,17 +529,22 @@ static int run_all(const batch_opts *o, const tr_batch_list *l, const size_t *se
         if (exists(row)) {
             /* a run killed between its record and the checkpoint's removal */
             unlink(ckpt);
-            close(lock);
             p.skipped++;
             progress_line(o, &p, k->name, "%s", "done before, skipped");
+            int rs = o->retry > 0 ? retry_knot(o, k, ref, &p) : 0;
+            close(lock);
+            if (rs == 1 && tr_tighten_stop_requested())
+                return 1;
+            if (rs)
+                status = rs == 2 || status == 2 ? 2 : 1;
             continue;
         }
         progress_line(o, &p, k->name, "%s", exists(ckpt) ? "resuming from its checkpoint" : "tightening");
         double t = tr_clock_seconds();
         tr_tighten_report rep;
-        int rc = run_knot(o, k, &rep);
-        close(lock);
+        int rc = run_knot(o, k, o->out, -1, &rep);
         if (rep.interrupted || tr_tighten_stop_requested()) {
+            close(lock);
             if (!o->quiet && rep.interrupted)
                 fprintf(stderr, "batch: interrupted; %s resumes from its checkpoint when the batch is run again\n",
                         k->name);
@@ -446,12 +558,20 @@ static int run_all(const batch_opts *o, const tr_batch_list *l, const size_t *se
             snprintf(what, sizeof what, "ropelength %.6f, KKT residual %.1e, %.1f s, stopped: %s", rep.ropelength,
                      rep.kkt_residual, rep.elapsed, rep.stop);
             progress_line(o, &p, k->name, "done, %s", what);
+            int rs = o->retry > 0 ? retry_knot(o, k, ref, &p) : 0;
+            if (rs == 1 && tr_tighten_stop_requested()) {
+                close(lock);
+                return 1;
+            }
+            if (rs)
+                status = rs == 2 || status == 2 ? 2 : 1;
         } else {
             p.failed++;
             status = rc == 2 || status == 2 ? 2 : 1;
             snprintf(what, sizeof what, "%d", rc);
             progress_line(o, &p, k->name, "FAILED (tighten's exit status %s; its message above)", what);
         }
+        close(lock);
     }
     return status;
 }
@@ -561,7 +681,7 @@ int tr_cmd_batch(int argc, char **argv)
         status = 2;
     }
     if (status < 0) {
-        status = o.table_only ? 0 : o.merge ? merge_all(&o, &l, sel, nsel) : run_all(&o, &l, sel, nsel);
+        status = o.table_only ? 0 : o.merge ? merge_all(&o, &l, sel, nsel) : run_all(&o, &l, sel, nsel, &ref);
         size_t rows = 0;
         int ts = write_table(&o, &l, o.compare ? &ref : NULL, &rows);
         if (ts > status)

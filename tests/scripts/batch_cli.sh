@@ -244,6 +244,42 @@ merge)
   [ -e fresh ] && fail "a refused merge made its output folder"
   "$tr" batch m.tsv -o c --merge b -- --seed 2 2>err.log && fail "--merge with tighten options succeeded"
   ;;
+retry)
+  # --retry R: a knot above its reference is tightened again with the next seeds into OUT/retry-J
+  # and the shortest kept; a knot at or below it, or without a reference line, is not retried.
+  # The trefoil's reference is 31.0, below the lower bound 31.32 of every nontrivial knot
+  # (Denne, Diao and Sullivan 2006), so no road reaches it and both rounds run.
+  make_knots - - -
+  printf 'knot\tropelength\n3_1\t31.0\nhopf\t1000\n' >ref.tsv
+  sed 's/^trefoil\tt23.vect\t-\t--time-limit 3/3_1\tt23.vect\t-\t--time-limit 2 --tries 2/' m.tsv >mr.tsv
+  "$tr" batch mr.tsv -o r --compare ref.tsv --retry 2 -- --seed 7 2>err.log || fail "batch --retry: $(cat err.log)"
+  for j in 1 2; do
+    [ -e r/retry-$j/3_1.row.tsv ] || fail "no retry $j of 3_1: $(ls -R r)"
+    [ "$(awk -F'\t' 'NR == 1 { for (i = 1; i <= NF; i++) if ($i == "seed") n = i; next } { print $n }' r/retry-$j/3_1.row.tsv)" = $((7 + j)) ] ||
+      fail "retry $j's seed: $(cat r/retry-$j/3_1.row.tsv)"
+  done
+  ls r/retry-*/hopf.* r/retry-*/t25.* >/dev/null 2>&1 && fail "a knot below its reference or without one was retried: $(ls -R r)"
+  [ -e r/retry-3 ] && fail "more rounds than --retry 2"
+  # the table holds the shortest of the three runs, as measure reads their curves
+  best=$(for f in r/retry-1/3_1.vect r/retry-2/3_1.vect; do "$tr" measure "$f" --json | grep -o '"ropelength": [^,]*' | head -1 | cut -d' ' -f2; done |
+    sort -g | head -1)
+  rl=$(col r/table.tsv 3_1 ropelength)
+  awk -v a="$rl" -v b="$best" 'BEGIN { exit !(a <= b * (1 + 1e-9)) }' || fail "table 3_1 $rl, a retry measured $best"
+  cmp -s r/3_1.vect r/retry-1/3_1.vect || cmp -s r/3_1.vect r/retry-2/3_1.vect ||
+    awk -v a="$rl" -v b="$best" 'BEGIN { exit !(a < b) }' || fail "3_1's curve is none of the runs'"
+  # started again: nothing runs, the table is the same
+  cp r/table.tsv retry.before
+  "$tr" batch mr.tsv -o r --compare ref.tsv --retry 2 -- --seed 7 2>err.log || fail "again: $(cat err.log)"
+  grep -q 'tightening' err.log && fail "a knot or a retry ran twice: $(cat err.log)"
+  cmp -s retry.before r/table.tsv || fail "the table changed when started again"
+  # a round lost (killed before its record): only that round runs again
+  rm r/retry-2/3_1.row.tsv
+  "$tr" batch mr.tsv -o r --compare ref.tsv --retry 2 -- --seed 7 2>err.log || fail "round 2 again: $(cat err.log)"
+  [ "$(grep -c 'retry [0-9] of 2' err.log)" = 1 ] && grep -q 'retry 2 of 2, seed 9' err.log || fail "rerun: $(cat err.log)"
+  "$tr" batch mr.tsv -o r2 --retry 1 2>err.log && fail "--retry without --compare succeeded"
+  grep -q -- '--retry needs --compare' err.log || fail "message: $(cat err.log)"
+  [ -e r2 ] && fail "a refused batch made its output folder"
+  ;;
 parallel)
   # The GNU parallel route, for real: one job per knot, two at once, into one folder.
   command -v parallel >/dev/null || { echo "GNU parallel not installed (scripts/deps.sh installs it)"; exit 77; }
