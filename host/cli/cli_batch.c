@@ -18,6 +18,7 @@
  * within the batch: a knot still above its reference is tightened again
  * with the next seed, up to R times, each round into OUT/retry-J, and the
  * shorter result kept. */
+#include <ctype.h>
 #include <errno.h>
 #include <fcntl.h>
 #include <math.h>
@@ -66,6 +67,9 @@ static void usage(FILE *out)
             "                     tightened again, up to R times, each time with the next seed (the\n"
             "                     options' --seed S, or 1, plus the round) into OUT/retry-ROUND/, and the\n"
             "                     shorter result kept in OUT (as --merge would)\n"
+            "  --retry-options \"OPTS\"  tighten options the retries take in place of the same options\n"
+            "                     of the knot's (space-separated), e.g. \"--tries 8 --shuffles 7\": other\n"
+            "                     roads for a knot that one recipe leaves in one basin whatever the seed\n"
             "  --checkpoint-every S  seconds between a knot's checkpoints (default 30)\n"
             "  --quiet            no progress lines\n"
             "A knot done (its NAME.row.tsv exists) is skipped; one with a checkpoint resumes from it.\n"
@@ -80,6 +84,9 @@ typedef struct batch_opts {
     const char *src, *out, *only, *compare, *merge;
     long job, jobs; /* jobs 0: all */
     long retry;     /* rounds of retries above the reference */
+    const char *retry_text; /* --retry-options as given */
+    char **ropts;   /* ... split at blanks (tr_cmd_batch) */
+    int nropts;
     double ckpt_every;
     int list, table_only, quiet;
     char **topts; /* tighten options after -- */
@@ -110,7 +117,7 @@ static int parse_options(int argc, char **argv, batch_opts *o)
             continue;
         }
         static const char *valued[] = {"-o", "--out", "--only", "--compare", "--job", "--jobs",
-                                       "--checkpoint-every", "--merge", "--retry"};
+                                       "--checkpoint-every", "--merge", "--retry", "--retry-options"};
         size_t k = 0;
         while (k < sizeof valued / sizeof valued[0] && strcmp(a, valued[k]))
             k++;
@@ -147,6 +154,8 @@ static int parse_options(int argc, char **argv, batch_opts *o)
             o->merge = v;
         else if (k == 8)
             bad = tr_arg_long(v, 0, 1000, &o->retry);
+        else if (k == 9)
+            o->retry_text = v;
         else
             bad = tr_arg_double(v, 0, 1e9, &o->ckpt_every) || o->ckpt_every <= 0;
         if (bad) {
@@ -175,6 +184,8 @@ static int parse_options(int argc, char **argv, batch_opts *o)
         bad = "--merge tightens nothing; it takes no tighten options after --";
     else if (o->retry > 0 && !o->compare)
         bad = "--retry needs --compare REF (a knot is retried while it is above the reference)";
+    else if (o->retry_text && o->retry == 0)
+        bad = "--retry-options goes with --retry R (R >= 1)";
     else if (o->retry > 0 && (o->merge || o->table_only || o->list))
         bad = "--retry tightens; it takes no --merge, --table-only or --list";
     for (int j = 0; !bad && j < o->ntopts; j++)
@@ -219,14 +230,39 @@ static int start_only(char **opts, int j)
     return !strcmp(opts[j], "--n") || !strcmp(opts[j], "--tries") || !strcmp(opts[j], "--seed") ? 2 : 0;
 }
 
-/* Appends the options to args, leaving out the start's when resuming, and
- * --seed where the batch sets its own (a retry round). */
-static void add_opts(char **args, int *na, char **opts, int nopts, int resume, int own_seed)
+/* Whether opts[j] (an option) is followed by its value: the next word is
+ * not an option itself (a number may be negative) */
+static int has_value(char **opts, int nopts, int j)
+{
+    if (j + 1 >= nopts)
+        return 0;
+    const char *v = opts[j + 1];
+    return v[0] != '-' || isdigit((unsigned char)v[1]) || v[1] == '.';
+}
+
+/* Whether option opt is one of over's (the retries' own, which replace it) */
+static int overridden(const char *opt, char **over, int nover)
+{
+    if (opt[0] != '-')
+        return 0;
+    for (int j = 0; j < nover; j++)
+        if (!strcmp(opt, over[j]))
+            return 1;
+    return 0;
+}
+
+/* Appends the options to args, leaving out the start's when resuming,
+ * --seed where the batch sets its own (a retry round) and those that over
+ * (nover words) gives anew. */
+static void add_opts(char **args, int *na, char **opts, int nopts, int resume, int own_seed, char **over,
+                     int nover)
 {
     for (int j = 0; j < nopts; j++) {
         int skip = resume ? start_only(opts, j) : 0;
         if (own_seed && !strcmp(opts[j], "--seed"))
             skip = 2;
+        if (!skip && overridden(opts[j], over, nover))
+            skip = 1 + has_value(opts, nopts, j);
         if (skip) {
             j += skip - 1;
             continue;
@@ -264,7 +300,7 @@ static int run_knot(const batch_opts *o, const tr_batch_knot *k, const char *dir
     knot_path(ckpt, sizeof ckpt, dir, k->name, "ckpt");
     knot_path(row, sizeof row, dir, k->name, "row.tsv");
     int resume = exists(ckpt);
-    char **args = malloc((size_t)(16 + o->ntopts + k->nopts) * sizeof *args);
+    char **args = malloc((size_t)(16 + o->ntopts + k->nopts + o->nropts) * sizeof *args);
     if (!args) {
         fprintf(stderr, "tightrope batch: out of memory\n");
         return 1;
@@ -296,8 +332,13 @@ static int run_knot(const batch_opts *o, const tr_batch_knot *k, const char *dir
         args[na++] = nbuf;
     }
     int own_seed = seed >= 0;
-    add_opts(args, &na, o->topts, o->ntopts, resume, own_seed);
-    add_opts(args, &na, k->opts, k->nopts, resume, own_seed);
+    /* a retry's own options replace the same options of the batch's and the knot's */
+    char **over = own_seed ? o->ropts : NULL;
+    int nover = own_seed ? o->nropts : 0;
+    add_opts(args, &na, o->topts, o->ntopts, resume, own_seed, over, nover);
+    add_opts(args, &na, k->opts, k->nopts, resume, own_seed, over, nover);
+    if (own_seed)
+        add_opts(args, &na, o->ropts, o->nropts, resume, own_seed, NULL, 0);
     if (own_seed && !resume) {
         snprintf(sbuf, sizeof sbuf, "%ld", seed);
         args[na++] = "--seed";
@@ -631,16 +672,54 @@ static int merge_all(const batch_opts *o, const tr_batch_list *l, const size_t *
     return 0;
 }
 
+/* --retry-options split at blanks into o->ropts (pointing into *buf, a
+ * copy); -1 to go on, else the exit status. */
+static int split_retry_options(batch_opts *o, char **buf)
+{
+    size_t len = strlen(o->retry_text);
+    *buf = malloc(len + 1);
+    o->ropts = malloc((len / 2 + 1) * sizeof *o->ropts);
+    if (!*buf || !o->ropts) {
+        fprintf(stderr, "tightrope batch: out of memory\n");
+        free(*buf);
+        free(o->ropts);
+        *buf = NULL;
+        o->ropts = NULL;
+        return 1;
+    }
+    memcpy(*buf, o->retry_text, len + 1);
+    char *save = NULL;
+    for (char *t = strtok_r(*buf, " \t", &save); t; t = strtok_r(NULL, " \t", &save)) {
+        const char *why = tr_batch_reserved_option(t);
+        if (why) {
+            fprintf(stderr, "tightrope batch: --retry-options %s: %s\n", t, why);
+            free(*buf);
+            free(o->ropts);
+            *buf = NULL;
+            o->ropts = NULL;
+            return 2;
+        }
+        o->ropts[o->nropts++] = t;
+    }
+    return -1;
+}
+
 int tr_cmd_batch(int argc, char **argv)
 {
     batch_opts o;
     int status = parse_options(argc, argv, &o);
     if (status >= 0)
         return status;
+    char *rbuf = NULL;
+    if (o.retry_text && (status = split_retry_options(&o, &rbuf)) >= 0)
+        return status;
+    status = -1;
     tr_batch_list l;
     tr_batch_ref ref = {0};
     tr_error err;
     if (tr_batch_read(o.src, &l, &err)) {
+        free(o.ropts);
+        free(rbuf);
         fprintf(stderr, "tightrope batch: %s\n", err.msg);
         return 2;
     }
@@ -690,6 +769,8 @@ int tr_cmd_batch(int argc, char **argv)
             fprintf(stderr, "batch: %s/table.tsv holds %zu of the %zu knots of %s\n", o.out, rows, l.count, o.src);
     }
     free(sel);
+    free(o.ropts);
+    free(rbuf);
     tr_batch_ref_free(&ref);
     tr_batch_list_free(&l);
     return status;

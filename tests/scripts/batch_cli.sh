@@ -276,6 +276,17 @@ retry)
   rm r/retry-2/3_1.row.tsv
   "$tr" batch mr.tsv -o r --compare ref.tsv --retry 2 -- --seed 7 2>err.log || fail "round 2 again: $(cat err.log)"
   [ "$(grep -c 'retry [0-9] of 2' err.log)" = 1 ] && grep -q 'retry 2 of 2, seed 9' err.log || fail "rerun: $(cat err.log)"
+  # --retry-options: the retries' own tighten options, after the knot's
+  "$tr" batch mr.tsv -o ro --only 3_1 --compare ref.tsv --retry 1 --retry-options "--tries 1" -- --seed 7 2>err.log ||
+    fail "--retry-options: $(cat err.log)"
+  [ "$(col ro/table.tsv 3_1 tries)" = 2 ] || fail "the knot's own run: tries $(col ro/table.tsv 3_1 tries)"
+  [ "$(awk -F'\t' 'NR == 1 { for (i = 1; i <= NF; i++) if ($i == "tries") n = i; next } { print $n }' ro/retry-1/3_1.row.tsv)" = 1 ] ||
+    fail "the retry did not take --retry-options: $(cat ro/retry-1/3_1.row.tsv)"
+  "$tr" batch mr.tsv -o r3 --compare ref.tsv --retry-options "--tries 1" 2>err.log && fail "--retry-options without --retry succeeded"
+  "$tr" batch mr.tsv -o r3 --compare ref.tsv --retry 1 --retry-options "--tries 1 -o x.vect" 2>err.log &&
+    fail "a reserved option in --retry-options succeeded"
+  grep -q -- '--retry-options -o' err.log || fail "reserved option message: $(cat err.log)"
+  [ -e r3 ] && fail "a refused batch made its output folder"
   "$tr" batch mr.tsv -o r2 --retry 1 2>err.log && fail "--retry without --compare succeeded"
   grep -q -- '--retry needs --compare' err.log || fail "message: $(cat err.log)"
   [ -e r2 ] && fail "a refused batch made its output folder"
