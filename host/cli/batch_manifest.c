@@ -70,18 +70,17 @@ static long find_name(const tr_batch_list *l, size_t count, const char *name)
     return -1;
 }
 
-/* Splits the options field at blanks into k->opts. */
-static int split_options(tr_batch_knot *k, char *field)
+int tr_batch_split_options(char *field, char ***opts, int *nopts)
 {
     char *save = NULL;
     for (char *tok = strtok_r(field, " \t", &save); tok; tok = strtok_r(NULL, " \t", &save)) {
-        char **o = realloc(k->opts, (size_t)(k->nopts + 1) * sizeof *o);
+        char **o = realloc(*opts, (size_t)(*nopts + 1) * sizeof *o);
         if (!o)
             return -1;
-        k->opts = o;
-        if (!(k->opts[k->nopts] = strdup(tok)))
+        *opts = o;
+        if (!((*opts)[*nopts] = strdup(tok)))
             return -1;
-        k->nopts++;
+        (*nopts)++;
     }
     return 0;
 }
@@ -152,7 +151,7 @@ static int parse_line(const char *src, int lineno, char *line, tr_batch_list *l,
                        lineno, field[2]);
     tr_batch_knot *k = add_knot(l);
     if (!k || !(k->name = strdup(field[0])) || !(k->file = start_path(src, field[1])) ||
-        (nf > 3 && split_options(k, field[3])))
+        (nf > 3 && tr_batch_split_options(field[3], &k->opts, &k->nopts)))
         return tr_fail(err, TR_ENOMEM, "out of memory");
     k->n = n;
     k->line = lineno;

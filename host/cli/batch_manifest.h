@@ -42,6 +42,10 @@ int tr_batch_read(const char *src, tr_batch_list *out, tr_error *err);
  * why. */
 const char *tr_batch_reserved_option(const char *opt);
 
+/* Appends the words of field (tighten options separated by blanks, no
+ * quoting; field is cut up) to *opts, each a copy; -1 out of memory. */
+int tr_batch_split_options(char *field, char ***opts, int *nopts);
+
 /* Whether name is a valid knot name (see tr_batch_knot). */
 int tr_batch_name_ok(const char *name);
 

@@ -85,7 +85,7 @@ typedef struct batch_opts {
     long job, jobs; /* jobs 0: all */
     long retry;     /* rounds of retries above the reference */
     const char *retry_text; /* --retry-options as given */
-    char **ropts;   /* ... split at blanks (tr_cmd_batch) */
+    char **ropts;   /* ... split into words (tr_cmd_batch), each a copy */
     int nropts;
     double ckpt_every;
     int list, table_only, quiet;
@@ -465,15 +465,18 @@ static void progress_line(const batch_opts *o, const batch_progress *p, const ch
 
 /* The seed of the knot's own runs: the last --seed of its options (the
  * manifest's after the batch's, as tighten reads them), or tighten's 1 */
+static void last_seed(char **opts, int nopts, long *seed)
+{
+    long v;
+    for (int j = 0; j + 1 < nopts; j++)
+        if (!strcmp(opts[j], "--seed") && !tr_arg_long(opts[j + 1], 0, 1000000000, &v))
+            *seed = v;
+}
 static long base_seed(const batch_opts *o, const tr_batch_knot *k)
 {
-    long seed = 1, v;
-    for (int j = 0; j + 1 < o->ntopts; j++)
-        if (!strcmp(o->topts[j], "--seed") && !tr_arg_long(o->topts[j + 1], 0, 1000000000, &v))
-            seed = v;
-    for (int j = 0; j + 1 < k->nopts; j++)
-        if (!strcmp(k->opts[j], "--seed") && !tr_arg_long(k->opts[j + 1], 0, 1000000000, &v))
-            seed = v;
+    long seed = 1;
+    last_seed(o->topts, o->ntopts, &seed);
+    last_seed(k->opts, k->nopts, &seed);
     return seed;
 }
 
@@ -544,6 +547,40 @@ static int retry_knot(const batch_opts *o, const tr_batch_knot *k, const tr_batc
     return 0;
 }
 
+/* Tightens knot k (or resumes it) into OUT, with its progress lines.
+ * Returns 0 done (*done = 1), -1 interrupted (the run keeps its
+ * checkpoint), or the exit status of a failed run (1 or 2). */
+static int tighten_one(const batch_opts *o, const tr_batch_knot *k, batch_progress *p, int *done)
+{
+    char ckpt[PATH_SIZE], what[160];
+    knot_path(ckpt, sizeof ckpt, o->out, k->name, "ckpt");
+    progress_line(o, p, k->name, "%s", exists(ckpt) ? "resuming from its checkpoint" : "tightening");
+    double t = tr_clock_seconds();
+    tr_tighten_report rep;
+    int rc = run_knot(o, k, o->out, -1, &rep);
+    if (rep.interrupted || tr_tighten_stop_requested()) {
+        if (!o->quiet && rep.interrupted)
+            fprintf(stderr, "batch: interrupted; %s resumes from its checkpoint when the batch is run again\n",
+                    k->name);
+        else if (!o->quiet)
+            fprintf(stderr, "batch: interrupted after %s\n", k->name);
+        return -1;
+    }
+    if (rep.written && rc != 2) {
+        p->done++;
+        p->run_seconds += tr_clock_seconds() - t;
+        snprintf(what, sizeof what, "ropelength %.6f, KKT residual %.1e, %.1f s, stopped: %s", rep.ropelength,
+                 rep.kkt_residual, rep.elapsed, rep.stop);
+        progress_line(o, p, k->name, "done, %s", what);
+        *done = 1;
+        return 0;
+    }
+    p->failed++;
+    snprintf(what, sizeof what, "%d", rc);
+    progress_line(o, p, k->name, "FAILED (tighten's exit status %s; its message above)", what);
+    return rc == 2 ? 2 : 1;
+}
+
 /* Tightens the selected knots in turn (and retries them: --retry).
  * Returns the exit status. */
 static int run_all(const batch_opts *o, const tr_batch_list *l, const size_t *sel, size_t nsel, const tr_batch_ref *ref)
@@ -552,7 +589,7 @@ static int run_all(const batch_opts *o, const tr_batch_list *l, const size_t *se
     int status = 0;
     for (size_t s = 0; s < nsel; s++) {
         const tr_batch_knot *k = &l->knots[sel[s]];
-        char row[PATH_SIZE], ckpt[PATH_SIZE], what[160];
+        char row[PATH_SIZE], ckpt[PATH_SIZE];
         knot_path(row, sizeof row, o->out, k->name, "row.tsv");
         knot_path(ckpt, sizeof ckpt, o->out, k->name, "ckpt");
         p.at = s + 1;
@@ -567,52 +604,26 @@ static int run_all(const batch_opts *o, const tr_batch_list *l, const size_t *se
             continue;
         }
         /* looked at under the lock: another process may just have finished it */
-        if (exists(row)) {
+        int done = exists(row), rc_run;
+        if (done) {
             /* a run killed between its record and the checkpoint's removal */
             unlink(ckpt);
             p.skipped++;
             progress_line(o, &p, k->name, "%s", "done before, skipped");
-            int rs = o->retry > 0 ? retry_knot(o, k, ref, &p) : 0;
+        } else if ((rc_run = tighten_one(o, k, &p, &done)) != 0) {
             close(lock);
-            if (rs == 1 && tr_tighten_stop_requested())
+            if (rc_run < 0)
                 return 1;
-            if (rs)
-                status = rs == 2 || status == 2 ? 2 : 1;
+            status = rc_run == 2 || status == 2 ? 2 : 1;
             continue;
         }
-        progress_line(o, &p, k->name, "%s", exists(ckpt) ? "resuming from its checkpoint" : "tightening");
-        double t = tr_clock_seconds();
-        tr_tighten_report rep;
-        int rc = run_knot(o, k, o->out, -1, &rep);
-        if (rep.interrupted || tr_tighten_stop_requested()) {
-            close(lock);
-            if (!o->quiet && rep.interrupted)
-                fprintf(stderr, "batch: interrupted; %s resumes from its checkpoint when the batch is run again\n",
-                        k->name);
-            else if (!o->quiet)
-                fprintf(stderr, "batch: interrupted after %s\n", k->name);
-            return 1;
-        }
-        if (rep.written && rc != 2) {
-            p.done++;
-            p.run_seconds += tr_clock_seconds() - t;
-            snprintf(what, sizeof what, "ropelength %.6f, KKT residual %.1e, %.1f s, stopped: %s", rep.ropelength,
-                     rep.kkt_residual, rep.elapsed, rep.stop);
-            progress_line(o, &p, k->name, "done, %s", what);
-            int rs = o->retry > 0 ? retry_knot(o, k, ref, &p) : 0;
-            if (rs == 1 && tr_tighten_stop_requested()) {
-                close(lock);
-                return 1;
-            }
-            if (rs)
-                status = rs == 2 || status == 2 ? 2 : 1;
-        } else {
-            p.failed++;
-            status = rc == 2 || status == 2 ? 2 : 1;
-            snprintf(what, sizeof what, "%d", rc);
-            progress_line(o, &p, k->name, "FAILED (tighten's exit status %s; its message above)", what);
-        }
+        /* a knot done here or before: retried while above its reference */
+        int rs = done && o->retry > 0 ? retry_knot(o, k, ref, &p) : 0;
         close(lock);
+        if (rs == 1 && tr_tighten_stop_requested())
+            return 1;
+        if (rs)
+            status = rs == 2 || status == 2 ? 2 : 1;
     }
     return status;
 }
@@ -672,34 +683,34 @@ static int merge_all(const batch_opts *o, const tr_batch_list *l, const size_t *
     return 0;
 }
 
-/* --retry-options split at blanks into o->ropts (pointing into *buf, a
- * copy); -1 to go on, else the exit status. */
-static int split_retry_options(batch_opts *o, char **buf)
+static void free_retry_options(batch_opts *o)
 {
-    size_t len = strlen(o->retry_text);
-    *buf = malloc(len + 1);
-    o->ropts = malloc((len / 2 + 1) * sizeof *o->ropts);
-    if (!*buf || !o->ropts) {
+    for (int j = 0; j < o->nropts; j++)
+        free(o->ropts[j]);
+    free(o->ropts);
+    o->ropts = NULL;
+    o->nropts = 0;
+}
+
+/* --retry-options split into o->ropts (batch_manifest.h, as a manifest's
+ * options are); -1 to go on, else the exit status. */
+static int split_retry_options(batch_opts *o)
+{
+    char *text = strdup(o->retry_text);
+    int bad = !text || tr_batch_split_options(text, &o->ropts, &o->nropts);
+    free(text);
+    if (bad) {
         fprintf(stderr, "tightrope batch: out of memory\n");
-        free(*buf);
-        free(o->ropts);
-        *buf = NULL;
-        o->ropts = NULL;
+        free_retry_options(o);
         return 1;
     }
-    memcpy(*buf, o->retry_text, len + 1);
-    char *save = NULL;
-    for (char *t = strtok_r(*buf, " \t", &save); t; t = strtok_r(NULL, " \t", &save)) {
-        const char *why = tr_batch_reserved_option(t);
+    for (int j = 0; j < o->nropts; j++) {
+        const char *why = tr_batch_reserved_option(o->ropts[j]);
         if (why) {
-            fprintf(stderr, "tightrope batch: --retry-options %s: %s\n", t, why);
-            free(*buf);
-            free(o->ropts);
-            *buf = NULL;
-            o->ropts = NULL;
+            fprintf(stderr, "tightrope batch: --retry-options %s: %s\n", o->ropts[j], why);
+            free_retry_options(o);
             return 2;
         }
-        o->ropts[o->nropts++] = t;
     }
     return -1;
 }
@@ -710,16 +721,14 @@ int tr_cmd_batch(int argc, char **argv)
     int status = parse_options(argc, argv, &o);
     if (status >= 0)
         return status;
-    char *rbuf = NULL;
-    if (o.retry_text && (status = split_retry_options(&o, &rbuf)) >= 0)
+    if (o.retry_text && (status = split_retry_options(&o)) >= 0)
         return status;
     status = -1;
     tr_batch_list l;
     tr_batch_ref ref = {0};
     tr_error err;
     if (tr_batch_read(o.src, &l, &err)) {
-        free(o.ropts);
-        free(rbuf);
+        free_retry_options(&o);
         fprintf(stderr, "tightrope batch: %s\n", err.msg);
         return 2;
     }
@@ -769,8 +778,7 @@ int tr_cmd_batch(int argc, char **argv)
             fprintf(stderr, "batch: %s/table.tsv holds %zu of the %zu knots of %s\n", o.out, rows, l.count, o.src);
     }
     free(sel);
-    free(o.ropts);
-    free(rbuf);
+    free_retry_options(&o);
     tr_batch_ref_free(&ref);
     tr_batch_list_free(&l);
     return status;
