@@ -9,7 +9,14 @@
  * device named (no fallback); without it the solver's own host path.
  * CKPT_S: every CKPT_S seconds the solver's best iterate goes to
  * OUT.ckpt (what a long run keeps, and what to measure when the oracle
- * rejects a result). */
+ * rejects a result).
+ *   newton_run --restore IN.vect OUT.vect
+ * the restoration alone (newton.h tr_newton_restore) on IN scaled so that
+ * its closest strut is at 2: a checkpoint or result that the rescaling
+ * charged for MinRad rows over is then the iterate as the solver held it
+ * (struts at 2, MinRad rows over), and OUT is it restored and rescaled to
+ * thickness 1 where the oracle measures that shorter, else as scaled. */
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 
@@ -37,8 +44,39 @@ static void show(void *user, const tr_newton_progress *p)
     fflush(stdout);
 }
 
+static int restore_only(const char *in, const char *out)
+{
+    tr_error err = {0};
+    tr_curve c = {0};
+    tr_thickness th0, th1;
+    if (tr_curve_read(in, TR_FORMAT_AUTO, &c, &err) || tr_thickness_measure(&c, NULL, &th0, NULL, &err)) {
+        fprintf(stderr, "newton_run: %s\n", err.msg);
+        return 1;
+    }
+    if (isfinite(th0.dcsd)) {
+        double f = 2.0 / th0.dcsd;
+        for (size_t i = 0; i < 3 * c.nv; i++)
+            c.x[i] *= f;
+    }
+    double before, after;
+    if (tr_newton_restore(&c, NULL, &before, &after, &err) || tr_thickness_measure(&c, NULL, &th1, NULL, &err)) {
+        fprintf(stderr, "newton_run: %s\n", err.msg);
+        return 1;
+    }
+    printf("restore: ropelength %.10f -> %.10f, row violation %.2e -> %.2e, MinRad %.12f dcsd %.12f\n",
+           th0.ropelength, th1.ropelength, before, after, th1.minrad, th1.dcsd);
+    if (tr_curve_write(out, TR_FORMAT_AUTO, &c, "newton_run --restore", &err)) {
+        fprintf(stderr, "newton_run: %s\n", err.msg);
+        return 1;
+    }
+    tr_curve_free(&c);
+    return 0;
+}
+
 int main(int argc, char **argv)
 {
+    if (argc == 4 && !strcmp(argv[1], "--restore"))
+        return restore_only(argv[2], argv[3]);
     const char *device = NULL;
     if (argc > 2 && !strcmp(argv[1], "--device")) {
         device = argv[2];
@@ -46,7 +84,8 @@ int main(int argc, char **argv)
         argc -= 2;
     }
     if (argc < 3) {
-        fprintf(stderr, "usage: newton_run [--device SPEC] IN OUT [N | sN] [TIME_LIMIT_S] [CKPT_S]\n");
+        fprintf(stderr, "usage: newton_run [--device SPEC] IN OUT [N | sN] [TIME_LIMIT_S] [CKPT_S]\n"
+                        "       newton_run --restore IN OUT\n");
         return 2;
     }
     tr_error err = {0};
