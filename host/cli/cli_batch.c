@@ -69,7 +69,8 @@ static void usage(FILE *out)
             "                     shorter result kept in OUT (as --merge would)\n"
             "  --retry-options \"OPTS\"  tighten options the retries take in place of the same options\n"
             "                     of the knot's (space-separated), e.g. \"--tries 8 --shuffles 7\": other\n"
-            "                     roads for a knot that one recipe leaves in one basin whatever the seed\n"
+            "                     roads for a knot that one recipe leaves in one basin whatever the seed;\n"
+            "                     given K times (at most 8), round r takes the ((r - 1) mod K + 1)-th\n"
             "  --checkpoint-every S  seconds between a knot's checkpoints (default 30)\n"
             "  --quiet            no progress lines\n"
             "A knot done (its NAME.row.tsv exists) is skipped; one with a checkpoint resumes from it.\n"
@@ -80,13 +81,19 @@ static void usage(FILE *out)
             "failed; 2 bad SRC, option or input.\n");
 }
 
+/* --retry-options at most */
+#define MAX_RECIPES 8
+
 typedef struct batch_opts {
     const char *src, *out, *only, *compare, *merge;
     long job, jobs; /* jobs 0: all */
     long retry;     /* rounds of retries above the reference */
-    const char *retry_text; /* --retry-options as given */
-    char **ropts;   /* ... split into words (tr_cmd_batch), each a copy */
-    int nropts;
+    /* --retry-options as given, in order (round r takes recipe (r - 1) mod
+     * nrecipes), each split into words (tr_cmd_batch), each a copy */
+    const char *retry_text[MAX_RECIPES];
+    char **ropts[MAX_RECIPES];
+    int nropts[MAX_RECIPES];
+    int nrecipes;
     double ckpt_every;
     int list, table_only, quiet;
     char **topts; /* tighten options after -- */
@@ -154,8 +161,11 @@ static int parse_options(int argc, char **argv, batch_opts *o)
             o->merge = v;
         else if (k == 8)
             bad = tr_arg_long(v, 0, 1000, &o->retry);
-        else if (k == 9)
-            o->retry_text = v;
+        else if (k == 9 && o->nrecipes == MAX_RECIPES) {
+            fprintf(stderr, "tightrope batch: --retry-options at most %d times\n", MAX_RECIPES);
+            return 2;
+        } else if (k == 9)
+            o->retry_text[o->nrecipes++] = v;
         else
             bad = tr_arg_double(v, 0, 1e9, &o->ckpt_every) || o->ckpt_every <= 0;
         if (bad) {
@@ -184,7 +194,7 @@ static int parse_options(int argc, char **argv, batch_opts *o)
         bad = "--merge tightens nothing; it takes no tighten options after --";
     else if (o->retry > 0 && !o->compare)
         bad = "--retry needs --compare REF (a knot is retried while it is above the reference)";
-    else if (o->retry_text && o->retry == 0)
+    else if (o->nrecipes > 0 && o->retry == 0)
         bad = "--retry-options goes with --retry R (R >= 1)";
     else if (o->retry > 0 && (o->merge || o->table_only || o->list))
         bad = "--retry tightens; it takes no --merge, --table-only or --list";
@@ -290,17 +300,22 @@ static const char *n_option(const tr_batch_knot *k, int resume, tr_error *err, i
 }
 
 /* Runs tighten on knot k (or resumes it) into folder dir, with --seed
- * seed where seed >= 0, and writes its record. Returns tighten's exit
+ * seed and the retry options of recipe (o->ropts) where seed >= 0, and
+ * writes its record. Returns tighten's exit
  * status, or 2 when the record cannot be written; *rep says what the run
  * came to. */
-static int run_knot(const batch_opts *o, const tr_batch_knot *k, const char *dir, long seed, tr_tighten_report *rep)
+static int run_knot(const batch_opts *o, const tr_batch_knot *k, const char *dir, long seed, int recipe,
+                    tr_tighten_report *rep)
 {
+    int own_seed = seed >= 0, has_recipe = own_seed && recipe >= 0 && recipe < o->nrecipes;
+    char **ropts = has_recipe ? o->ropts[recipe] : NULL;
+    int nropts = has_recipe ? o->nropts[recipe] : 0;
     char vect[PATH_SIZE], ckpt[PATH_SIZE], row[PATH_SIZE], nbuf[32], every[32], sbuf[32];
     knot_path(vect, sizeof vect, dir, k->name, "vect");
     knot_path(ckpt, sizeof ckpt, dir, k->name, "ckpt");
     knot_path(row, sizeof row, dir, k->name, "row.tsv");
     int resume = exists(ckpt);
-    char **args = malloc((size_t)(16 + o->ntopts + k->nopts + o->nropts) * sizeof *args);
+    char **args = malloc((size_t)(16 + o->ntopts + k->nopts + nropts) * sizeof *args);
     if (!args) {
         fprintf(stderr, "tightrope batch: out of memory\n");
         return 1;
@@ -331,14 +346,11 @@ static int run_knot(const batch_opts *o, const tr_batch_knot *k, const char *dir
         args[na++] = (char *)opt;
         args[na++] = nbuf;
     }
-    int own_seed = seed >= 0;
     /* a retry's own options replace the same options of the batch's and the knot's */
-    char **over = own_seed ? o->ropts : NULL;
-    int nover = own_seed ? o->nropts : 0;
-    add_opts(args, &na, o->topts, o->ntopts, resume, own_seed, over, nover);
-    add_opts(args, &na, k->opts, k->nopts, resume, own_seed, over, nover);
+    add_opts(args, &na, o->topts, o->ntopts, resume, own_seed, ropts, nropts);
+    add_opts(args, &na, k->opts, k->nopts, resume, own_seed, ropts, nropts);
     if (own_seed)
-        add_opts(args, &na, o->ropts, o->nropts, resume, own_seed, NULL, 0);
+        add_opts(args, &na, ropts, nropts, resume, own_seed, NULL, 0);
     if (own_seed && !resume) {
         snprintf(sbuf, sizeof sbuf, "%ld", seed);
         args[na++] = "--seed";
@@ -515,12 +527,15 @@ static int retry_knot(const batch_opts *o, const tr_batch_knot *k, const tr_batc
         }
         knot_path(rrow, sizeof rrow, dir, k->name, "row.tsv");
         if (!exists(rrow)) {
-            snprintf(what, sizeof what, "%.6f is above the reference's %.6f: retry %ld of %ld, seed %ld", cur.ropelength,
-                     target, r, o->retry, base + r);
+            int recipe = o->nrecipes > 0 ? (int)((r - 1) % o->nrecipes) : -1;
+            int at = snprintf(what, sizeof what, "%.6f is above the reference's %.6f: retry %ld of %ld, seed %ld",
+                              cur.ropelength, target, r, o->retry, base + r);
+            if (recipe >= 0 && at > 0 && (size_t)at < sizeof what)
+                snprintf(what + at, sizeof what - (size_t)at, ", %s", o->retry_text[recipe]);
             progress_line(o, p, k->name, "%s", what);
             double t = tr_clock_seconds();
             tr_tighten_report rep;
-            int rc = run_knot(o, k, dir, base + r, &rep);
+            int rc = run_knot(o, k, dir, base + r, recipe, &rep);
             p->run_seconds += tr_clock_seconds() - t;
             if (rep.interrupted || tr_tighten_stop_requested()) {
                 if (!o->quiet)
@@ -557,7 +572,7 @@ static int tighten_one(const batch_opts *o, const tr_batch_knot *k, batch_progre
     progress_line(o, p, k->name, "%s", exists(ckpt) ? "resuming from its checkpoint" : "tightening");
     double t = tr_clock_seconds();
     tr_tighten_report rep;
-    int rc = run_knot(o, k, o->out, -1, &rep);
+    int rc = run_knot(o, k, o->out, -1, -1, &rep);
     if (rep.interrupted || tr_tighten_stop_requested()) {
         if (!o->quiet && rep.interrupted)
             fprintf(stderr, "batch: interrupted; %s resumes from its checkpoint when the batch is run again\n",
@@ -685,31 +700,35 @@ static int merge_all(const batch_opts *o, const tr_batch_list *l, const size_t *
 
 static void free_retry_options(batch_opts *o)
 {
-    for (int j = 0; j < o->nropts; j++)
-        free(o->ropts[j]);
-    free(o->ropts);
-    o->ropts = NULL;
-    o->nropts = 0;
+    for (int q = 0; q < o->nrecipes; q++) {
+        for (int j = 0; j < o->nropts[q]; j++)
+            free(o->ropts[q][j]);
+        free(o->ropts[q]);
+        o->ropts[q] = NULL;
+        o->nropts[q] = 0;
+    }
 }
 
-/* --retry-options split into o->ropts (batch_manifest.h, as a manifest's
- * options are); -1 to go on, else the exit status. */
+/* each --retry-options split into o->ropts (batch_manifest.h, as a
+ * manifest's options are); -1 to go on, else the exit status. */
 static int split_retry_options(batch_opts *o)
 {
-    char *text = strdup(o->retry_text);
-    int bad = !text || tr_batch_split_options(text, &o->ropts, &o->nropts);
-    free(text);
-    if (bad) {
-        fprintf(stderr, "tightrope batch: out of memory\n");
-        free_retry_options(o);
-        return 1;
-    }
-    for (int j = 0; j < o->nropts; j++) {
-        const char *why = tr_batch_reserved_option(o->ropts[j]);
-        if (why) {
-            fprintf(stderr, "tightrope batch: --retry-options %s: %s\n", o->ropts[j], why);
+    for (int q = 0; q < o->nrecipes; q++) {
+        char *text = strdup(o->retry_text[q]);
+        int bad = !text || tr_batch_split_options(text, &o->ropts[q], &o->nropts[q]);
+        free(text);
+        if (bad) {
+            fprintf(stderr, "tightrope batch: out of memory\n");
             free_retry_options(o);
-            return 2;
+            return 1;
+        }
+        for (int j = 0; j < o->nropts[q]; j++) {
+            const char *why = tr_batch_reserved_option(o->ropts[q][j]);
+            if (why) {
+                fprintf(stderr, "tightrope batch: --retry-options %s: %s\n", o->ropts[q][j], why);
+                free_retry_options(o);
+                return 2;
+            }
         }
     }
     return -1;
@@ -721,7 +740,7 @@ int tr_cmd_batch(int argc, char **argv)
     int status = parse_options(argc, argv, &o);
     if (status >= 0)
         return status;
-    if (o.retry_text && (status = split_retry_options(&o)) >= 0)
+    if ((status = split_retry_options(&o)) >= 0)
         return status;
     status = -1;
     tr_batch_list l;

@@ -282,6 +282,19 @@ retry)
   [ "$(col ro/table.tsv 3_1 tries)" = 2 ] || fail "the knot's own run: tries $(col ro/table.tsv 3_1 tries)"
   [ "$(awk -F'\t' 'NR == 1 { for (i = 1; i <= NF; i++) if ($i == "tries") n = i; next } { print $n }' ro/retry-1/3_1.row.tsv)" = 1 ] ||
     fail "the retry did not take --retry-options: $(cat ro/retry-1/3_1.row.tsv)"
+  # given twice: round r takes the ((r - 1) mod 2 + 1)-th (1, 2, then 1 again)
+  "$tr" batch mr.tsv -o ro2 --only 3_1 --compare ref.tsv --retry 3 --retry-options "--tries 1" \
+    --retry-options "--tries 2" -- --seed 7 2>err.log || fail "two --retry-options: $(cat err.log)"
+  for j in 1 2 3; do
+    want=$(( j == 2 ? 2 : 1 ))
+    [ "$(awk -F'\t' 'NR == 1 { for (i = 1; i <= NF; i++) if ($i == "tries") n = i; next } { print $n }' ro2/retry-$j/3_1.row.tsv)" = $want ] ||
+      fail "retry $j did not take recipe $(( (j - 1) % 2 + 1 )): $(cat ro2/retry-$j/3_1.row.tsv)"
+  done
+  grep -q 'retry 2 of 3, seed 9, --tries 2 (' err.log || fail "round 2's progress line: $(cat err.log)"
+  args=""
+  for j in 1 2 3 4 5 6 7 8 9; do args="$args --retry-options --tries=1"; done
+  "$tr" batch mr.tsv -o r9 --compare ref.tsv --retry 1 $args 2>err.log && fail "nine --retry-options succeeded"
+  grep -q 'at most 8' err.log || fail "nine --retry-options message: $(cat err.log)"
   "$tr" batch mr.tsv -o r3 --compare ref.tsv --retry-options "--tries 1" 2>err.log && fail "--retry-options without --retry succeeded"
   "$tr" batch mr.tsv -o r3 --compare ref.tsv --retry 1 --retry-options "--tries 1 -o x.vect" 2>err.log &&
     fail "a reserved option in --retry-options succeeded"
