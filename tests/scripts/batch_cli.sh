@@ -255,7 +255,7 @@ retry)
   "$tr" batch mr.tsv -o r --compare ref.tsv --retry 2 -- --seed 7 2>err.log || fail "batch --retry: $(cat err.log)"
   for j in 1 2; do
     [ -e r/retry-$j/3_1.row.tsv ] || fail "no retry $j of 3_1: $(ls -R r)"
-    [ "$(awk -F'\t' 'NR == 1 { for (i = 1; i <= NF; i++) if ($i == "seed") n = i; next } { print $n }' r/retry-$j/3_1.row.tsv)" = $((7 + j)) ] ||
+    [ "$(col r/retry-$j/3_1.row.tsv 3_1 seed)" = $((7 + j)) ] ||
       fail "retry $j's seed: $(cat r/retry-$j/3_1.row.tsv)"
   done
   ls r/retry-*/hopf.* r/retry-*/t25.* >/dev/null 2>&1 && fail "a knot below its reference or without one was retried: $(ls -R r)"
@@ -280,14 +280,14 @@ retry)
   "$tr" batch mr.tsv -o ro --only 3_1 --compare ref.tsv --retry 1 --retry-options "--tries 1" -- --seed 7 2>err.log ||
     fail "--retry-options: $(cat err.log)"
   [ "$(col ro/table.tsv 3_1 tries)" = 2 ] || fail "the knot's own run: tries $(col ro/table.tsv 3_1 tries)"
-  [ "$(awk -F'\t' 'NR == 1 { for (i = 1; i <= NF; i++) if ($i == "tries") n = i; next } { print $n }' ro/retry-1/3_1.row.tsv)" = 1 ] ||
+  [ "$(col ro/retry-1/3_1.row.tsv 3_1 tries)" = 1 ] ||
     fail "the retry did not take --retry-options: $(cat ro/retry-1/3_1.row.tsv)"
   # given twice: round r takes the ((r - 1) mod 2 + 1)-th (1, 2, then 1 again)
   "$tr" batch mr.tsv -o ro2 --only 3_1 --compare ref.tsv --retry 3 --retry-options "--tries 1" \
     --retry-options "--tries 2" -- --seed 7 2>err.log || fail "two --retry-options: $(cat err.log)"
   for j in 1 2 3; do
     want=$(( j == 2 ? 2 : 1 ))
-    [ "$(awk -F'\t' 'NR == 1 { for (i = 1; i <= NF; i++) if ($i == "tries") n = i; next } { print $n }' ro2/retry-$j/3_1.row.tsv)" = $want ] ||
+    [ "$(col ro2/retry-$j/3_1.row.tsv 3_1 tries)" = $want ] ||
       fail "retry $j did not take recipe $(( (j - 1) % 2 + 1 )): $(cat ro2/retry-$j/3_1.row.tsv)"
   done
   grep -q 'retry 2 of 3, seed 9, --tries 2 (' err.log || fail "round 2's progress line: $(cat err.log)"
