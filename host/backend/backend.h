@@ -397,7 +397,7 @@ typedef struct tr_device_desc {
     unsigned compute_units, clock_mhz;
     unsigned long long global_mem; /* bytes */
     int fp64, usable;
-    char reason[192];          /* why unusable; "" when usable */
+    char reason[512];          /* why unusable; "" when usable */
 } tr_device_desc;
 
 typedef struct tr_device_list {

@@ -165,7 +165,9 @@ static int read_manifest(const char *src, tr_batch_list *l, tr_error *err)
     if (rc != TR_OK)
         return rc;
     int lineno = 0, seen = 0;
-    for (char *line = text, *next; rc == TR_OK && line; line = next) {
+    /* a UTF-8 byte-order mark (a Windows editor's) is no part of the first name */
+    char *first = !strncmp(text, "\xef\xbb\xbf", 3) ? text + 3 : text;
+    for (char *line = first, *next; rc == TR_OK && line; line = next) {
         next = strchr(line, '\n');
         if (next)
             *next++ = '\0';

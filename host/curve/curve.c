@@ -2,8 +2,10 @@
  * (curve.h). */
 #include "curve/curve.h"
 
+#include <float.h>
 #include <math.h>
 #include <stdint.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -177,13 +179,9 @@ double tr_curve_length(const tr_curve *c)
     return sum;
 }
 
-int tr_curve_scale_exponent(const tr_curve *c)
+/* tr_curve_scale_exponent's e for a largest magnitude m. */
+static int exponent_for(double m)
 {
-    double m = 0.0;
-    for (size_t i = 0; i < 3 * c->nv; i++)
-        m = fmax(m, fabs(c->x[i]));
-    for (int q = 0; q < c->ncst; q++)
-        m = fmax(m, fmax(fabs(c->cst[q].d), fmax(fabs(c->cst[q].p[0]), fmax(fabs(c->cst[q].p[1]), fabs(c->cst[q].p[2])))));
     if (!(m > 0.0) || !isfinite(m))
         return 0;
     int e;
@@ -191,6 +189,145 @@ int tr_curve_scale_exponent(const tr_curve *c)
     if (e > -TR_CURVE_SAFE_EXP && e <= TR_CURVE_SAFE_EXP)
         return 0;
     return e;
+}
+
+/* The constraints' largest magnitude, in the frame translated by centre. */
+static double constraint_max(const tr_curve *c, const double *centre)
+{
+    double m = 0.0;
+    for (int q = 0; q < c->ncst; q++) {
+        const tr_constraint *k = &c->cst[q];
+        double nc = k->kind == TR_CST_PLANE ? k->u[0] * centre[0] + k->u[1] * centre[1] + k->u[2] * centre[2] : 0.0;
+        m = fmax(m, fabs(k->d - nc));
+        for (int a = 0; k->kind != TR_CST_PLANE && a < 3; a++)
+            m = fmax(m, fabs(k->p[a] - centre[a]));
+    }
+    return m;
+}
+
+int tr_curve_scale_exponent(const tr_curve *c)
+{
+    static const double zero[3] = {0.0, 0.0, 0.0};
+    double m = constraint_max(c, zero);
+    for (size_t i = 0; i < 3 * c->nv; i++)
+        m = fmax(m, fabs(c->x[i]));
+    return exponent_for(m);
+}
+
+void tr_curve_frame_of(const tr_curve *c, tr_curve_frame *f)
+{
+    memset(f, 0, sizeof *f);
+    if (!c || !c->x || c->nv == 0)
+        return;
+    for (int a = 0; a < 3; a++) {
+        double lo = c->x[a], hi = c->x[a];
+        for (size_t i = 1; i < c->nv; i++) {
+            lo = fmin(lo, c->x[3 * i + a]);
+            hi = fmax(hi, c->x[3 * i + a]);
+        }
+        /* lo and hi of one sign: hi - lo cannot overflow */
+        if (lo > 0.0 || hi < 0.0)
+            f->centre[a] = lo + 0.5 * (hi - lo);
+    }
+    double m = constraint_max(c, f->centre);
+    for (size_t i = 0; i < c->nv; i++)
+        for (int a = 0; a < 3; a++)
+            m = fmax(m, fabs(c->x[3 * i + a] - f->centre[a]));
+    f->e = exponent_for(m);
+}
+
+int tr_curve_frame_is_identity(const tr_curve_frame *f)
+{
+    return f->e == 0 && f->centre[0] == 0.0 && f->centre[1] == 0.0 && f->centre[2] == 0.0;
+}
+
+int tr_curve_to_frame(tr_curve *dst, const tr_curve *c, const tr_curve_frame *f, tr_error *err)
+{
+    int rc = tr_curve_copy(dst, c, err);
+    if (rc)
+        return rc;
+    for (size_t i = 0; i < dst->nv; i++)
+        for (int a = 0; a < 3; a++)
+            dst->x[3 * i + a] -= f->centre[a];
+    for (int q = 0; q < dst->ncst; q++) {
+        tr_constraint *k = &dst->cst[q];
+        if (k->kind == TR_CST_PLANE)
+            k->d -= k->u[0] * f->centre[0] + k->u[1] * f->centre[1] + k->u[2] * f->centre[2];
+        else
+            for (int a = 0; a < 3; a++)
+                k->p[a] -= f->centre[a];
+    }
+    if (f->e)
+        tr_curve_scale_pow2(dst, -f->e);
+    return TR_OK;
+}
+
+double tr_double_step(double v)
+{
+    v = fabs(v);
+    if (!isfinite(v))
+        return INFINITY;
+    return nextafter(v, INFINITY) - v;
+}
+
+int tr_curve_check_resolution(const tr_curve *c, size_t *vertex, tr_error *err)
+{
+    if (vertex)
+        *vertex = SIZE_MAX;
+    double m = 0.0;
+    size_t im = 0;
+    for (size_t i = 0; i < 3 * c->nv; i++)
+        if (fabs(c->x[i]) > m) {
+            m = fabs(c->x[i]);
+            im = i / 3;
+        }
+    if (!isfinite(m))
+        return TR_OK; /* not finite: the oracles' own check says which vertex */
+    if (m > 0.0 && m < DBL_MIN) {
+        if (vertex)
+            *vertex = im;
+        int k = tr_curve_comp_of(c, im);
+        return tr_fail(err, TR_EGEOMETRY,
+                       "every coordinate is subnormal (the largest, %.3g at vertex %zu of component %d, is below "
+                       "%.3g): such numbers keep fewer digits than a double has, and 1 / the curve's thickness "
+                       "would be beyond the largest double; scale the curve up",
+                       m, im - c->start[k], k, DBL_MIN);
+    }
+    for (int k = 0; k < c->ncomp; k++) {
+        size_t s = c->start[k], n = tr_comp_nv(c, k), ne = tr_comp_ne(c, k);
+        for (size_t j = 0; j < ne; j++) {
+            const double *a = c->x + 3 * (s + j), *b = c->x + 3 * (s + (j + 1) % n);
+            double q = 0.0, hmax = 0.0;
+            for (int d = 0; d < 3; d++) {
+                q = fmax(q, fmax(fabs(a[d]), fabs(b[d])));
+                hmax = fmax(hmax, fabs(b[d] - a[d]));
+            }
+            /* the common case at a glance: the step at q is at most
+             * q 2^-52, and the edge at least its largest component */
+            if (q >= 0x1p-960 && hmax >= q * 0x1p-42)
+                continue;
+            /* hypot: the length of a subnormal edge does not underflow */
+            double h = hypot(hypot(b[0] - a[0], b[1] - a[1]), b[2] - a[2]);
+            double step = tr_double_step(q);
+            if (h == 0.0 || !(h < TR_CURVE_MIN_STEPS * step))
+                continue;
+            size_t jv = (j + 1) % n;
+            if (vertex)
+                *vertex = s + jv;
+            char from[48] = "the previous vertex";
+            if (jv == 0)
+                snprintf(from, sizeof from, "the last, vertex %zu", n - 1);
+            int sub = q < DBL_MIN;
+            return tr_fail(err, TR_EGEOMETRY,
+                           "vertex %zu of component %d is %.3g from %s, less than %.0f steps of the doubles at "
+                           "its coordinates (%.3g apart near %.3g): %s, the numbers cannot hold the curve's "
+                           "shape; %s",
+                           jv, k, h, from, TR_CURVE_MIN_STEPS, step, q,
+                           sub ? "in the subnormal range" : "this far from the origin for its size",
+                           sub ? "scale the curve up" : "move the curve nearer the origin (ropelength does not change)");
+        }
+    }
+    return TR_OK;
 }
 
 void tr_curve_scale_pow2(tr_curve *c, int e)

@@ -86,4 +86,54 @@ double tr_comp_length(const tr_curve *c, int k);
 int tr_curve_scale_exponent(const tr_curve *c);
 void tr_curve_scale_pow2(tr_curve *c, int e);
 
+/* Ropelength is translation free too, but a curve far from the origin for
+ * its size (a circle of radius 5 at x = 1e15) keeps fewer of a double's
+ * digits in its vertices' differences, and a tolerance relative to the
+ * coordinates' magnitude (a crossing test's, say) no longer fits the curve.
+ * The oracles measure in the frame x' = (x - centre) 2^-e: centre[a] is the
+ * middle of the curve's extent along axis a, or 0 where that extent holds
+ * the origin (the coordinates are then no larger than the extent, so there
+ * is nothing to gain and the curve is measured as it stands); e is
+ * tr_curve_scale_exponent's of the translated coordinates. The translation
+ * rounds each coordinate by at most half a step of the doubles at the
+ * curve's own extent, the scaling is exact. */
+typedef struct tr_curve_frame {
+    double centre[3];
+    int e;
+} tr_curve_frame;
+
+/* The frame of c (finite coordinates); identity when no translation or
+ * scaling is needed. */
+void tr_curve_frame_of(const tr_curve *c, tr_curve_frame *f);
+int tr_curve_frame_is_identity(const tr_curve_frame *f);
+/* dst: a copy of c in frame f, constraints moved with it. */
+int tr_curve_to_frame(tr_curve *dst, const tr_curve *c, const tr_curve_frame *f, tr_error *err);
+
+/* Whether the numbers that hold c can hold its shape at all. A vertex is
+ * known to the step between doubles at its coordinates: 2.2e-16 of the
+ * coordinate's magnitude, the smallest subnormal 4.9e-324 below 2.2e-308.
+ * Far from the origin that step may be as long as the edges themselves (at
+ * x = 1e15 it is 0.125; at 1e300 a circle of radius 5 rounds to one line),
+ * and in subnormal numbers every coordinate has lost digits. Refused, with
+ * TR_EGEOMETRY and a message naming the vertex (*vertex, when not NULL,
+ * gets its index in c; SIZE_MAX when no single vertex is to blame):
+ *  - a curve whose every coordinate is subnormal (|x| < 2.2e-308): fewer
+ *    significant digits than a double has, and 1 / its thickness is beyond
+ *    the largest double;
+ *  - an edge shorter than TR_CURVE_MIN_STEPS steps of the doubles at its
+ *    end points' largest coordinate (the comparison of max |x| with the
+ *    extent times 1 / epsilon, made edge by edge with a margin of 2^10):
+ *    its direction, and so the vertex's turning angle and MinRad, would be
+ *    the rounding's more than the curve's, to a part in 2^10 or worse.
+ * A curve that passes is measured right to the accuracy its numbers carry
+ * (the oracles work in tr_curve_frame_of's frame): a translation changes the
+ * result by at most its rounding of the vertices, a fraction of order
+ * step / (edge x turning angle). Zero-length edges are left to the
+ * readers, which refuse them as coinciding vertices. */
+#define TR_CURVE_MIN_STEPS 1024.0
+int tr_curve_check_resolution(const tr_curve *c, size_t *vertex, tr_error *err);
+
+/* The step between doubles at |v| (the smallest subnormal at 0). */
+double tr_double_step(double v);
+
 #endif

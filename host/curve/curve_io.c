@@ -75,8 +75,32 @@ int tr_curve_io_parse_fail(tr_error *err, const char *name, size_t line, const c
 
 /* ---------------------------------------------------- shared validation */
 
+/* Where vertices coincide because their coordinates are too large for the
+ * curve's size (a curve moved to 1e300 rounds to one point), the message
+ * says so: the step between doubles there against the component's extent. */
+static void rounding_hint(const tr_curve *c, int k, const double *v, char *buf, size_t n)
+{
+    buf[0] = '\0';
+    double m = fmax(fabs(v[0]), fmax(fabs(v[1]), fabs(v[2]))), ext = 0.0;
+    for (int a = 0; a < 3; a++) {
+        double lo = INFINITY, hi = -INFINITY;
+        for (size_t i = c->start[k]; i < c->start[k + 1]; i++) {
+            lo = fmin(lo, c->x[3 * i + a]);
+            hi = fmax(hi, c->x[3 * i + a]);
+        }
+        ext = fmax(ext, hi - lo);
+    }
+    double step = tr_double_step(m);
+    if (m > 0.0 && TR_CURVE_MIN_STEPS * step > ext)
+        snprintf(buf, n, " (its coordinates, near %.3g, are stored in steps of %.3g, and the component is only %.3g "
+                         "across: the numbers cannot hold its shape there; move it nearer the origin)",
+                 m, step, ext);
+}
+
 /* Coincident consecutive vertices make a zero-length edge: no tangent, no
- * curvature, so every later stage would divide by zero. */
+ * curvature, so every later stage would divide by zero. Then the numbers
+ * must hold the curve's shape at all (curve.h, tr_curve_check_resolution:
+ * not a curve far from the origin for its size, nor subnormal). */
 int tr_curve_io_check_edges(const tr_curve *c, const size_t *vline, const char *name, tr_error *err)
 {
     for (int k = 0; k < c->ncomp; k++) {
@@ -86,16 +110,22 @@ int tr_curve_io_check_edges(const tr_curve *c, const size_t *vline, const char *
                 break;
             const double *a = c->x + 3 * (s + j - 1), *b = c->x + 3 * (s + j % n);
             if (a[0] == b[0] && a[1] == b[1] && a[2] == b[2]) {
+                char hint[256];
+                rounding_hint(c, k, a, hint, sizeof hint);
                 if (j == n)
                     return tr_curve_io_parse_fail(err, name, vline[s + n - 1],
                                       "last vertex of closed component %d coincides with its first "
-                                      "(a closed component does not repeat its first vertex)",
-                                      k);
+                                      "(a closed component does not repeat its first vertex)%s",
+                                      k, hint);
                 return tr_curve_io_parse_fail(err, name, vline[s + j],
-                                  "vertex %zu of component %d coincides with the previous vertex", j, k);
+                                  "vertex %zu of component %d coincides with the previous vertex%s", j, k, hint);
             }
         }
     }
+    size_t v;
+    tr_error why;
+    if (tr_curve_check_resolution(c, &v, &why))
+        return tr_curve_io_parse_fail(err, name, v < c->nv ? vline[v] : 1, "%s", why.msg);
     return TR_OK;
 }
 
@@ -182,6 +212,13 @@ int tr_curve_parse(const char *name, const char *text, size_t len, tr_format fmt
         name = "<input>";
     if (!text)
         text = "", len = 0;
+    /* A UTF-8 byte-order mark (a Windows editor's) is no part of the
+     * text: skipped, as every reader of the format would. Line numbers
+     * are unchanged. */
+    if (len >= 3 && !memcmp(text, "\xef\xbb\xbf", 3)) {
+        text += 3;
+        len -= 3;
+    }
     if (fmt == TR_FORMAT_AUTO)
         fmt = tr_format_from_name(name);
     if (fmt == TR_FORMAT_AUTO) {

@@ -367,9 +367,21 @@ int tr_resample_smooth(const tr_curve *in, const size_t *n_per_comp, tr_curve *o
  * polygon's, not the curve's). */
 static int check_edge(double length, size_t n, size_t edges, const char *what, tr_error *err)
 {
-    if (length / (double)edges > 1.0)
-        return tr_fail(err, TR_EINVAL, "%s: %zu vertices give edges of %.3g, longer than the rope radius 1; use at least %zu",
-                       what, n, length / (double)edges, (size_t)ceil(length) + (n - edges));
+    double e = length / (double)edges;
+    if (e > 1.0) {
+        /* as many digits as it takes to show the edge above 1 (61
+         * vertices of T(2,3) give 1.00475, which %.3g printed as "1") */
+        char num[32];
+        for (int p = 3; p <= 17; p++) {
+            snprintf(num, sizeof num, "%.*g", p, e);
+            if (strtod(num, NULL) > 1.0)
+                break;
+        }
+        return tr_fail(err, TR_EINVAL,
+                       "%s: %zu vertices give edges of %s (a length of %.6g over %zu edges), longer than "
+                       "the rope radius 1; use at least %zu",
+                       what, n, num, length, edges, (size_t)ceil(length) + (n - edges));
+    }
     return TR_OK;
 }
 

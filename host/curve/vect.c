@@ -11,6 +11,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "util/vec3.h"
+
 /* ------------------------------------------------------------------ lexing */
 
 typedef struct lexer {
@@ -300,6 +302,37 @@ static int vect_double(vect_state *st, const char *what, size_t index, double *v
     return TR_OK;
 }
 
+/* A vertex held by a constraint must lie on it: rounding puts it off by
+ * a few ulp, and a file from another code printed to a few digits by a
+ * few parts in 10^6 of its size, which tighten's first projection takes
+ * up unseen. A vertex further off than half its shorter edge is not on its
+ * plane (line, point) at all: projecting it would make another curve
+ * (a clasp's end 45 units above its plane became one edge 45 long, and
+ * tighten called the curve too coarse). */
+static int check_on_constraint(const tr_curve *c, size_t i, const cst_def *def, size_t line, const char *name,
+                               tr_error *err)
+{
+    int k = tr_curve_comp_of(c, i);
+    size_t s = c->start[k], n = tr_comp_nv(c, k), j = i - s;
+    /* the edges as the projection would leave them: the offence does not
+     * lengthen its own yardstick */
+    double on[3] = {c->x[3 * i], c->x[3 * i + 1], c->x[3 * i + 2]}, edge = INFINITY;
+    tr_constraint_project(&def->c, on);
+    if (c->closed[k] || j > 0)
+        edge = fmin(edge, sqrt(v3_dist2(on, c->x + 3 * (s + (j + n - 1) % n))));
+    if (c->closed[k] || j + 1 < n)
+        edge = fmin(edge, sqrt(v3_dist2(on, c->x + 3 * (s + (j + 1) % n))));
+    double off = sqrt(v3_dist2(on, c->x + 3 * i));
+    if (!(off > 0.5 * edge))
+        return TR_OK;
+    static const char *const what[] = {"", "the point", "the line", "the plane"};
+    return tr_curve_io_parse_fail(err, name, line,
+                                  "vertex %zu of component %d is %.6g off %s of its constraint %d (line %zu): the "
+                                  "curve does not lie on its own constraint (allowed: up to half its edge, %.3g); "
+                                  "put the vertex on %s or change the constraint",
+                                  j, k, off, what[def->c.kind], def->c.id, def->line, 0.5 * edge, what[def->c.kind]);
+}
+
 int tr_vect_parse(const char *name, const char *text, size_t len, tr_curve *out, tr_error *err)
 {
     vect_state st = {{name, text, len, 0, 1, 0}, NULL, 0, 0, err};
@@ -476,6 +509,8 @@ int tr_vect_parse(const char *name, const char *text, size_t len, tr_curve *out,
                 goto done;
             }
             out->vcst[i] = (int)d;
+            if ((rc = check_on_constraint(out, i, &st.defs[d], vline[i], name, err)))
+                goto done;
         }
     }
 

@@ -599,31 +599,39 @@ done:
     return rc;
 }
 
-/* A curve far from unit scale is certified in a frame scaled by a power of
- * two (curve.h): the residual, the tension (a gradient of length) and the
- * multipliers do not change with scale; the radius is scaled back. */
+/* A curve far from the origin for its size, or far from unit scale, is
+ * certified in the oracle's frame (curve.h, tr_curve_frame_of: centred,
+ * scaled by a power of two): the residual, the tension (a gradient of
+ * length) and the multipliers change with neither; the radius is scaled
+ * back. A curve whose numbers cannot hold its shape is refused as the
+ * thickness oracle refuses it. */
 int tr_kkt_certify_forces(const tr_curve *c, const tr_kkt_params *prm, tr_kkt *out, double *tension,
                           double *unresolved, tr_error *err)
 {
-    int e = tr_curve_scale_exponent(c);
-    if (e == 0)
-        return certify_frame(c, prm, out, tension, unresolved, err);
     memset(out, 0, sizeof *out);
+    for (size_t i = 0; i < 3 * c->nv; i++)
+        if (!isfinite(c->x[i]))
+            return tr_fail(err, TR_EGEOMETRY, "KKT certificate: vertex %zu is not finite", i / 3);
+    int rc = tr_curve_check_resolution(c, NULL, err);
+    if (rc)
+        return rc;
+    tr_curve_frame f;
+    tr_curve_frame_of(c, &f);
+    if (tr_curve_frame_is_identity(&f))
+        return certify_frame(c, prm, out, tension, unresolved, err);
     tr_kkt_params sp;
     if (prm)
         sp = *prm;
     else
         tr_kkt_params_default(&sp);
     if (sp.radius > 0.0)
-        sp.radius = ldexp(sp.radius, -e);
+        sp.radius = ldexp(sp.radius, -f.e);
     tr_curve s;
-    int rc = tr_curve_copy(&s, c, err);
-    if (rc)
+    if ((rc = tr_curve_to_frame(&s, c, &f, err)))
         return rc;
-    tr_curve_scale_pow2(&s, -e);
     rc = certify_frame(&s, &sp, out, tension, unresolved, err);
     tr_curve_free(&s);
-    out->radius = ldexp(out->radius, e);
+    out->radius = ldexp(out->radius, f.e);
     return rc;
 }
 

@@ -12,8 +12,8 @@ struct tr_rowchol {
     cholmod_common cm;
     cholmod_factor *L;
     size_t nr;
-    int nu;
-    int *ucol;
+    int nu;     /* the dense columns left to Woodbury (the others are in L) */
+    int *ucol;  /* per row: its Woodbury column, or -1 */
     double *uval;
     double *KU; /* nr x nu, column-major: (A A^T + beta I)^-1 U */
     double *S;  /* nu x nu Cholesky factor (lower) of I + U^T KU */
@@ -65,6 +65,21 @@ static int dense_cholesky(double *S, int n)
     return 0;
 }
 
+/* Which dense columns go into the sparse factor. A column u_k is non-zero
+ * on the m_k rows of component k only. Kept apart (Sherman-Morrison-
+ * Woodbury) it costs a solve with the whole factor, nr numbers of KU, nr
+ * operations in every later solve and a row and column of the dense nu x nu
+ * Cholesky (nu^3 / 3 in all: with 2000 small components that was minutes,
+ * and KU gigabytes). Put into A as one more sparse column it costs the
+ * clique it makes among its m_k rows: m_k^2 / 2 entries of L, m_k^2
+ * operations per solve. So it goes in when m_k^2 <= nr: every component
+ * of a link of many small ones, never the component of a knot (m_k = nr),
+ * which keeps its Woodbury column and its numbers as before. */
+static int embedded(size_t mk, size_t nr)
+{
+    return mk > 0 && (double)mk * (double)mk <= (double)nr;
+}
+
 int tr_rowchol_factor(tr_rowchol **out, const tr_rowsys *a, double beta, tr_error *err)
 {
     *out = NULL;
@@ -75,23 +90,49 @@ int tr_rowchol_factor(tr_rowchol **out, const tr_rowsys *a, double beta, tr_erro
     f->cm.print = 0; /* the library reports through its status, never on stderr */
     f->cm.error_handler = NULL;
     f->nr = a->nr;
-    f->nu = a->nu;
     int rc = TR_OK;
-    size_t nnz = a->rowptr[a->nr];
-    cholmod_triplet *t = cholmod_l_allocate_triplet(a->nr, a->ncols, nnz ? nnz : 1, 0, CHOLMOD_REAL, &f->cm);
+    cholmod_sparse *A = NULL;
+    /* rows per dense column, then each column's place: -2 - j for sparse
+     * column ncols + j, or its Woodbury index w >= 0 */
+    size_t nuz = a->nu > 0 ? (size_t)a->nu : 1, nemb = 0, nnz = a->rowptr[a->nr];
+    size_t *mk = calloc(nuz, sizeof *mk);
+    int *place = malloc(nuz * sizeof *place);
+    if (!mk || !place) {
+        rc = tr_fail(err, TR_ENOMEM, "out of memory (KKT factor)");
+        goto fail;
+    }
+    for (size_t r = 0; r < a->nr; r++)
+        if (a->nu > 0 && a->uval[r] != 0.0)
+            mk[a->ucol[r]]++;
+    for (int k = 0; k < a->nu; k++) {
+        if (embedded(mk[k], a->nr))
+            place[k] = -2 - (int)nemb++;
+        else
+            place[k] = f->nu++;
+    }
+    for (size_t r = 0; r < a->nr; r++)
+        nnz += a->nu > 0 && a->uval[r] != 0.0 && place[a->ucol[r]] < 0;
+    cholmod_triplet *t =
+        cholmod_l_allocate_triplet(a->nr, a->ncols + nemb, nnz ? nnz : 1, 0, CHOLMOD_REAL, &f->cm);
     if (!t) {
         rc = chol_fail(f, err, "allocate_triplet");
         goto fail;
     }
     SuiteSparse_long *ti = t->i, *tj = t->j;
     double *tx = t->x;
-    for (size_t r = 0; r < a->nr; r++)
+    for (size_t r = 0; r < a->nr; r++) {
         for (size_t e = a->rowptr[r]; e < a->rowptr[r + 1]; e++) {
             ti[t->nnz] = (SuiteSparse_long)r;
             tj[t->nnz] = (SuiteSparse_long)a->col[e];
             tx[t->nnz++] = a->val[e];
         }
-    cholmod_sparse *A = cholmod_l_triplet_to_sparse(t, nnz, &f->cm);
+        if (a->nu > 0 && a->uval[r] != 0.0 && place[a->ucol[r]] < 0) {
+            ti[t->nnz] = (SuiteSparse_long)r;
+            tj[t->nnz] = (SuiteSparse_long)(a->ncols + (size_t)(-2 - place[a->ucol[r]]));
+            tx[t->nnz++] = a->uval[r];
+        }
+    }
+    A = cholmod_l_triplet_to_sparse(t, nnz, &f->cm);
     cholmod_l_free_triplet(&t, &f->cm);
     if (!A) {
         rc = chol_fail(f, err, "triplet_to_sparse");
@@ -116,8 +157,11 @@ int tr_rowchol_factor(tr_rowchol **out, const tr_rowsys *a, double beta, tr_erro
             rc = tr_fail(err, TR_ENOMEM, "out of memory (KKT factor)");
             goto fail;
         }
-        memcpy(f->ucol, a->ucol, a->nr * sizeof *f->ucol);
-        memcpy(f->uval, a->uval, a->nr * sizeof *f->uval);
+        for (size_t r = 0; r < a->nr; r++) {
+            int w = place[a->ucol[r]];
+            f->ucol[r] = w >= 0 && a->uval[r] != 0.0 ? w : -1;
+            f->uval[r] = a->uval[r];
+        }
         for (int k = 0; k < f->nu; k++) {
             double *col = f->KU + (size_t)k * a->nr;
             for (size_t r = 0; r < a->nr; r++)
@@ -125,23 +169,26 @@ int tr_rowchol_factor(tr_rowchol **out, const tr_rowsys *a, double beta, tr_erro
             if ((rc = ksolve(f, col, col, err)))
                 goto fail;
         }
-        for (int i = 0; i < f->nu; i++)
-            for (int j = 0; j < f->nu; j++) {
-                double s = i == j ? 1.0 : 0.0;
-                const double *col = f->KU + (size_t)j * a->nr;
-                for (size_t r = 0; r < a->nr; r++)
-                    if (f->ucol[r] == i)
-                        s += f->uval[r] * col[r];
-                f->S[i * f->nu + j] = s;
-            }
+        /* S = I + U^T KU, column by column: one pass over the rows each */
+        for (int j = 0; j < f->nu; j++) {
+            const double *col = f->KU + (size_t)j * a->nr;
+            f->S[j * f->nu + j] = 1.0;
+            for (size_t r = 0; r < a->nr; r++)
+                if (f->ucol[r] >= 0)
+                    f->S[f->ucol[r] * f->nu + j] += f->uval[r] * col[r];
+        }
         if (dense_cholesky(f->S, f->nu)) {
             rc = tr_fail(err, TR_EGEOMETRY, "KKT certificate: the edge-length block is not positive definite");
             goto fail;
         }
     }
+    free(mk);
+    free(place);
     *out = f;
     return TR_OK;
 fail:
+    free(mk);
+    free(place);
     tr_rowchol_free(f);
     return rc;
 }
@@ -160,7 +207,8 @@ static int full_solve(tr_rowchol *f, const double *v, double *z, tr_error *err)
     for (int k = 0; k < n; k++)
         ev[k] = 0.0;
     for (size_t r = 0; r < f->nr; r++)
-        ev[f->ucol[r]] += f->uval[r] * z[r];
+        if (f->ucol[r] >= 0)
+            ev[f->ucol[r]] += f->uval[r] * z[r];
     for (int i = 0; i < n; i++) { /* forward, then back substitution with S S^T */
         for (int k = 0; k < i; k++)
             ev[i] -= f->S[i * n + k] * ev[k];

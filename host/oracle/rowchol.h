@@ -5,10 +5,13 @@
  *
  * This is the linear algebra of the KKT certificate (kkt.c): the rows are
  * constraint gradients in vertex space (A) and in the common edge lengths
- * of the components (U, one dense column per component, which would fill
- * A A^T completely if factored directly). A A^T + beta I is factored by
- * CHOLMOD (SuiteSparse; fill-reducing ordering, supernodal), and the rank-nu
- * term is added by Sherman-Morrison-Woodbury with an nu x nu Cholesky.
+ * of the components (U, one column per component, dense on that
+ * component's rows, which would fill A A^T there if factored directly).
+ * A A^T + beta I is factored by CHOLMOD (SuiteSparse; fill-reducing ordering,
+ * supernodal), with the columns of the small components (m_k rows, m_k^2 <=
+ * nr: a link of many small rings) in it as sparse columns of their own, and
+ * the rest of U U^T is added by Sherman-Morrison-Woodbury with a Cholesky of
+ * their count squared (rowchol.c: the cost of each way).
  * beta > 0 keeps the factor defined when rows are dependent (struts of a
  * tight knot are: many more than the vertices can independently feel). */
 #ifndef TR_ROWCHOL_H

@@ -491,30 +491,43 @@ static int measure_frame(const tr_curve *c, const tr_thickness_opts *opts, tr_th
     return TR_OK;
 }
 
-/* A curve far from unit scale (coordinates near 1e+-300, where squared
- * distances over- or underflow) is measured in a frame scaled by a power of
- * two, exactly, and its lengths scaled back (curve.h). */
+/* The curve is measured in tr_curve_frame_of's frame: centred when it is
+ * far from the origin for its size (so that the crossing test's tolerance,
+ * relative to the coordinates, is relative to the curve), and scaled by a
+ * power of two, exactly, when its coordinates are near 1e+-300 (where
+ * squared distances over- or underflow); lengths are scaled back. A curve
+ * whose numbers cannot hold its shape (curve.h, tr_curve_check_resolution:
+ * a circle of radius 5 at x = 1e15, or in subnormal numbers) is refused:
+ * any number measured from it would be the rounding's. */
 int tr_thickness_measure(const tr_curve *c, const tr_thickness_opts *opts, tr_thickness *out,
                          tr_strut_list *struts, tr_error *err)
 {
-    int e = c && c->x ? tr_curve_scale_exponent(c) : 0;
-    if (e == 0)
+    if (!c || c->ncomp <= 0 || !c->x)
         return measure_frame(c, opts, out, struts, err);
+    for (size_t i = 0; i < 3 * c->nv; i++)
+        if (!isfinite(c->x[i]))
+            return measure_frame(c, opts, out, struts, err); /* which names the vertex */
     memset(out, 0, sizeof *out);
-    tr_curve s;
-    int rc = tr_curve_copy(&s, c, err);
+    int rc = tr_curve_check_resolution(c, NULL, err);
     if (rc)
         return rc;
-    tr_curve_scale_pow2(&s, -e);
+    tr_curve_frame f;
+    tr_curve_frame_of(c, &f);
+    if (tr_curve_frame_is_identity(&f))
+        return measure_frame(c, opts, out, struts, err);
+    tr_curve s;
+    if ((rc = tr_curve_to_frame(&s, c, &f, err)))
+        return rc;
     rc = measure_frame(&s, opts, out, struts, err);
     tr_curve_free(&s);
     if (rc)
         return rc;
+    int e = f.e;
     double *len[] = {&out->length, &out->minrad, &out->dcsd, &out->thickness, &out->shortest.dist,
                      &out->L_p, &out->L_c, &out->L_a};
-    for (size_t i = 0; i < sizeof len / sizeof *len; i++)
+    for (size_t i = 0; e && i < sizeof len / sizeof *len; i++)
         *len[i] = ldexp(*len[i], e);
-    for (size_t i = 0; struts && i < struts->n; i++)
+    for (size_t i = 0; e && struts && i < struts->n; i++)
         struts->s[i].dist = ldexp(struts->s[i].dist, e);
     return TR_OK; /* ropelength, a ratio, is the frame's */
 }

@@ -121,6 +121,10 @@ static void test_round_trips(void)
     c.vcst[8] = 0;
     c.vcst[0] = 1;
     c.vcst[11] = 2;
+    /* a vertex lies on its constraint (the reader refuses one far off it) */
+    for (size_t i = 0; i < c.nv; i++)
+        if (c.vcst[i] >= 0)
+            tr_constraint_project(&c.cst[c.vcst[i]], c.x + 3 * i);
     round_trip(path, TR_FORMAT_VECT, &c, NULL);
 
     /* plCurve's spelling on disk */
@@ -306,7 +310,8 @@ static void test_bad_corpus(void)
         {"constraint_numbers.vect", 5}, {"trailing.vect", 8},        {"truncated.vect", 7},
         {"fields.tsv", 2},           {"fields.txt", 2},              {"binary.vect", 6},
         {"vect_missing_number.vect", 8}, {"vect_extra_number.vect", 8}, {"hex.tsv", 1},
-        {"hex.vect", 6},
+        {"hex.vect", 6},             {"far_origin.vect", 7},         {"subnormal.vect", 7},
+        {"off_constraint.vect", 7},
     };
     int seen = 0;
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {

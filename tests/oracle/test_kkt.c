@@ -31,6 +31,7 @@
  * tight again: the residual does not depend on the scale. */
 #include <math.h>
 #include <stdio.h>
+#include <string.h>
 
 #include "oracle/kkt.h"
 #include "testlib.h"
@@ -176,6 +177,65 @@ static void test_two_loose_components(void)
     tr_curve_free(&c);
 }
 
+/* Many loose components, as a link of small circles: the minima add as for
+ * two (the closed form above). 300 small ones (25 rows each) go into the
+ * sparse factor as their own columns, the one large one (1001 rows) keeps
+ * its Woodbury column (rowchol.c): both at once, against the closed form. */
+static void test_many_loose_components(void)
+{
+    enum { M = 301 };
+    size_t nv[M];
+    unsigned char closed[M];
+    for (int q = 0; q < M; q++) {
+        nv[q] = q == 0 ? 1001 : 25;
+        closed[q] = 1;
+    }
+    tr_curve c;
+    tr_error err;
+    REQUIRE_OK(tr_curve_alloc(&c, M, nv, closed, &err));
+    polygon(&c, 0, nv[0], 200.0, -1000.0);
+    for (int q = 1; q < M; q++)
+        polygon(&c, c.start[q], nv[q], 3.0 + 0.001 * q, 20.0 * q);
+    tr_kkt_params p;
+    tr_kkt_params_default(&p);
+    p.radius = 1.0;
+    tr_kkt k;
+    CHECK_OK(tr_kkt_certify(&c, &p, &k, &err));
+    double num = 0.0, den = 0.0;
+    for (int q = 0; q < M; q++) {
+        double s = 2.0 * sin(M_PI / (double)nv[q]);
+        num += loose_residual2_part(nv[q]);
+        den += (double)nv[q] * s * s;
+    }
+    CHECK_NEAR(k.residual, sqrt(num / den), 1e-12);
+    CHECK(k.minrad_rows == 0 && k.strut_rows == 0);
+    CHECK(k.converged);
+    tr_curve_free(&c);
+}
+
+/* A curve far from the origin for its size is certified where it is: the
+ * tight 101-gon moved by 1e6 (its vertices rounded to the 1.2e-10 between
+ * doubles there, a turning-angle error of ~2e-9 against 0.062) stays
+ * critical, as at the origin; moved by 1e15 (steps of 0.125 against edges
+ * of 0.062) it is refused, as the thickness oracle refuses it. */
+static void test_far_from_origin(void)
+{
+    const size_t n = 101;
+    unsigned char closed = 1;
+    tr_curve c;
+    tr_error err;
+    REQUIRE_OK(tr_curve_alloc(&c, 1, &n, &closed, &err));
+    polygon(&c, 0, n, 1.0 / cos(M_PI / (double)n), 1e6);
+    tr_kkt k;
+    CHECK_OK(tr_kkt_certify(&c, NULL, &k, &err));
+    CHECK_NEAR(k.radius, 1.0, 1e-6);
+    CHECK(k.residual < 1e-6);
+    polygon(&c, 0, n, 1.0 / cos(M_PI / (double)n), 1e15);
+    CHECK(tr_kkt_certify(&c, NULL, &k, &err) == TR_EGEOMETRY);
+    CHECK(strstr(err.msg, "far from the origin") != NULL);
+    tr_curve_free(&c);
+}
+
 static void test_straight_clasp_rope(void)
 {
     const size_t n = 21;
@@ -232,6 +292,8 @@ int main(void)
 {
     test_tight_polygon();
     test_two_loose_components();
+    test_many_loose_components();
+    test_far_from_origin();
     test_straight_clasp_rope();
     test_bad_parameters();
     return tr_test_failures ? 1 : 0;

@@ -82,6 +82,68 @@ static void test_regular_polygons(void)
     tr_curve_free(&c);
 }
 
+/* Ropelength does not change under translation. A regular 64-gon of
+ * circumradius 5 with its coordinates rounded to multiples of 2^-12 moves
+ * by 2^40 exactly (2^40 + x needs 52 bits for |x| < 8): it must measure as
+ * at the origin, and within the grid's rounding of the closed form
+ * 2 N tan(pi / N). Moved by 1e3, each coordinate is rounded by at most
+ * u / 2, u the step between doubles at 1e3: the turning angle theta = 2 pi
+ * / N moves by at most 2 u / h (h the edge) and the edges by u, so the
+ * ropelength by less than 4 u / (h theta) relatively. Moved by 1e15 (u =
+ * 0.125 against edges of 0.49) or 1e300 the numbers no longer hold the
+ * shape: refused, and for that reason, not as "passes through itself" (as
+ * it once was), nor measured as length 0 (1e300). In subnormal numbers
+ * (the polygon times 2^-1070) it is refused too. */
+static void test_far_from_origin(void)
+{
+    const size_t n = 64;
+    const double R = 5.0, pn = PI / (double)n, h = 2.0 * R * sin(pn), theta = 2.0 * pn;
+    const double want = 2.0 * (double)n * tan(pn);
+    tr_curve c;
+    tr_error err;
+    CHECK_OK(tr_curve_alloc(&c, 1, &n, NULL, &err));
+    double grid = ldexp(1.0, -12);
+    put_ngon(c.x, n, R, 0.0, 0.0);
+    for (size_t i = 0; i < 3 * n; i++)
+        c.x[i] = grid * round(c.x[i] / grid);
+    tr_thickness t0, t1;
+    tr_strut_list s0 = {0}, s1 = {0};
+    tr_thickness_opts o = {.strut_rel_tol = 1e-3};
+    CHECK_OK(tr_thickness_measure(&c, &o, &t0, &s0, &err));
+    CHECK_NEAR(t0.ropelength, want, (4.0 * grid / (h * theta) + 4.0 * grid / h) * want);
+    for (size_t i = 0; i < n; i++)
+        c.x[3 * i] += ldexp(1.0, 40);
+    CHECK_OK(tr_thickness_measure(&c, &o, &t1, &s1, &err));
+    CHECK_NEAR(t1.ropelength, t0.ropelength, 1e-13 * want);
+    CHECK_NEAR(t1.length, t0.length, 1e-13 * t0.length);
+    CHECK_NEAR(t1.minrad, t0.minrad, 1e-13 * R);
+    CHECK_NEAR(t1.dcsd, t0.dcsd, 1e-13 * R);
+    CHECK(s1.n == s0.n);
+    tr_strut_list_free(&s0);
+    tr_strut_list_free(&s1);
+
+    put_ngon(c.x, n, R, 1e3, 0.0);
+    double u = nextafter(1e3, 2e3) - 1e3;
+    CHECK_OK(tr_thickness_measure(&c, NULL, &t1, NULL, &err));
+    CHECK_NEAR(t1.ropelength, want, (4.0 * u / (h * theta) + 1e-13) * want);
+
+    const double far[] = {1e15, 1e100, 1e300};
+    for (size_t q = 0; q < sizeof far / sizeof *far; q++) {
+        put_ngon(c.x, n, R, far[q], 0.0);
+        err.msg[0] = '\0';
+        CHECK(tr_thickness_measure(&c, NULL, &t1, NULL, &err) == TR_EGEOMETRY);
+        if (!strstr(err.msg, "far from the origin"))
+            fprintf(stderr, "moved by %g: %s\n", far[q], err.msg);
+        CHECK(strstr(err.msg, "far from the origin") != NULL);
+    }
+    put_ngon(c.x, n, R, 0.0, 0.0);
+    for (size_t i = 0; i < 3 * n; i++)
+        c.x[i] = ldexp(c.x[i], -1070);
+    CHECK(tr_thickness_measure(&c, NULL, &t1, NULL, &err) == TR_EGEOMETRY);
+    CHECK(strstr(err.msg, "subnormal") != NULL);
+    tr_curve_free(&c);
+}
+
 /* Builds a curve of open/closed components from a flat coordinate list. */
 static void make_curve(tr_curve *c, int ncomp, const size_t *nv, const unsigned char *closed,
                        const double *xyz)
@@ -484,6 +546,7 @@ int main(void)
 {
     test_slab_search();
     test_regular_polygons();
+    test_far_from_origin();
     test_perpendicular_segments();
     test_normal_wedge();
     test_segment_closest();

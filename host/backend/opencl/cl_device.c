@@ -8,6 +8,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "backend/opencl/cl_error.h"
 #include "backend/opencl/kernel_source.h"
@@ -123,7 +124,7 @@ static void check_kernels(tr_cl_device_info *d)
     }
     if (rc != TR_OK) {
         d->usable = 0;
-        snprintf(d->reason, sizeof d->reason, "the kernels do not build: %.160s", why.msg);
+        snprintf(d->reason, sizeof d->reason, "the kernels do not build: %.480s", why.msg);
     }
 }
 
@@ -461,6 +462,56 @@ static void fold_lines(const char *in, char *out, size_t n)
     out[w] = '\0';
 }
 
+/* The OpenCL C compiler of some drivers (PoCL's clang, in this process)
+ * writes to the process's stderr itself, beside the build log: "2 errors
+ * generated." came before the one line that said what failed. While a
+ * program builds, descriptor 2 points at a temporary file; what the
+ * compiler wrote there goes into the error message (when the build fails)
+ * or nowhere. Without a temporary file the build runs as before. */
+typedef struct stderr_hold {
+    int saved;
+    FILE *tmp;
+} stderr_hold;
+
+static void hold_stderr(stderr_hold *h)
+{
+    fflush(stderr);
+    h->saved = -1;
+    h->tmp = tmpfile();
+    if (!h->tmp)
+        return;
+    h->saved = dup(2);
+    if (h->saved < 0 || dup2(fileno(h->tmp), 2) < 0) {
+        if (h->saved >= 0)
+            close(h->saved);
+        h->saved = -1;
+        fclose(h->tmp);
+        h->tmp = NULL;
+    }
+}
+
+/* Restores stderr; *text (may be NULL) gets up to n - 1 bytes of what was
+ * written to it meanwhile. */
+static void release_stderr(stderr_hold *h, char *text, size_t n)
+{
+    if (text && n)
+        text[0] = '\0';
+    if (!h->tmp)
+        return;
+    fflush(stderr);
+    dup2(h->saved, 2);
+    close(h->saved);
+    if (text && n && fseek(h->tmp, 0, SEEK_SET) == 0) {
+        size_t got = fread(text, 1, n - 1, h->tmp);
+        text[got] = '\0';
+        for (size_t i = 0; i < got; i++) /* one line of plain text */
+            if (text[i] == '\0' || (text[i] != '\n' && (unsigned char)text[i] < ' '))
+                text[i] = ' ';
+    }
+    fclose(h->tmp);
+    h->tmp = NULL;
+}
+
 int tr_cl_build(const tr_cl_ctx *ctx, const char *const *files, int nfiles, const char *options,
                 cl_program *out, tr_error *err)
 {
@@ -492,7 +543,11 @@ int tr_cl_build(const tr_cl_ctx *ctx, const char *const *files, int nfiles, cons
         goto cleanup;
     }
     options = opts;
+    stderr_hold hold;
+    char said[256];
+    hold_stderr(&hold);
     e = clBuildProgram(prog, 1, &ctx->info.did, options, NULL, NULL);
+    release_stderr(&hold, said, sizeof said);
     if (e != CL_SUCCESS) {
         size_t n = 0;
         if (clGetProgramBuildInfo(prog, ctx->info.did, CL_PROGRAM_BUILD_LOG, 0, NULL, &n) ==
@@ -504,7 +559,7 @@ int tr_cl_build(const tr_cl_ctx *ctx, const char *const *files, int nfiles, cons
             log[n] = '\0';
         }
         /* every file: the log's "FILE:LINE:" says which one failed */
-        char what[256] = "", folded[768];
+        char what[256] = "", folded[768], chatter[256];
         for (int i = 0; i < np + nfiles; i++) {
             size_t w = strlen(what);
             snprintf(what + w, sizeof what - w, "%s%s", i ? ", " : "",
@@ -513,9 +568,14 @@ int tr_cl_build(const tr_cl_ctx *ctx, const char *const *files, int nfiles, cons
         char *located = log ? tr_kernel_log_locate(log, (const char *const *)src, np + nfiles) : NULL;
         fold_lines(located ? located : log ? log : "", folded, sizeof folded);
         free(located);
-        rc = tr_fail(err, TR_EOPENCL, "clBuildProgram: %s (%d) building %s with options '%s': %s",
-                     tr_cl_strerror(e), (int)e, what, options,
-                     folded[0] ? folded : "no build log");
+        fold_lines(said, chatter, sizeof chatter);
+        /* the compiler's own words first (an error message is cut at its
+         * end), then what it wrote on stderr ("2 errors generated."), then
+         * the call and what it built */
+        rc = tr_fail(err, TR_EOPENCL, "%s%s%s (clBuildProgram: %s (%d) building %s with options '%s')",
+                     folded[0] ? folded : "no build log", chatter[0] && !strstr(folded, chatter) ? " | " : "",
+                     chatter[0] && !strstr(folded, chatter) ? chatter : "", tr_cl_strerror(e), (int)e, what,
+                     options);
         goto cleanup;
     }
     *out = prog;

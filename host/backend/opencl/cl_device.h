@@ -28,7 +28,7 @@ typedef struct tr_cl_device_info {
     size_t max_work_group;
     int fp64;                 /* cl_khr_fp64 (or cl_amd_fp64) with a double FP config */
     int usable;
-    char reason[192];         /* why unusable; empty when usable */
+    char reason[512];         /* why unusable; empty when usable (a build log's first errors) */
     double score;             /* ranking used by "auto" (higher is faster, see cl_device.c) */
 } tr_cl_device_info;
 
