@@ -1,4 +1,4 @@
-# tightrope analyze: the portrait of the tight trefoil, plots with and without
+# tightrope analyze: the portrait of the tight trefoil, plots, --plots refused without
 # gnuplot, plots of coarse knots, PNGs written atomically, the tube pictures, the paper's 9-cycles on a trefoil our engine tightened, refused arguments and option values, no output directory for a bad input (tests/scripts/analyze_cli.sh).
 foreach(_case trefoil no_gnuplot plots plots_coarse plots_origin plots_atomic tube cycles usage options nodir)
   add_test(NAME analyze_cli_${_case}

@@ -1,8 +1,9 @@
 /* This file contains `tightrope analyze`: the paper's portrait of a tight knot
  * (docs/physics.md 3-5). */
-#include <dirent.h>
 #include <errno.h>
 #include <math.h>
+#include <signal.h>
+#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -16,6 +17,7 @@
 #include "cli/cli_args.h"
 #include "cli/cli_clasp.h"
 #include "cli/cli_gnuplot.h"
+#include "cli/cli_interrupt.h"
 #include "analysis/contact_functions.h"
 #include "curve/curve_io.h"
 #include "analysis/open_rope.h"
@@ -25,6 +27,10 @@
 #include "analysis/tube_script.h"
 #include "analysis/tube_views.h"
 #include "oracle/thickness.h"
+#include "util/out_folder.h"
+
+/* The record analyze keeps in its folder of the files it wrote there (out_folder.h). */
+#define ANALYZE_RECORD ".tightrope-analyze"
 
 static void usage(FILE *f)
 {
@@ -42,10 +48,14 @@ static void usage(FILE *f)
             "with --plots also PNG plots drawn by gnuplot, and pictures of the tube (radius 1) shaded:\n"
             "tube_front.png (along the symmetry axis), tube_top.png, tube_side.png and tube_struts.png\n"
             "(the struts inside the translucent tube), kappa = 1 stretches (the plateaus) and contacts marked.\n"
+            "All of a run's files or none: they are written aside and moved into DIR when every one is\n"
+            "(an interrupt, SIGINT/SIGTERM/SIGHUP, or a failure leaves DIR as it was). DIR/" ANALYZE_RECORD "\n"
+            "lists what analyze wrote there; a later run replaces or removes only those files, while\n"
+            "unchanged, and refuses to write over anything else (a file of yours, the input).\n"
             "\n"
             "options:\n"
             "  -m M               averaging block (default 10, the paper's; 1 = raw polygon; at most N/4)\n"
-            "  --plots            draw PNGs with gnuplot (CSV files are written regardless)\n"
+            "  --plots            also draw PNGs with gnuplot (needed on PATH)\n"
             "  --tube-size PX     the tube pictures' width and height, 200 to 4000 pixels (default 720)\n"
             "  --plateau-eps E    plateau = arcs with kappa >= 1 - E, 0 < E < 1 (default 1e-4)\n"
             "  --plateau-min K    plateaus need at least K arcs at 1 - E, an integer >= 1 (default 2)\n"
@@ -68,8 +78,8 @@ static void usage(FILE *f)
             "                     every component (open ropes capped), ASCII PLY for ParaView or Blender\n"
             "  --mesh-sides K     vertices per ring of the tube, 3 to 1024 (default 16)\n"
             "\n"
-            "Exit status: 0 written; 2 bad input, option or unwritable output (nothing is written\n"
-            "for a bad input or option); 1 out of memory or gnuplot failed.\n");
+            "Exit status: 0 written; 2 bad input, option or unwritable output, or --plots without\n"
+            "gnuplot; 1 out of memory or gnuplot failed. Nothing is written unless it is 0.\n");
 }
 
 /* Comma-separated finite numbers. */
@@ -106,18 +116,6 @@ static int write_text(const char *dir, const char *name, char *text, tr_error *e
     int rc = tr_write_file_atomic(path, text, strlen(text), err);
     free(text);
     return rc;
-}
-
-static int make_dir(const char *dir)
-{
-    if (mkdir(dir, 0777) == 0)
-        return 0;
-    struct stat st;
-    if (errno == EEXIST && stat(dir, &st) == 0 && S_ISDIR(st.st_mode))
-        return 0;
-    if (errno == EEXIST)
-        errno = ENOTDIR;
-    return -1;
 }
 
 typedef struct cli_opts {
@@ -244,77 +242,33 @@ fail:
     return status;
 }
 
-/* Every name analyze writes into a component's folder. */
-static const char *const analyze_files[] = {
-    "curvature.csv", "torsion.csv", "plateaus.csv", "symmetry.csv", "contacts.csv", "sigma.csv",
-    "fixed_points.csv", "summary.json", "report.txt", "curvature_torsion.png", "plateau_zoom.png",
-    "accumulated_torsion.png", "contact_map.png", "sigma9.png", "plots.gp", "gnuplot.log",
-    "tube_front.png", "tube_top.png", "tube_side.png", "tube_struts.png", "tube.dat", "struts.dat", "tube.gp", "tube_gnuplot.log",
-    "pieces.csv", TR_CLASP_PLOT_CURVATURE, TR_CLASP_PLOT_D1};
-#define N_ANALYZE_FILES (sizeof analyze_files / sizeof *analyze_files)
-
-/* Removes DIR/NAME for the names given (files of ours an earlier analyze
- * left that this run does not write); anything else stays. */
-static void remove_ours(const char *dir, const char *const *names, size_t n)
+/* A message with the staging folder's paths shown as the folder's, where
+ * the user will look (out_folder.h). */
+static void say(const tr_out_folder *of, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 2, 3)))
+#endif
+    ;
+static void say(const tr_out_folder *of, const char *fmt, ...)
 {
-    for (size_t i = 0; i < n; i++) {
-        char path[4096];
-        if (snprintf(path, sizeof path, "%s/%s", dir, names[i]) < (int)sizeof path && unlink(path) != 0 &&
-            errno != ENOENT)
-            fprintf(stderr, "tightrope analyze: warning: cannot remove the stale %s: %s\n", path, strerror(errno));
-    }
+    char line[2400], shown[2400];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(line, sizeof line, fmt, ap);
+    va_end(ap);
+    fputs(tr_out_folder_shown(of, line, shown, sizeof shown), stderr);
 }
 
-/* A knot written into a folder that holds an earlier link's compK/ (or a
- * link into one that holds an earlier knot's files): the other layout's
- * files of ours go, and a compK/ left empty is removed. */
-static void remove_other_layout(const char *out, int link)
-{
-    if (link) {
-        remove_ours(out, analyze_files, N_ANALYZE_FILES);
-        return;
-    }
-    DIR *d = opendir(out);
-    if (!d)
-        return;
-    struct dirent *e;
-    while ((e = readdir(d)) != NULL) {
-        const char *n = e->d_name;
-        if (strncmp(n, "comp", 4) != 0 || !n[4] || strspn(n + 4, "0123456789") != strlen(n + 4))
-            continue;
-        char sub[4096];
-        if (snprintf(sub, sizeof sub, "%s/%s", out, n) >= (int)sizeof sub)
-            continue;
-        remove_ours(sub, analyze_files, N_ANALYZE_FILES);
-        rmdir(sub); /* only if now empty: a user's file keeps it */
-    }
-    closedir(d);
-}
-
-/* Removes from dir every name of analyze_files but the n in keep. */
-static void remove_ours_except(const char *dir, const char *const *keep, size_t n)
-{
-    for (size_t i = 0; i < N_ANALYZE_FILES; i++) {
-        size_t j = 0;
-        while (j < n && strcmp(keep[j], analyze_files[i]) != 0)
-            j++;
-        if (j == n)
-            remove_ours(dir, analyze_files + i, 1);
-    }
-}
-
-/* An open rope's tables, summary and report into dir, which exists; with
- * clasp (one of a clasp's two ropes) its anatomy in them, pieces.csv, and
- * with --plots the paper's Fig. 3 and 4. Files of ours an earlier run left
- * there that this one does not write go (only analyze's names). Returns a
- * process status. */
-static int write_open_rope(comp_result *r, const char *in, const char *dir, const cli_opts *o,
-                           const tr_clasp_report *clasp, int *plots_missing)
+/* An open rope's tables, summary and report into dir, which exists (in
+ * the stage of of); with clasp (one of a clasp's two ropes) its anatomy in
+ * them, pieces.csv, and with --plots the paper's Fig. 3 and 4. Returns a
+ * process status; an interrupt is 1, unreported. */
+static int write_open_rope(comp_result *r, const char *in, const char *dir, const tr_out_folder *of,
+                           const cli_opts *o, const tr_clasp_report *clasp)
 {
     tr_error err = {{0}};
     tr_report_ctx ctx = {in, r->k, r->scale, &r->th, 0};
-    const char *names[] = {"curvature.csv", "torsion.csv", "summary.json", "report.txt", "pieces.csv",
-                           "plots.gp", "gnuplot.log", TR_CLASP_PLOT_CURVATURE, TR_CLASP_PLOT_D1};
+    const char *names[] = {"curvature.csv", "torsion.csv", "summary.json", "report.txt", "pieces.csv"};
     int found = clasp && clasp->rope->found;
     size_t nw = found ? 5 : 4;
     for (size_t i = 0; i < nw; i++) {
@@ -328,11 +282,11 @@ static int write_open_rope(comp_result *r, const char *in, const char *dir, cons
             fputs(t, stdout);
         int rc = fmt == TR_OK ? write_text(dir, names[i], t, &err) : TR_ENOMEM;
         if (rc == TR_ENOMEM) {
-            fprintf(stderr, "tightrope analyze: writing %s: out of memory\n", dir);
+            say(of, "tightrope analyze: writing %s: out of memory\n", dir);
             return 1;
         }
         if (rc != TR_OK) {
-            fprintf(stderr, "tightrope analyze: writing %s: %s\n", dir, err.msg);
+            say(of, "tightrope analyze: writing %s: %s\n", dir, err.msg);
             return 2;
         }
     }
@@ -342,13 +296,11 @@ static int write_open_rope(comp_result *r, const char *in, const char *dir, cons
         snprintf(title, sizeof title, "%.200s, rope %d", base ? base + 1 : in, r->k);
         int rc = tr_cli_clasp_draw(dir, clasp->rope, title, &err);
         if (rc == TR_OK) {
-            nw = 9;
-            printf("plots: %s/{clasp_curvature,clasp_d1}.png\n", dir);
-        } else if (rc == TR_EUNSUPPORTED) {
-            fprintf(stderr, "tightrope analyze: no plots: %s; the CSV files are written\n", err.msg);
-            *plots_missing = 1;
+            char x[1100];
+            printf("plots: %s/{clasp_curvature,clasp_d1}.png\n", tr_out_folder_shown(of, dir, x, sizeof x));
         } else {
-            fprintf(stderr, "tightrope analyze: plots: %s\n", err.msg);
+            if (rc != TR_EINTERRUPTED)
+                say(of, "tightrope analyze: plots: %s\n", err.msg);
             return 1;
         }
     } else if (o->plots) {
@@ -356,7 +308,6 @@ static int write_open_rope(comp_result *r, const char *in, const char *dir, cons
                         "(%s); the CSV files are written\n", in, r->k,
                 clasp ? clasp->rope->why : "not one of two open ropes");
     }
-    remove_ours_except(dir, names, nw);
     return 0;
 }
 
@@ -397,12 +348,13 @@ static int draw_tube(const char *dir, const comp_result *r, const char *in, int 
 }
 
 /* Writes the tables, the summary and (with --plots) the plots of one
- * analysed component into dir, which exists. Returns a process status. */
-static int write_component(comp_result *r, const char *in, const char *dir, const cli_opts *o,
-                           const tr_clasp_report *clasp, int *plots_missing)
+ * analysed component into dir, which exists (in the stage of of). Returns
+ * a process status; an interrupt is 1, unreported. */
+static int write_component(comp_result *r, const char *in, const char *dir, const tr_out_folder *of,
+                           const cli_opts *o, const tr_clasp_report *clasp)
 {
     if (r->open)
-        return write_open_rope(r, in, dir, o, clasp, plots_missing);
+        return write_open_rope(r, in, dir, of, o, clasp);
     tr_error err = {{0}};
     const tr_analysis *an = &r->an;
     tr_report_ctx ctx = {in, r->k, r->scale, &r->th,
@@ -437,48 +389,34 @@ static int write_component(comp_result *r, const char *in, const char *dir, cons
         free(txt);
     }
     if (fmt || rc == TR_ENOMEM) {
-        fprintf(stderr, "tightrope analyze: writing %s: out of memory\n", dir);
+        say(of, "tightrope analyze: writing %s: out of memory\n", dir);
         return 1;
     }
     if (rc != TR_OK) { /* an output the user can fix */
-        fprintf(stderr, "tightrope analyze: writing %s: %s\n", dir, err.msg);
+        say(of, "tightrope analyze: writing %s: %s\n", dir, err.msg);
         return 2;
     }
-    /* Files of ours an earlier analyze left in dir that this one does not
-     * write (sigma.csv after a knot without contacts, plots after a run
-     * without --plots) would read as this run's: they go. Only these
-     * names, which analyze writes, are removed; anything else stays. */
-    static const char *const sigma_files[] = {"sigma.csv", "fixed_points.csv", "contact_map.png", "sigma9.png"};
-    static const char *const plot_files[] = {"curvature_torsion.png", "plateau_zoom.png", "accumulated_torsion.png",
-                                             "contact_map.png", "sigma9.png", "plots.gp", "gnuplot.log",
-                                             "tube_front.png", "tube_top.png", "tube_side.png", "tube_struts.png",
-                                             "tube.dat", "struts.dat", "tube.gp", "tube_gnuplot.log"};
-    static const char *const clasp_files[] = {"pieces.csv", TR_CLASP_PLOT_CURVATURE, TR_CLASP_PLOT_D1};
-    remove_ours(dir, clasp_files, 3); /* an earlier clasp's, written into this folder */
-    if (!an->have_sigma)
-        remove_ours(dir, sigma_files, 4);
-    if (!o->plots)
-        remove_ours(dir, plot_files, sizeof plot_files / sizeof *plot_files);
     if (o->plots) {
+        char x[1100];
+        const char *shown = tr_out_folder_shown(of, dir, x, sizeof x);
         rc = draw_plots(dir, an, &err);
-        if (rc == TR_EUNSUPPORTED) {
-            fprintf(stderr, "tightrope analyze: no plots: %s; the CSV files are written\n", err.msg);
-            *plots_missing = 1;
-        } else if (rc != TR_OK) {
-            fprintf(stderr, "tightrope analyze: plots: %s\n", err.msg);
+        if (rc != TR_OK) {
+            if (rc != TR_EINTERRUPTED)
+                say(of, "tightrope analyze: plots: %s\n", err.msg);
             return 1;
+        }
+        printf("plots: %s/{curvature_torsion,plateau_zoom,accumulated_torsion%s}.png\n", shown,
+               an->have_sigma ? ",contact_map,sigma9" : "");
+        rc = tr_cli_interrupted() ? tr_fail(&err, TR_EINTERRUPTED, "interrupted")
+                                  : draw_tube(dir, r, in, o->tube_px ? o->tube_px : TR_TUBE_PX_DEFAULT, &err);
+        if (rc == TR_OK) {
+            printf("tube: %s/tube_{front,top,side,struts}.png\n", shown);
+        } else if (rc == TR_EGEOMETRY) { /* a core no tube can follow: the analysis stands */
+            say(of, "tightrope analyze: no tube pictures: %s; the other plots are drawn\n", err.msg);
         } else {
-            printf("plots: %s/{curvature_torsion,plateau_zoom,accumulated_torsion%s}.png\n", dir,
-                   an->have_sigma ? ",contact_map,sigma9" : "");
-            rc = draw_tube(dir, r, in, o->tube_px ? o->tube_px : TR_TUBE_PX_DEFAULT, &err);
-            if (rc == TR_OK) {
-                printf("tube: %s/tube_{front,top,side,struts}.png\n", dir);
-            } else if (rc == TR_EGEOMETRY) { /* a core no tube can follow: the analysis stands */
-                fprintf(stderr, "tightrope analyze: no tube pictures: %s; the other plots are drawn\n", err.msg);
-            } else {
-                fprintf(stderr, "tightrope analyze: tube pictures: %s\n", err.msg);
-                return 1;
-            }
+            if (rc != TR_EINTERRUPTED)
+                say(of, "tightrope analyze: tube pictures: %s\n", err.msg);
+            return 1;
         }
     }
     return 0;
@@ -500,7 +438,8 @@ static int write_mesh(const comp_result *res, int nres, const char *in, const cl
              o->scale ? "scaled to thickness 1" : "as given");
     if (rc == TR_OK && (rc = tr_tube_mesh_ply(&m, comment, &text)) != TR_OK)
         fprintf(stderr, "tightrope analyze: --mesh %s: out of memory\n", o->mesh);
-    if (rc == TR_OK && (rc = tr_write_file_atomic(o->mesh, text, strlen(text), &err)) != TR_OK)
+    if (rc == TR_OK && (rc = tr_write_file_atomic(o->mesh, text, strlen(text), &err)) != TR_OK &&
+        !tr_cli_interrupted()) /* (an interrupt has its own message) */
         fprintf(stderr, "tightrope analyze: --mesh %s: %s\n", o->mesh, err.msg);
     if (rc == TR_OK)
         printf("mesh: %s (%zu vertices, %zu triangles)\n", o->mesh, m.nv, m.nf);
@@ -668,6 +607,13 @@ int tr_cmd_analyze(int argc, char **argv)
         fprintf(stderr, "tightrope analyze: --mesh-sides needs --mesh FILE\n");
         return 2;
     }
+    /* before any computation: a run asked for plots that cannot draw them
+     * has failed (it used to write the tables alone and exit 0) */
+    if (o.plots && !tr_gnuplot_available()) {
+        fprintf(stderr,
+                "tightrope analyze: --plots needs gnuplot, which is not on PATH (Debian package gnuplot-nox)\n");
+        return 2;
+    }
     tr_error err = {{0}};
     if (o.mesh && tr_same_file(o.mesh, in)) {
         fprintf(stderr, "tightrope analyze: --mesh %s is the input file\n", o.mesh);
@@ -747,46 +693,79 @@ int tr_cmd_analyze(int argc, char **argv)
         }
     }
     int comps[2] = {res[0].k, nres > 1 ? res[1].k : 0};
-    int plots_missing = 0;
-    if (ndone && make_dir(out)) {
-        fprintf(stderr, "tightrope analyze: cannot create directory %s: %s\n", out, strerror(errno));
-        status = errno == ENOMEM ? 1 : 2;
-        ndone = 0;
+    /* All or nothing: every file goes into a staging folder inside out and
+     * is moved into place only once all are written; an earlier run's files
+     * are replaced or removed only if its record lists them unchanged, the
+     * input never (out_folder.h). From here an interrupt stops gnuplot and
+     * removes what this run wrote. */
+    tr_out_folder of;
+    int opened = 0, aborted_by = 0;
+    const char *keep[1] = {in};
+    if (status == 0 && ndone == nres) {
+        tr_cli_catch_interrupts();
+        tr_error e2 = {{0}};
+        int rc2 = tr_out_folder_open(&of, out, ANALYZE_RECORD, "tightrope analyze", &e2);
+        if (rc2 != TR_OK) {
+            fprintf(stderr, "tightrope analyze: %s\n", e2.msg);
+            status = rc2 == TR_ENOMEM ? 1 : 2;
+        }
+        opened = rc2 == TR_OK;
     }
-    for (int q = 0; q < nres && ndone; q++) {
-        if (!done[q])
-            continue;
-        char dir[4096];
-        int len = c.ncomp > 1 ? snprintf(dir, sizeof dir, "%s/comp%d", out, res[q].k)
-                              : snprintf(dir, sizeof dir, "%s", out);
+    for (int q = 0; q < nres && opened && status == 0 && !tr_cli_interrupted(); q++) {
+        char dir[4400];
+        const char *stage = tr_out_folder_stage(&of);
+        int len = c.ncomp > 1 ? snprintf(dir, sizeof dir, "%s/comp%d", stage, res[q].k)
+                              : snprintf(dir, sizeof dir, "%s", stage);
         if (len < 0 || (size_t)len >= sizeof dir) {
             fprintf(stderr, "tightrope analyze: output directory name too long: %s\n", out);
             status = 2;
             break;
         }
-        if (c.ncomp > 1 && make_dir(dir)) {
-            fprintf(stderr, "tightrope analyze: cannot create directory %s: %s\n", dir, strerror(errno));
+        if (c.ncomp > 1 && mkdir(dir, 0777) != 0) {
+            say(&of, "tightrope analyze: cannot create directory %s: %s\n", dir, strerror(errno));
             status = 2;
             break;
         }
         tr_clasp_report view;
         if (clasp)
             view = tr_cli_clasp_view(clasp, q, comps);
-        int s = write_component(&res[q], in, dir, &o, clasp ? &view : NULL, &plots_missing);
-        if (s > status)
-            status = s;
+        status = write_component(&res[q], in, dir, &of, &o, clasp ? &view : NULL);
     }
-    if (status == 0 && ndone == nres)
-        remove_other_layout(out, c.ncomp > 1);
-    if (o.mesh && status == 0 && ndone == nres)
-        status = write_mesh(res, nres, in, &o);
-    else if (o.mesh && ndone)
-        fprintf(stderr, "tightrope analyze: no mesh written to %s: not every component of %s was analysed\n",
-                o.mesh, in);
+    if (opened && status == 0 && !tr_cli_interrupted()) {
+        tr_error e2 = {{0}};
+        int rc2 = tr_out_folder_commit(&of, keep, 1, &e2);
+        if (rc2 != TR_OK) {
+            fprintf(stderr, "tightrope analyze: %s\n", e2.msg);
+            status = rc2 == TR_ENOMEM ? 1 : 2;
+        } else if (o.mesh && tr_out_folder_holds(&of, o.mesh)) {
+            /* the mesh would replace a file just written */
+            fprintf(stderr, "tightrope analyze: --mesh %s is one of the files analyze writes in %s\n", o.mesh, out);
+            status = 2;
+        } else if (o.mesh) { /* last: a failure can still undo the folder */
+            status = write_mesh(res, nres, in, &o);
+        }
+    }
+    if (opened) {
+        /* an interrupt once every file is in place comes too late to lose them */
+        if (status == 0 && (!tr_cli_interrupted() || of.committed)) {
+            tr_out_folder_finish(&of, keep, 1);
+        } else {
+            aborted_by = tr_cli_interrupted();
+            tr_out_folder_abort(&of);
+        }
+    }
     for (int q = 0; q < nres; q++)
         if (done[q])
             comp_result_free(&res[q]);
     free(res), free(done), free(clasp);
     tr_curve_free(&c);
+    if (aborted_by) {
+        /* ended as the signal would have ended it, so that a shell loop
+         * running analyze stops too */
+        fprintf(stderr, "tightrope analyze: interrupted; nothing written to %s\n", out);
+        signal(aborted_by, SIG_DFL);
+        raise(aborted_by);
+        return 1;
+    }
     return status;
 }

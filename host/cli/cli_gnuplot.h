@@ -11,7 +11,9 @@
 int tr_gnuplot_available(void);
 
 /* Runs `gnuplot SCRIPT` in DIR, its output to DIR/LOG, and waits for it.
- * TR_EIO if it cannot be started or fails (the message names the log). */
+ * TR_EIO if it cannot be started or fails (the message quotes the log's
+ * last line); TR_EINTERRUPTED, with gnuplot stopped and reaped, once
+ * tr_cli_interrupted() says a signal came (cli_interrupt.h). */
 int tr_gnuplot_run(const char *dir, const char *script, const char *log, tr_error *err);
 
 /* Runs DIR/SCRIPT as tr_gnuplot_run and then puts the pictures ps drew into

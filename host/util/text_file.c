@@ -1,5 +1,6 @@
 /* This file contains whole-file reading, atomic writing (temporary in the
- * target's directory, renamed) and the growing text buffer (text_file.h). */
+ * target's directory, renamed; in place for a device, a FIFO or a standard
+ * stream) and the growing text buffer (text_file.h). */
 #include "util/text_file.h"
 
 #include <errno.h>
@@ -190,11 +191,47 @@ static int open_temp(const char *dir, char *tmp, size_t tmpn)
     return -1;
 }
 
+/* The standard stream, 1 or 2, that the file st describes already is, or -1.
+ * A path naming it (/dev/stdout, /dev/fd/2, or the file or pipe the shell
+ * redirected the stream to) is written through that descriptor: it keeps
+ * the shell's offset and O_APPEND (`>> log` appends), where a reopened file
+ * would be written from its start and a file renamed over would take the
+ * rest of the stream into a file no longer in the folder. */
+static int std_stream_of(const struct stat *st)
+{
+    for (int fd = 1; fd <= 2; fd++) {
+        struct stat s;
+        if (fstat(fd, &s) == 0 && s.st_dev == st->st_dev && s.st_ino == st->st_ino)
+            return fd;
+    }
+    return -1;
+}
+
+/* Whether a write to path, which stat describes, goes in place rather than
+ * through a temporary renamed over it: a device, a FIFO or a socket is not
+ * ours to replace (the rename would put a regular file where /dev/null was),
+ * and one of our own standard streams is written through its descriptor. */
+static int in_place(const struct stat *st)
+{
+    return std_stream_of(st) >= 0 || (!S_ISREG(st->st_mode) && !S_ISDIR(st->st_mode));
+}
+
 int tr_check_writable(const char *path, tr_error *err)
 {
     struct stat st;
     if (stat(path, &st) == 0 && S_ISDIR(st.st_mode))
         return tr_fail(err, TR_EIO, "cannot write %s: %s", path, strerror(EISDIR));
+    /* Written in place: what counts is the file's own permission, not its
+     * directory's (a user cannot create files in /dev, but writes /dev/null). */
+    if (stat(path, &st) == 0 && in_place(&st)) {
+        if (std_stream_of(&st) >= 0)
+            return TR_OK;
+        if (S_ISSOCK(st.st_mode))
+            return tr_fail(err, TR_EIO, "cannot write %s: it is a socket, not a file", path);
+        if (faccessat(AT_FDCWD, path, W_OK, AT_EACCESS) != 0)
+            return tr_fail(err, TR_EIO, "cannot write %s: %s", path, strerror(errno));
+        return TR_OK;
+    }
     char target[PATH_MAX], dir[PATH_MAX], tmp[PATH_MAX + 16];
     int fd = -1;
     if (resolve_target(path, target, sizeof target) == 0 && dir_of(target, dir, sizeof dir) == 0)
@@ -243,8 +280,77 @@ static void hold_signals(sigset_t *old)
     sigprocmask(SIG_BLOCK, &set, old);
 }
 
+/* tr_write_file_atomic's answer when the file stopped being a device between
+ * the stat and the open: the atomic way is taken after all. */
+#define RACED 1
+
+/* Writes text in place into what path names, a device or a FIFO (a socket
+ * cannot be opened: refused), or into stream (1 or 2, when path is one of
+ * ours, else -1): no temporary, no
+ * rename, no O_CREAT or O_TRUNC, every byte written or an error naming path
+ * (/dev/full: "No space left on device"). A FIFO's open waits for a reader,
+ * as a shell's redirection does; a signal that interrupts it or a write
+ * ends the write with an error rather than retrying, so Ctrl-C still stops
+ * a program writing into a pipe nobody reads. SIGPIPE is ignored meanwhile:
+ * a reader that went away is an EPIPE error, not the end of the process. */
+static int write_in_place(const char *path, int stream, const char *text, size_t len, tr_error *err)
+{
+    int fd = stream;
+    if (fd < 0) {
+        fd = open(path, O_WRONLY | O_NOCTTY | O_CLOEXEC);
+        if (fd < 0) {
+            int e = errno;
+            struct stat st;
+            if (e == ENXIO && stat(path, &st) == 0 && S_ISSOCK(st.st_mode))
+                return tr_fail(err, TR_EIO, "cannot write %s: it is a socket, not a file", path);
+            return tr_fail(err, TR_EIO, "cannot write %s: %s", path, strerror(e));
+        }
+        struct stat st;
+        if (fstat(fd, &st) == 0 && S_ISREG(st.st_mode)) {
+            close(fd);
+            return RACED;
+        }
+    } else {
+        /* what the program printed before comes first */
+        fflush(stream == 1 ? stdout : stderr);
+    }
+    struct sigaction ign, old;
+    memset(&ign, 0, sizeof ign);
+    ign.sa_handler = SIG_IGN;
+    sigemptyset(&ign.sa_mask);
+    sigaction(SIGPIPE, &ign, &old);
+    int e = 0;
+    for (size_t done = 0; done < len && !e;) {
+        ssize_t w = write(fd, text + done, len - done);
+        if (w > 0)
+            done += (size_t)w;
+        else
+            e = w < 0 ? errno : EIO; /* 0 bytes for a non-empty write: nothing more fits */
+    }
+    /* A disk's blocks are made durable; a pipe or a character device has
+     * nothing to sync (EINVAL). */
+    struct stat st;
+    if (!e && fstat(fd, &st) == 0 && (S_ISBLK(st.st_mode) || S_ISREG(st.st_mode)) && fsync(fd) != 0 &&
+        errno != EINVAL)
+        e = errno;
+    if (stream < 0 && close(fd) != 0 && !e && errno != EINTR)
+        e = errno;
+    sigaction(SIGPIPE, &old, NULL);
+    if (e)
+        return tr_fail(err, TR_EIO, "cannot write %s: %s", path, strerror(e));
+    return TR_OK;
+}
+
 int tr_write_file_atomic(const char *path, const char *text, size_t len, tr_error *err)
 {
+    /* stat, not the link walk below: the kernel follows links the way a
+     * write would, also /dev/stdout's through /proc */
+    struct stat pst;
+    if (stat(path, &pst) == 0 && in_place(&pst)) {
+        int rc = write_in_place(path, std_stream_of(&pst), text, len, err);
+        if (rc != RACED)
+            return rc;
+    }
     /* Through a symbolic link the link stays and its target is replaced. */
     char target[PATH_MAX], dir[PATH_MAX], tmp[PATH_MAX + 16];
     if (resolve_target(path, target, sizeof target) != 0 || dir_of(target, dir, sizeof dir) != 0)

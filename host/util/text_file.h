@@ -26,12 +26,22 @@ int tr_read_text_file(const char *path, char **text, size_t *len, tr_error *err)
  * whole new one, never a part. An existing file keeps its mode; a symbolic
  * link stays a link and its target is replaced. Interrupting signals are
  * held back while the temporary exists, so only SIGKILL or a crash leaves
- * one behind. */
+ * one behind.
+ * A `path` that exists and is not a regular file (a character or block
+ * device, a FIFO: /dev/null, a pipe) is written in place, never replaced:
+ * opened without O_CREAT or O_TRUNC, every byte written (a FIFO's open
+ * waits for a reader), the write's or the close's error reported
+ * ("cannot write full: No space left on device"); a socket is refused.
+ * A path that is the process's own stdout or stderr (/dev/stdout, or the
+ * file the shell redirected it to) is written in place too, through
+ * descriptor 1 or 2, after the stream's buffered output, keeping the
+ * shell's O_APPEND. */
 int tr_write_file_atomic(const char *path, const char *text, size_t len, tr_error *err);
 
 /* What tr_write_file_atomic needs, checked before a long computation whose
  * result it will write: the temporary beside `path` can be created (and is
- * removed again) and `path` is not a directory. TR_EIO with the reason. */
+ * removed again) and `path` is not a directory; for a path written in place,
+ * that the file itself is writable. TR_EIO with the reason. */
 int tr_check_writable(const char *path, tr_error *err);
 
 /* Whether a and b are one file (same device and inode: ./k.vect, a hard

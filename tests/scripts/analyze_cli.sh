@@ -24,11 +24,13 @@ trefoil)
   ;;
 no_gnuplot)
   need_knot
-  # Without gnuplot: a clear message, the CSV files still written, success.
-  PATH=/nonexistent "$tr" analyze "$knot" --out "$work/out" -m 2 --plots >"$work/stdout" 2>"$work/stderr" || fail "exit $?"
-  grep -q 'gnuplot not found' "$work/stderr" || fail "no message: $(cat "$work/stderr")"
-  [ -s "$work/out/curvature.csv" ] && [ -s "$work/out/summary.json" ] || fail "CSV missing"
-  ls "$work/out"/*.png >/dev/null 2>&1 && fail "PNG without gnuplot"
+  # Without gnuplot, --plots fails at once: exit 2, one line saying gnuplot is needed,
+  # nothing written (it used to write the CSV files alone and exit 0; issue 45).
+  PATH=/nonexistent "$tr" analyze "$knot" --out "$work/out" -m 2 --plots >"$work/stdout" 2>"$work/stderr"; rc=$?
+  [ $rc = 2 ] || fail "exit $rc"
+  grep -q '^tightrope analyze: --plots needs gnuplot' "$work/stderr" || fail "no message: $(cat "$work/stderr")"
+  [ "$(wc -l <"$work/stderr")" = 1 ] || fail "not one line: $(cat "$work/stderr")"
+  [ -e "$work/out" ] && fail "written without gnuplot: $(ls "$work/out")"
   ;;
 plots)
   need_knot
@@ -81,30 +83,32 @@ plots_origin)
   ;;
 plots_atomic)
   need_knot
-  # PNGs are drawn under temporary names and renamed only when gnuplot succeeds: a gnuplot
-  # that fails half-way leaves the previous PNGs whole and no temporary file behind. The fake
-  # gnuplot writes into every file named by a 'set output' line of plots.gp, then fails.
-  mkdir -p "$work/bin" "$work/out"
+  # PNGs are drawn under temporary names and put in place only when gnuplot succeeds: a
+  # gnuplot that fails half-way leaves the previous run's PNGs whole and no temporary file
+  # behind. The fake gnuplot writes $GP_WRITES into every file named by a 'set output' line
+  # of plots.gp, then exits with $GP_EXIT.
+  mkdir -p "$work/bin"
   cat >"$work/bin/gnuplot" <<'EOS'
 #!/bin/sh
-sed -n "s/^set output '\(.*\)'$/\1/p" "$1" | while read -r f; do echo partial >"$f"; done
-exit 1
+sed -n "s/^set output '\(.*\)'$/\1/p" "$1" | while read -r f; do echo "$GP_WRITES" >"$f"; done
+exit "$GP_EXIT"
 EOS
   chmod +x "$work/bin/gnuplot"
-  echo old >"$work/out/curvature_torsion.png"
-  PATH="$work/bin:$PATH" "$tr" analyze "$knot" --out "$work/out" -m 2 --plots >/dev/null 2>"$work/err"; rc=$?
+  GP_WRITES=old GP_EXIT=0 PATH="$work/bin:$PATH" "$tr" analyze "$knot" --out "$work/out" -m 2 --plots >/dev/null 2>"$work/err" ||
+    fail "the first run: exit $?: $(cat "$work/err")"
+  pngs=$(ls "$work/out"/*.png)
+  GP_WRITES=partial GP_EXIT=1 PATH="$work/bin:$PATH" "$tr" analyze "$knot" --out "$work/out" -m 2 --plots >/dev/null 2>"$work/err"; rc=$?
   [ $rc = 1 ] || fail "failing gnuplot: exit $rc"
   grep -q '^tightrope analyze: plots: gnuplot failed' "$work/err" || fail "message: $(cat "$work/err")"
-  [ "$(cat "$work/out/curvature_torsion.png")" = old ] || fail "old PNG overwritten by a failed run"
-  ls "$work/out" | grep -q '\.png.' && fail "temporary files left: $(ls "$work/out")"
-  [ "$(ls "$work/out"/*.png | wc -l)" = 1 ] || fail "PNG from a failed run: $(ls "$work/out")"
+  [ "$(ls "$work/out"/*.png)" = "$pngs" ] || fail "the PNGs changed: $(ls "$work/out")"
+  for f in $pngs; do [ "$(cat "$f")" = old ] || fail "$f overwritten by a failed run"; done
+  ls -a "$work/out" | grep -q '\.png.\|^\.tr' && fail "temporary files left: $(ls -a "$work/out")"
   # the same fake, succeeding: each PNG takes its final name
-  sed -i 's/^exit 1$/exit 0/' "$work/bin/gnuplot"
-  PATH="$work/bin:$PATH" "$tr" analyze "$knot" --out "$work/out" -m 2 --plots >/dev/null 2>"$work/err" || fail "exit $?: $(cat "$work/err")"
+  GP_WRITES=partial GP_EXIT=0 PATH="$work/bin:$PATH" "$tr" analyze "$knot" --out "$work/out" -m 2 --plots >/dev/null 2>"$work/err" || fail "exit $?: $(cat "$work/err")"
   for f in curvature_torsion plateau_zoom accumulated_torsion contact_map sigma9; do
     [ "$(cat "$work/out/$f.png")" = partial ] || fail "$f.png not renamed into place"
   done
-  ls "$work/out" | grep -q '\.png.' && fail "temporary files left: $(ls "$work/out")"
+  ls -a "$work/out" | grep -q '\.png.\|^\.tr' && fail "temporary files left: $(ls -a "$work/out")"
   ;;
 tube)
   # The tube pictures of the tight N = 2400 trefoil (bench/data, beside the 5th argument): four
