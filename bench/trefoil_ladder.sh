@@ -8,6 +8,9 @@
 # line "N seconds-since-start <tightrope measure's line>" per checkpoint and per rung result;
 # OUTDIR/curve.png plots it when gnuplot is there. Heavy (bench/RESULTS.md, "N = 102 400
 # settles": 51 minutes to 102 400 on the 2-core VM): run it alone, in the background.
+# Resumable: a rung whose OUTDIR/LN.vect exists is skipped; a rung with a checkpoint
+# (OUTDIR/LN.vect.ckpt, from a run that was stopped) restarts from it, not from the rung below.
+# The seconds in curve.txt count from this invocation's start (a resumed ladder's are its own).
 set -euo pipefail
 here=$(cd "$(dirname "$0")/.." && pwd)
 out=${1:?usage: trefoil_ladder.sh OUTDIR [N ...]}
@@ -28,9 +31,22 @@ mkdir -p "$out"
 t0=$(date +%s)
 measure() { echo "$1 $(($(date +%s) - t0)) $("$tr" measure "$2" | tail -1)" >>"$out/curve.txt"; }
 for n in "${ns[@]}"; do
+    if [ -f "$out/L$n.vect" ]; then
+        prev=$out/L$n.vect
+        continue
+    fi
     ck=600
     [ "$n" -ge 100000 ] && ck=300
-    "${timer[@]}" "$nr" "$prev" "$out/L$n.vect" "s$n" "$limit" "$ck" >"$out/L$n.log" 2>"$out/L$n.err" &
+    from=$prev
+    size=s$n
+    if [ -f "$out/L$n.vect.ckpt" ]; then
+        # the stopped run's best iterate, already N vertices: no resampling
+        cp "$out/L$n.vect.ckpt" "$out/resume$n.vect"
+        from=$out/resume$n.vect
+        size=0
+        echo "resuming N = $n from its checkpoint" >>"$out/L$n.log"
+    fi
+    "${timer[@]}" "$nr" "$from" "$out/L$n.vect" "$size" "$limit" "$ck" >>"$out/L$n.log" 2>>"$out/L$n.err" &
     pid=$!
     last=""
     while kill -0 "$pid" 2>/dev/null; do

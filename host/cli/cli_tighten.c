@@ -6,8 +6,10 @@
  * vertex is constrained, so that ropelength = length), the engine's
  * residual, the KKT certificate of the written curve (kkt.h; by default up
  * to KKT_AUTO_MAX_N vertices, where it takes seconds), the steps and the
- * command line. SIGINT/SIGTERM stop the run at the next step,
- * write a last checkpoint (with --checkpoint) and the output, and exit 1. */
+ * command line. SIGINT/SIGTERM/SIGHUP stop the run at the next step,
+ * write a last checkpoint (with --checkpoint) and the output, and exit 1.
+ * --time-limit is a bound on the whole command (every road, shuffle,
+ * settle and solve looks at it), not only on the engine's steps. */
 #include <float.h>
 #include <limits.h>
 #include <math.h>
@@ -67,11 +69,15 @@ static void usage(FILE *out)
             "  --target X         stop when the ropelength estimate reaches X\n"
             "  --steps S          stop after S accepted steps in all (a resumed run counts\n"
             "                     the steps before its checkpoint)\n"
-            "  --time-limit T     stop after T seconds of wall clock in all (a resumed run\n"
-            "                     counts the time before its checkpoint)\n"
-            "  --checkpoint FILE  write the state to FILE every --checkpoint-every seconds\n"
-            "                     (default 300), at the end and on SIGINT/SIGTERM\n"
-            "  --resume FILE      continue from a checkpoint\n"
+            "  --time-limit T     the whole command ends within T seconds of wall clock, every\n"
+            "                     road, shuffle, settle and solve included (a resumed run counts\n"
+            "                     the time before its checkpoint); the best state is written\n"
+            "  --checkpoint FILE  write the state to FILE when the run starts, every\n"
+            "                     --checkpoint-every seconds (default 300), at the end and on\n"
+            "                     SIGINT/SIGTERM/SIGHUP\n"
+            "  --resume FILE      continue from a checkpoint, to the goals it was started with\n"
+            "                     (--refine-to, --target, --residual, --steps, --time-limit)\n"
+            "                     unless given again\n"
             "  --device D         reference | auto | a device spec (default $TIGHTROPE_DEVICE or auto)\n"
             "  --device-from N    with --refine-to, coarse levels of fewer than N vertices in all\n"
             "                     run on the serial reference, where a device's cost per kernel\n"
@@ -189,7 +195,11 @@ typedef struct tighten_opts {
     int shuffled; /* --shuffles: this road starts from IN shuffled (shuffle_start) */
     int shuffle_index; /* which of the shuffled roads (0: the first), so which recipe */
     double target, residual, time_limit, ckpt_every;
+    /* --time-limit as a clock time (tr_clock_seconds; 0: none): the hard
+     * bound of the whole command, which the roads' shares divide */
+    double bound_at;
     int residual_given; /* the default residual is a stopping rule, not a goal */
+    int refine_given;   /* --refine-to given (or taken from a checkpoint): a goal */
     int json, quiet, no_polish, newton, no_newton, scale, kkt; /* kkt -1: up to KKT_AUTO_MAX_N */
 } tighten_opts;
 
@@ -271,8 +281,10 @@ static int parse_options(int argc, char **argv, tighten_opts *o)
                 o->out = v;
             else if (!strcmp(a, "--n"))
                 bad = tr_arg_long(v, 4, LONG_MAX, &o->n);
-            else if (!strcmp(a, "--refine-to"))
+            else if (!strcmp(a, "--refine-to")) {
                 bad = tr_arg_long(v, 4, LONG_MAX, &o->refine_to);
+                o->refine_given = 1;
+            }
             else if (!strcmp(a, "--target"))
                 bad = tr_arg_double(v, 0, DBL_MAX, &o->target) || o->target <= 0;
             else if (!strcmp(a, "--residual")) {
@@ -622,6 +634,12 @@ static const shuffle_recipe SHUFFLE_RECIPES[] = {
     {4.0, 20000, 100000, 0.98},
     {6.0, 20000, 200000, 0.995},
 };
+/* The command's hard bound: its --time-limit and the stop flag. */
+static tr_deadline command_bound(const tighten_opts *o)
+{
+    return (tr_deadline){.at = o->bound_at, .stop = &stop_requested};
+}
+
 static int shuffle_start(const tighten_opts *o, tr_curve *c, tr_error *err)
 {
     if (c->ncst > 0)
@@ -649,8 +667,9 @@ static int shuffle_start(const tighten_opts *o, tr_curve *c, tr_error *err)
     const size_t nrecipes = sizeof SHUFFLE_RECIPES / sizeof *SHUFFLE_RECIPES;
     const shuffle_recipe *sr = &SHUFFLE_RECIPES[(size_t)o->shuffle_index % nrecipes];
     scale_curve(&r, sr->inflate / t.thickness);
-    if ((rc = tr_curve_shuffle(&r, sr->moves, 1.0, 0.0, seed, NULL, err)) ||
-        (rc = tr_curve_shuffle(&r, sr->anneal, 1.0, sr->ratchet, seed + 7, NULL, err)) ||
+    tr_deadline bound = command_bound(o);
+    if ((rc = tr_curve_shuffle(&r, sr->moves, 1.0, 0.0, seed, &bound, NULL, err)) ||
+        (rc = tr_curve_shuffle(&r, sr->anneal, 1.0, sr->ratchet, seed + 7, &bound, NULL, err)) ||
         (rc = tr_thickness_measure(&r, NULL, &t, NULL, err)))
         goto out;
     scale_curve(&r, 1.0 / t.thickness);
@@ -775,8 +794,12 @@ static int read_start(const tighten_opts *o, tr_curve *c, tr_error *err)
     return rc;
 }
 
-/* SIGINT/SIGTERM raise stop_requested: the run (and a solver run at the
- * engine's start) stops at its next step and writes what it has. */
+/* SIGINT/SIGTERM/SIGHUP raise stop_requested: the run (and a solver run at
+ * the engine's start) stops at its next step and writes what it has. A
+ * closed terminal or SSH session (SIGHUP) must not cost the run, and its
+ * last messages then go to a closed pipe: SIGPIPE is ignored so that the
+ * write fails (and is let go) instead of killing the process before the
+ * output is written. */
 static void catch_signals(void)
 {
     struct sigaction sa;
@@ -785,6 +808,9 @@ static void catch_signals(void)
     sigemptyset(&sa.sa_mask);
     sigaction(SIGINT, &sa, NULL);
     sigaction(SIGTERM, &sa, NULL);
+    sigaction(SIGHUP, &sa, NULL);
+    sa.sa_handler = SIG_IGN;
+    sigaction(SIGPIPE, &sa, NULL);
 }
 
 /* The route for a loose start given without route flags (no --n, no
@@ -839,6 +865,50 @@ static void choose_route(tighten_opts *o)
     tr_curve_free(&c);
 }
 
+/* --resume: what the run was asked for and the command line does not say
+ * again is taken from the checkpoint (tr_engine_goals), and said on
+ * stderr. Returns -1 to go on, else the exit status (message printed). */
+static int resume_goals(tighten_opts *o, double *elapsed)
+{
+    tr_engine_goals g;
+    int found;
+    tr_error err;
+    if (tr_engine_checkpoint_goals(o->resume, &g, &found, elapsed, &err)) {
+        fprintf(stderr, "tightrope tighten: %s\n", err.msg);
+        return 2;
+    }
+    if (!found)
+        return -1;
+    tr_text said = {0};
+    if (o->refine_to <= 0 && g.refine_to > 0) {
+        o->refine_to = g.refine_to;
+        o->refine_given = g.refine_given;
+        tr_text_printf(&said, " --refine-to %ld", g.refine_to);
+    }
+    if (o->target <= 0 && g.target > 0) {
+        o->target = g.target;
+        tr_text_printf(&said, " --target %.17g", g.target);
+    }
+    if (!o->residual_given && g.residual_given) {
+        o->residual = g.residual;
+        o->residual_given = 1;
+        tr_text_printf(&said, " --residual %.17g", g.residual);
+    }
+    if (o->steps <= 0 && g.steps > 0) {
+        o->steps = g.steps;
+        tr_text_printf(&said, " --steps %ld", g.steps);
+    }
+    if (o->time_limit <= 0 && g.time_limit > 0) {
+        o->time_limit = g.time_limit;
+        tr_text_printf(&said, " --time-limit %.17g", g.time_limit);
+    }
+    char *line = tr_text_take(&said, NULL);
+    if (line && line[0] && !o->quiet)
+        fprintf(stderr, "tightrope tighten: resuming with the checkpoint's goals:%s\n", line);
+    free(line);
+    return -1;
+}
+
 /* Opens the engine on the start (IN or the checkpoint to resume) and
  * checks the outputs before the run. Returns -1 to go on with *e, else the
  * exit status, with the message printed. */
@@ -852,6 +922,14 @@ static int open_start(const tighten_opts *o, tr_engine **e)
     prm.newton_tight = !o->no_newton;
     if (o->device_from >= 0)
         prm.device_min_n = (size_t)o->device_from;
+    prm.bound = command_bound(o);
+    prm.goals = (tr_engine_goals){.refine_to = o->refine_to > 0 ? o->refine_to : 0,
+                                  .refine_given = o->refine_given,
+                                  .target = o->target,
+                                  .residual = o->residual_given ? o->residual : 0.0,
+                                  .residual_given = o->residual_given,
+                                  .steps = o->steps,
+                                  .time_limit = o->time_limit};
     *e = NULL;
     int rc;
     if (o->resume) {
@@ -872,11 +950,17 @@ static int open_start(const tighten_opts *o, tr_engine **e)
             tr_curve_free(&c);
         }
     }
+    /* a later road that the bound stopped before its start was settled
+     * leaves the roads before it to be written: the loop says so */
+    if (rc == TR_EINTERRUPTED && o->try_index > 0)
+        return 1;
     if (rc) {
-        fprintf(stderr, "tightrope tighten: %s\n", err.msg);
+        fprintf(stderr, "tightrope tighten: %s%s\n", err.msg,
+                rc == TR_EINTERRUPTED ? "; nothing written" : "");
         /* cli.h: a curve or an option the user can fix is 2; a device that
-         * fails (kernel build, OpenCL call) or memory is 1 */
-        return rc == TR_EOPENCL || rc == TR_ENOMEM || rc == TR_EUNSUPPORTED ? 1 : 2;
+         * fails (kernel build, OpenCL call), memory, or a run stopped by its
+         * time limit or a signal before it had a settled curve is 1 */
+        return rc == TR_EOPENCL || rc == TR_ENOMEM || rc == TR_EUNSUPPORTED || rc == TR_EINTERRUPTED ? 1 : 2;
     }
     /* A run of hours must not end in "cannot write": the output's format
      * and both paths are checked before it starts. */
@@ -1084,7 +1168,17 @@ static int final_status(const tighten_opts *o, const tighten_result *r)
         fprintf(stderr, "tightrope tighten: interrupted; %s%s%swrote %s\n", o->ckpt ? "checkpoint " : "",
                 o->ckpt ? o->ckpt : "", o->ckpt ? " and " : "", o->out);
     /* a requested ropelength or residual that was not reached is a run that
-     * did not reach its goal: the best state is written, the status says so */
+     * did not reach its goal: the best state is written, the status says so;
+     * so is a --refine-to whose N the time did not reach */
+    int refined = 1;
+    for (int k = 0; k < r->fin.ncomp; k++)
+        refined = refined && (long)tr_comp_nv(&r->fin, k) >= o->refine_to;
+    if (o->refine_given && !refined && r->why != TR_STOP_SIGNAL) {
+        fprintf(stderr, "tightrope tighten: stopped (%s) at N %zu before reaching the requested --refine-to %ld; "
+                        "wrote %s\n", tr_stop_reason_name(r->why), r->fin.nv / (size_t)r->fin.ncomp, o->refine_to,
+                o->out);
+        return 1;
+    }
     int goal = o->target > 0 || o->residual_given;
     /* --residual is met by the engine's own force balance or, once the run
      * has stopped for another reason (jammed, steps), by the certificate of
@@ -1121,6 +1215,12 @@ int tr_tighten_stop_requested(void) { return stop_requested != 0; }
 
 int tr_cmd_tighten(int argc, char **argv) { return tr_tighten_command(argc, argv, NULL); }
 
+int tr_tighten_check_args(int argc, char **argv)
+{
+    tighten_opts o;
+    return parse_options(argc, argv, &o);
+}
+
 /* One road of the run: opens the start (perturbed for try_index > 0),
  * runs and certifies it. Returns -1 with *e and *r filled, else the exit
  * status (its message printed). */
@@ -1153,7 +1253,15 @@ int tr_tighten_command(int argc, char **argv, tr_tighten_report *rep)
     int rc = parse_options(argc, argv, &o);
     if (rc >= 0)
         return rc;
+    double elapsed_before = 0.0; /* a resumed run's seconds before its checkpoint */
+    if (o.resume && (rc = resume_goals(&o, &elapsed_before)) >= 0)
+        return rc;
     choose_route(&o);
+    /* the bound counts from here: reading, shuffling and settling the
+     * start are the command's time too; a resumed run's limit counts the
+     * time before its checkpoint (as the engine's steps do) */
+    if (o.time_limit > 0)
+        o.bound_at = tr_clock_seconds() + fmax(o.time_limit - elapsed_before, 0.0);
     /* --tries: the roads one after the other, each with an equal share of
      * the time left; of the certified ones the finest, then the shortest,
      * is kept. A road that fails after the first is skipped (said on
@@ -1166,7 +1274,11 @@ int tr_tighten_command(int argc, char **argv, tr_tighten_report *rep)
     int have = 0, scouting = o.tries > 1 && multi_level(&o);
     double t0 = tr_clock_seconds();
     const double budget = scouting ? SCOUT_SHARE * o.time_limit : o.time_limit; /* the scouts' */
-    for (long t = 0; t < o.tries + scouting && !(have && stop_requested); t++) {
+    tr_deadline bound = command_bound(&o);
+    /* once a road has a result, no road starts past the bound: each has at
+     * least its share's floor, and a thousand roads of a second's floor
+     * were once a minute past a three-second limit */
+    for (long t = 0; t < o.tries + scouting && !(have && tr_deadline_passed(&bound)); t++) {
         tighten_opts ot = o;
         ot.try_index = (int)t;
         tr_curve scout_at_n = {0};
@@ -1217,7 +1329,12 @@ int tr_tighten_command(int argc, char **argv, tr_tighten_report *rep)
         if (rc >= 0) {
             if (!have)
                 return rc;
-            if (refining)
+            if (tr_deadline_passed(&bound)) {
+                if (!o.quiet)
+                    fprintf(stderr, "tightrope tighten: road %ld of %ld %s; the shortest so far is written\n", t + 1,
+                            o.tries + scouting, tr_deadline_passed(&bound) == 2 ? "stopped by a signal"
+                                                                               : "stopped by the time limit");
+            } else if (refining)
                 fprintf(stderr, "tightrope tighten: the refinement failed; the shortest scout is written\n");
             else
                 fprintf(stderr, "tightrope tighten: road %ld of %ld skipped\n", t + 1, o.tries);

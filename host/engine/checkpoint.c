@@ -34,6 +34,9 @@ int tr_engine_i_checkpoint_curve(tr_engine *e, const tr_curve *c, const double *
      * start) h is not set yet: the step it would begin with */
     tr_text_printf(&b, "state %ld %ld %a %a %a %a %a %d\n", e->steps, e->rejected, e->h > 0 ? e->h : ebar[0], e->disp_est,
               p.elapsed, e->residual, e->length, e->jammed);
+    const tr_engine_goals *g = &e->prm.goals;
+    tr_text_printf(&b, "goals %ld %d %a %a %d %ld %a\n", g->refine_to, g->refine_given, g->target, g->residual,
+                   g->residual_given, g->steps, g->time_limit);
     tr_text_printf(&b, "ncst %d\n", c->ncst);
     for (int q = 0; q < c->ncst; q++) {
         const tr_constraint *k = &c->cst[q];
@@ -62,6 +65,58 @@ static int parse_finite(const char *tok, double *v)
     char *endp;
     *v = strtod(tok, &endp);
     return endp != tok && *endp == '\0' && isfinite(*v);
+}
+
+/* The 'goals' line (tr_engine_checkpoint_write): 1 when it parses into a
+ * sane set of goals, else 0. */
+static int parse_goals(const char *ln, tr_engine_goals *g)
+{
+    char t[64], r[64], l[64], extra;
+    memset(g, 0, sizeof *g);
+    if (sscanf(ln, "goals %ld %d %63s %63s %d %ld %63s %c", &g->refine_to, &g->refine_given, t, r, &g->residual_given,
+               &g->steps, l, &extra) != 7)
+        return 0;
+    return parse_finite(t, &g->target) && parse_finite(r, &g->residual) && parse_finite(l, &g->time_limit) &&
+           g->refine_to >= 0 && g->steps >= 0 && g->target >= 0 && g->residual >= 0 && g->time_limit >= 0 &&
+           (g->refine_given == 0 || g->refine_given == 1) && (g->residual_given == 0 || g->residual_given == 1);
+}
+
+int tr_engine_checkpoint_goals(const char *path, tr_engine_goals *g, int *found, double *elapsed, tr_error *err)
+{
+    memset(g, 0, sizeof *g);
+    *found = 0;
+    if (elapsed)
+        *elapsed = 0.0;
+    char *text;
+    int rc = tr_read_file(path, &text, NULL, err);
+    if (rc)
+        return rc;
+    /* the line follows the header, the components and the state: it is
+     * found where it starts a line before the coordinates ('x') */
+    int line = 1;
+    for (char *ln = text; ln && *ln; line++) {
+        char *nl = strchr(ln, '\n');
+        if (nl)
+            *nl = '\0';
+        if (!strcmp(ln, "x"))
+            break;
+        long st, rj;
+        char h[64], da[64], el[64];
+        double v;
+        if (elapsed && sscanf(ln, "state %ld %ld %63s %63s %63s", &st, &rj, h, da, el) == 5 && parse_finite(el, &v) &&
+            v >= 0)
+            *elapsed = v;
+        if (!strncmp(ln, "goals ", 6)) {
+            if (!parse_goals(ln, g))
+                rc = tr_fail(err, TR_EPARSE, "%s:%d: bad 'goals' line", path, line);
+            else
+                *found = 1;
+            break;
+        }
+        ln = nl ? nl + 1 : NULL;
+    }
+    free(text);
+    return rc;
 }
 
 int tr_engine_resume(tr_engine **out, const char *path, const char *device,
@@ -142,6 +197,14 @@ int tr_engine_resume(tr_engine **out, const char *path, const char *device,
     if ((rc = tr_curve_alloc(&e->curve, ncomp, nv, closed, err)))
         goto fail;
     NEXT();
+    /* the run's goals (older checkpoints have none): the caller reads them
+     * with tr_engine_checkpoint_goals and passes them in p */
+    if (!strncmp(ln, "goals ", 6)) {
+        tr_engine_goals g;
+        if (!parse_goals(ln, &g))
+            BAD("bad 'goals' line");
+        NEXT();
+    }
     int ncst;
     if (sscanf(ln, "ncst %d", &ncst) != 1 || ncst < 0)
         BAD("expected 'ncst C'");

@@ -166,6 +166,12 @@ int tr_engine_i_settle(tr_engine *e, const char *what, double overlap_ok, tr_err
     tr_correct_params cp = e->prm.correct;
     cp.max_newton = 1;
     for (int it = 0; it < 400; it++) {
+        /* 400 passes at N = 9600 are a minute and a half on a loaded
+         * machine: each pass looks at the clock and the stop flag */
+        int past = tr_deadline_passed(&e->bound);
+        if (past)
+            return tr_fail(err, TR_EINTERRUPTED, "%s: %s before it was settled", what,
+                           past == 2 ? "stopped by a signal" : "the time limit came");
         if (e->disp_acc + e->prm.guard_move > 0.5 * e->prm.skin && (rc = tr_engine_i_rebuild_contacts(e, 1, &m, err)))
             return rc;
         tr_correct_stats cs;
@@ -231,6 +237,7 @@ tr_engine *tr_engine_i_new(const char *device, const tr_engine_params *p)
     else
         tr_engine_params_default(&e->prm);
     e->t0 = tr_clock_seconds();
+    e->bound = e->prm.bound;
     return e;
 }
 
@@ -268,9 +275,13 @@ int tr_engine_i_newton(tr_engine *e, double seconds, int tight_only, volatile si
     *accepted = 0;
     tr_newton_params np;
     tr_newton_params_default(&np);
+    /* the share asked for, within the hard bound */
+    double left = tr_deadline_left(&e->bound);
+    if (isfinite(left))
+        seconds = seconds > 0 ? fmin(seconds, fmax(left, 1e-3)) : fmax(left, 1e-3);
     np.time_limit = seconds;
     np.tight_only = tight_only;
-    np.stop = stop;
+    np.stop = stop ? stop : e->bound.stop;
     if (e->ckpt_path && e->ckpt_every > 0) {
         np.checkpoint = newton_checkpoint;
         np.checkpoint_every = e->ckpt_every;
@@ -297,8 +308,11 @@ int tr_engine_i_newton(tr_engine *e, double seconds, int tight_only, volatile si
     tr_backend_close(&own);
     snprintf(e->newton_why, sizeof e->newton_why, "%.150s",
              rc ? err->msg : ns.why_rejected ? ns.why_rejected : ns.skipped ? "skipped" : "");
+    /* a solve the bound stopped before its first step (the strut list of
+     * an absurd N) has nothing to keep: the engine goes on, and stops on
+     * the bound itself */
     if (rc)
-        return rc == TR_EGEOMETRY ? TR_OK : rc;
+        return rc == TR_EGEOMETRY || rc == TR_EINTERRUPTED ? TR_OK : rc;
     if (ns.loose)
         return TR_OK; /* not run: nothing to report */
     e->newton_ran = ns.accepted ? 1 : -1;
@@ -329,6 +343,7 @@ static int newton_first(tr_engine *e, tr_error *err)
     if (e->prm.newton_first_limit > 0)
         seconds = fmax(e->prm.newton_first_limit - (tr_clock_seconds() - e->t0), 1e-3);
     int accepted;
+    /* (tr_engine_i_newton keeps the solve within e->bound too) */
     int rc = tr_engine_i_newton(e, seconds, 1, e->prm.newton_first_stop, &accepted, err);
     if (rc == TR_OK && accepted) {
         e->polished = 1;
@@ -362,6 +377,28 @@ static int settle_scaled(tr_engine *e, int rc, tr_error *err)
     return tr_engine_i_settle(e, "the start curve (scaled to MinRad 1)", 0.0, err);
 }
 
+/* The start's settle stopped by the bound (the time limit, or a signal
+ * 2 s into a run): the curve before the settle is the run's best, the
+ * solver's result where newton_first took the start (a rope already, its
+ * edges equal to the solver's tolerance), else the start as it came (it
+ * passed the settle's checks: no overlap, not too coarse). The engine
+ * holds it as it is, and the run, stopping on the bound at once, writes it
+ * (scaled to thickness 1 and certified as any result) where nothing would
+ * have been. */
+static int keep_unsettled_start(tr_engine *e, tr_error *err)
+{
+    memcpy(e->curve.x, e->presettle_x, 3 * e->curve.nv * sizeof *e->curve.x);
+    tr_measure m;
+    int rc = e->be.ops->upload(e->be.state, e->curve.x, NULL, err);
+    if (rc == TR_OK)
+        rc = tr_engine_i_rebuild_contacts(e, 1, NULL, err);
+    if (rc == TR_OK)
+        rc = tr_engine_i_measure(e, &m, err);
+    if (rc == TR_OK)
+        tr_engine_i_fill_state(e, &m);
+    return rc;
+}
+
 int tr_engine_create(tr_engine **out, const tr_curve *c, const char *device,
                      const tr_engine_params *p, tr_error *err)
 {
@@ -382,6 +419,8 @@ int tr_engine_create(tr_engine **out, const tr_curve *c, const char *device,
         rc = tr_engine_i_keep_presettle(e, err);
     if (!rc)
         rc = tr_engine_i_settle(e, "the start curve", 0.0, err);
+    if (rc == TR_EINTERRUPTED && e->presettle_x)
+        rc = keep_unsettled_start(e, err);
     if (rc == TR_EGEOMETRY)
         rc = settle_scaled(e, rc, err);
     if (rc) {
@@ -518,6 +557,34 @@ int tr_engine_get_curve(tr_engine *e, tr_curve *out, tr_error *err)
     return TR_OK;
 }
 
+/* Goes back from a refined level whose settle the bound stopped to the
+ * settled coarse level it came from (coarse, ebar: its curve and edge
+ * targets, taken over), with the coarse level's flags (was). */
+static int unrefine(tr_engine *e, tr_curve *coarse, double *ebar, const tr_engine *was, tr_error *err)
+{
+    tr_backend_close(&e->be);
+    tr_curve_free(&e->curve);
+    e->curve = *coarse;
+    int rc = tr_engine_i_alloc_comp_arrays(e, err);
+    if (rc == TR_OK)
+        rc = tr_engine_i_open_backend(e, &e->curve, err);
+    if (rc == TR_OK)
+        rc = e->be.ops->upload(e->be.state, e->curve.x, ebar, err);
+    free(ebar);
+    e->polished = was->polished;
+    free(e->polish_x);
+    e->polish_x = was->polish_x; /* the coarse level's polished curve, if it kept one */
+    e->newton_tried = was->newton_tried;
+    e->newton_solved = was->newton_solved;
+    free(e->presettle_x);
+    e->presettle_x = NULL;
+    tr_measure m;
+    if (rc == TR_OK && (rc = tr_engine_i_rebuild_contacts(e, 1, NULL, err)) == TR_OK &&
+        (rc = tr_engine_i_measure(e, &m, err)) == TR_OK)
+        tr_engine_i_fill_state(e, &m);
+    return rc;
+}
+
 int tr_engine_refine(tr_engine *e, size_t n, tr_error *err)
 {
     int rc = e->be.ops->download(e->be.state, e->curve.x, NULL, err);
@@ -527,22 +594,40 @@ int tr_engine_refine(tr_engine *e, size_t n, tr_error *err)
     rc = tr_refine_lowpass(&e->curve, n, 0.5, 0.5, &fine, err);
     if (rc)
         return rc;
+    /* the settled coarse level, to go back to should the bound stop the
+     * refined level's settle (a run's time is up: its best is the coarse
+     * level, not a half-settled finer one) */
+    tr_curve coarse;
+    double *coarse_ebar = malloc((size_t)e->curve.ncomp * sizeof *coarse_ebar);
+    if (!coarse_ebar || (rc = tr_curve_copy(&coarse, &e->curve, err))) {
+        free(coarse_ebar);
+        tr_curve_free(&fine);
+        return coarse_ebar ? rc : tr_fail(err, TR_ENOMEM, "out of memory");
+    }
+    memcpy(coarse_ebar, e->ebar, (size_t)e->curve.ncomp * sizeof *coarse_ebar);
+    tr_engine was = *e;
     tr_backend_close(&e->be);
     tr_curve_free(&e->curve);
     e->curve = fine;
-    if ((rc = tr_engine_i_alloc_comp_arrays(e, err)) || (rc = tr_engine_i_open_backend(e, &e->curve, err)))
+    if ((rc = tr_engine_i_alloc_comp_arrays(e, err)) || (rc = tr_engine_i_open_backend(e, &e->curve, err))) {
+        tr_curve_free(&coarse);
+        free(coarse_ebar);
         return rc;
+    }
     /* resampling may bring strands slightly closer than 2 (never near
      * crossing): the correction pushes them back out */
     e->polished = 0;
-    free(e->polish_x);
-    e->polish_x = NULL;
+    e->polish_x = NULL; /* the coarse level's (was.polish_x), until the settle is done */
     /* the new level may go to the solver again (level_loop.c,
      * is_solver_level: a clasp's every level) */
     e->newton_tried = 0;
     e->newton_solved = 0;
-    if ((rc = tr_engine_i_keep_presettle(e, err)))
+    if ((rc = tr_engine_i_keep_presettle(e, err))) {
+        tr_curve_free(&coarse);
+        free(coarse_ebar);
+        free(was.polish_x);
         return rc;
+    }
     /* A refined clasp is pressed through itself where strands touch, and
      * its planes forbid scaling it out: the settle's 400 damped passes do
      * not always restore it (the 2 x 800 clasp refined to 2 x 1000), and
@@ -557,6 +642,16 @@ int tr_engine_refine(tr_engine *e, size_t n, tr_error *err)
      * (level_loop.c). */
     int to_solver = e->curve.ncst > 0 && (e->prm.newton || e->prm.newton_tight) && e->prm.polish;
     rc = to_solver ? TR_EGEOMETRY : tr_engine_i_settle(e, "the refined curve", 0.25, err);
+    if (rc == TR_EINTERRUPTED) {
+        tr_error e2;
+        int rc2 = unrefine(e, &coarse, coarse_ebar, &was, &e2);
+        if (rc2)
+            *err = e2;
+        return rc2 ? rc2 : rc;
+    }
+    tr_curve_free(&coarse);
+    free(coarse_ebar);
+    free(was.polish_x);
     e->refine_unsettled = 0;
     if (rc == TR_EGEOMETRY && to_solver && e->presettle_x) {
         e->refine_unsettled = 1;

@@ -33,7 +33,23 @@
 
 #include "backend/backend.h"
 #include "curve/curve.h"
+#include "util/clock.h"
 #include "util/error.h"
+
+/* What a run was asked for (tighten's options; 0: not asked), kept in
+ * its checkpoints so that a resumed run goes on to the same ends: an
+ * interrupted --refine-to 2400 once resumed and stopped at the N = 400 it
+ * had reached. refine_to is also kept when the route chose it (a loose
+ * start tightened from N/4); refine_given and residual_given say whether
+ * the user asked (a goal the exit status answers for) or the default did. */
+typedef struct tr_engine_goals {
+    long refine_to;
+    int refine_given;
+    double target, residual;
+    int residual_given;
+    long steps;
+    double time_limit;
+} tr_engine_goals;
 
 typedef struct tr_engine_params {
     /* contact list cutoff = 2 + min(skin, max(skin_min, skin_motion * the
@@ -100,6 +116,17 @@ typedef struct tr_engine_params {
      * the N = 2400 trefoil, the reference 28 s). 0: the chosen device at
      * every level. */
     size_t device_min_n;
+    /* The hard bound of everything the engine does (tr_engine_create's
+     * solve and settle, tr_engine_run's levels, refinements and settles):
+     * past it a settle stops where it is and the engine goes back to its
+     * last settled state. tr_engine_run adds its stop flag to it. Zero:
+     * none. The soft shares (newton_first_limit, tr_engine_run's
+     * time_limit, a level's half of the time left) divide the time within
+     * it. */
+    tr_deadline bound;
+    /* written into every checkpoint (tr_engine_checkpoint_goals reads
+     * them back) */
+    tr_engine_goals goals;
 } tr_engine_params;
 
 void tr_engine_params_default(tr_engine_params *p);
@@ -192,5 +219,9 @@ int tr_engine_get_curve(tr_engine *e, tr_curve *out, tr_error *err);
 int tr_engine_checkpoint_write(tr_engine *e, const char *path, tr_error *err);
 int tr_engine_resume(tr_engine **out, const char *path, const char *device,
                      const tr_engine_params *p, tr_error *err);
+/* The goals a checkpoint was written with (its params' goals); *found 0
+ * and g zeroed for a checkpoint written before they were kept. *elapsed
+ * (may be NULL): the seconds the run had used (0 if not found). */
+int tr_engine_checkpoint_goals(const char *path, tr_engine_goals *g, int *found, double *elapsed, tr_error *err);
 
 #endif

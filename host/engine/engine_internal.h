@@ -66,6 +66,9 @@ struct tr_engine {
     char ckpt_failure[256];
     double *presettle_x;
     long polish_steps;
+    /* the hard bound in force (engine.h, bound): the params' at create,
+     * narrowed by tr_engine_run's limits while it runs */
+    tr_deadline bound;
 };
 
 /* The backend's measure, with e->ebar set from it. */
@@ -78,7 +81,9 @@ int tr_engine_i_rebuild_contacts(tr_engine *e, int recompute_gap, const tr_measu
 /* Copies a measurement into the engine's figures (length, MinRad, ...). */
 void tr_engine_i_fill_state(tr_engine *e, const tr_measure *m);
 /* Brings a fresh backend state onto the constraint set (equal edges,
- * struts, chords) in damped Newton steps, guarding every one. */
+ * struts, chords) in damped Newton steps, guarding every one. Past
+ * e->bound it stops with TR_EINTERRUPTED, the backend half-settled: the
+ * caller goes back to a settled state. */
 int tr_engine_i_settle(tr_engine *e, const char *what, double overlap_ok, tr_error *err);
 /* The second-order solver on e->curve (replaced only if accepted), its
  * figures kept in the engine; tight_only: give up on a loose start (not

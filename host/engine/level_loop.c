@@ -123,8 +123,10 @@ static int run_polish(tr_engine *e, double seconds, double target, int solver_le
     e->h = e->ebar[0];
     e->jammed = 0;
     return TR_OK;
-restore:
-    /* the engine could not take the polished curve on: go on from its own */
+restore:;
+    /* the engine could not take the polished curve on (or the bound
+     * stopped its settle): go on from its own */
+    int rc_settle = rc;
     if (rc == TR_ENOMEM || rc == TR_EOPENCL) {
         free(keep);
         return rc;
@@ -140,7 +142,8 @@ restore:
     tr_engine_i_fill_state(e, &m);
     e->polished = -1;
     e->polish_after = e->polish_before;
-    e->polish_why = "the engine could not settle the polished curve";
+    e->polish_why = rc_settle == TR_EINTERRUPTED ? "stopped before the polished curve was settled"
+                                                 : "the engine could not settle the polished curve";
     return TR_OK;
 }
 
@@ -220,10 +223,29 @@ static int checkpoint(tr_engine *e, const char *path, tr_error *err)
 #define STALL_STEPS 200
 #define STALL_REL 1e-5
 
+static int run_levels(tr_engine *e, const tr_engine_limits *lim, tr_stop_reason *why, tr_error *err);
+
 int tr_engine_run(tr_engine *e, const tr_engine_limits *lim, tr_stop_reason *why, tr_error *err)
 {
+    /* the run's stop flag joins the engine's hard bound while it runs, so
+     * that the settles of its refinements and polishes stop at a signal.
+     * Its time_limit does not: that is this run's share of the time (a
+     * road of tighten --tries), which the steps keep to; a settle begun
+     * within it finishes, within the hard bound (params.bound) */
+    tr_deadline keep = e->bound;
+    if (lim->stop)
+        e->bound.stop = lim->stop;
+    int rc = run_levels(e, lim, why, err);
+    e->bound = keep;
+    return rc;
+}
+
+static int run_levels(tr_engine *e, const tr_engine_limits *lim, tr_stop_reason *why, tr_error *err)
+{
     int rc;
-    double t_last_ckpt = tr_clock_seconds(), t_last_prog = 0.0;
+    /* the first checkpoint at once, then one every checkpoint_every: a run
+     * killed in its first minutes (a closed terminal, kill -9) can resume */
+    double t_last_ckpt = -INFINITY, t_last_prog = 0.0;
     double level_t0 = tr_clock_seconds();
     /* Without a time limit to share out, a level is polished (and a coarse
      * one refined) once the engine stalls: less than STALL_REL shorter over
@@ -251,9 +273,10 @@ int tr_engine_run(tr_engine *e, const tr_engine_limits *lim, tr_stop_reason *why
             stall_step = e->steps;
         }
         int level_done = 0;
-        if (lim->stop && *lim->stop)
+        int past = tr_deadline_passed(&e->bound);
+        if (past == 2)
             stop = TR_STOP_SIGNAL;
-        else if (lim->time_limit > 0 && p.elapsed >= lim->time_limit)
+        else if (past == 1 || (lim->time_limit > 0 && p.elapsed >= lim->time_limit))
             stop = TR_STOP_TIME;
         else if (lim->max_steps > 0 && e->steps >= lim->max_steps)
             stop = TR_STOP_STEPS;
@@ -341,7 +364,9 @@ int tr_engine_run(tr_engine *e, const tr_engine_limits *lim, tr_stop_reason *why
             size_t next = 2 * n < lim->refine_to ? 2 * n : lim->refine_to;
             /* tr_engine_refine opens the next level's backend */
             e->coarse_ref = wants_coarse_ref(e, next * (size_t)e->curve.ncomp, is_final_level(lim, next));
-            if ((rc = tr_engine_refine(e, next, err)))
+            /* a refinement whose settle the bound stopped has gone back
+             * to this level: the loop then stops on the bound */
+            if ((rc = tr_engine_refine(e, next, err)) && rc != TR_EINTERRUPTED)
                 return rc;
             level_t0 = tr_clock_seconds();
             stall_step = e->steps;

@@ -24,6 +24,8 @@ static double thickness_of(const tr_curve *c, double *x, tr_error *err, int *rc)
 }
 
 /* uniform in [0, 1) */
+#define SHUFFLE_CLOCK_EVERY 64
+
 static double shuffle_uniform(uint64_t *state) { return (double)(tr_splitmix64(state) >> 11) * 0x1.0p-53; }
 
 /* turns the m - 1 vertices after vertex a (cyclically, on a component of
@@ -43,7 +45,8 @@ static void turn_arc(const double *x, double *y, size_t s0, size_t n, size_t a, 
     }
 }
 
-int tr_curve_shuffle(tr_curve *c, long moves, double gate, double ratchet, uint64_t seed, long *kept, tr_error *err)
+int tr_curve_shuffle(tr_curve *c, long moves, double gate, double ratchet, uint64_t seed, const tr_deadline *bound,
+                     long *kept, tr_error *err)
 {
     if (kept)
         *kept = 0;
@@ -65,6 +68,15 @@ int tr_curve_shuffle(tr_curve *c, long moves, double gate, double ratchet, uint6
     uint64_t state = seed;
     long nk = 0;
     for (long mv = 0; mv < moves; mv++) {
+        /* a move costs a thickness measure: 10^5 of them are seconds to
+         * tens of seconds (more under load), so the bound is looked at
+         * every SHUFFLE_CLOCK_EVERY moves */
+        int past = mv % SHUFFLE_CLOCK_EVERY == 0 ? tr_deadline_passed(bound) : 0;
+        if (past) {
+            rc = tr_fail(err, TR_EINTERRUPTED, "shuffle: %s after %ld of %ld moves",
+                         past == 2 ? "stopped by a signal" : "the time limit came", mv, moves);
+            break;
+        }
         /* a component by its share of the vertices, an arc of 2 to n/2 edges */
         size_t i0 = (size_t)(shuffle_uniform(&state) * (double)c->nv);
         int k = tr_curve_comp_of(c, i0 < c->nv ? i0 : c->nv - 1);

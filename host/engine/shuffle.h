@@ -7,6 +7,7 @@
 #include <stdint.h>
 
 #include "curve/curve.h"
+#include "util/clock.h"
 #include "util/error.h"
 
 /* Walks c by `moves` crankshaft moves: a random arc (2 to n/2 edges) of a
@@ -23,7 +24,9 @@
  * same seed gives the same curve on every machine (splitmix64, no libc
  * random). *kept (may be NULL) gets the number of moves kept. Every
  * component must be closed, of 4 vertices or more, and unconstrained
- * (TR_EINVAL); TR_EGEOMETRY if c is thinner than gate. */
-int tr_curve_shuffle(tr_curve *c, long moves, double gate, double ratchet, uint64_t seed, long *kept, tr_error *err);
+ * (TR_EINVAL); TR_EGEOMETRY if c is thinner than gate. Past bound (may be
+ * NULL) the walk stops with TR_EINTERRUPTED, c a valid (shorter) walk. */
+int tr_curve_shuffle(tr_curve *c, long moves, double gate, double ratchet, uint64_t seed, const tr_deadline *bound,
+                     long *kept, tr_error *err);
 
 #endif

@@ -566,7 +566,7 @@ static int minimise(solver *s, double *y, tr_newton_stats *st, double t0, tr_err
              * costs a few factorizations at N = 9600 */
             if (moved_since_build(s, y) > 0.1 * s->l0min) {
                 double tr = tr_clock_seconds();
-                if ((rc = tr_newton_i_rebuild(s, y, err)))
+                if ((rc = tr_newton_i_rebuild(s, y, NULL, err)))
                     goto done;
                 st->rebuilds++;
                 st->t_rebuild += tr_clock_seconds() - tr;
@@ -660,7 +660,7 @@ static int minimise(solver *s, double *y, tr_newton_stats *st, double t0, tr_err
         /* the strut list is good while no vertex has moved skin / 4 */
         if (moved_since_build(s, y) > fmin(0.25 * p->skin, 0.5 * s->l0min)) {
             double tr = tr_clock_seconds();
-            if ((rc = tr_newton_i_rebuild(s, y, err)))
+            if ((rc = tr_newton_i_rebuild(s, y, NULL, err)))
                 goto done;
             st->rebuilds++;
             st->t_rebuild += tr_clock_seconds() - tr;
@@ -689,7 +689,7 @@ static int prepare(solver *s, const tr_curve *cv, double unit, double **y, tr_ne
     for (int k = 0; k < s->nc; k++)
         (*y)[3 * s->nv + (size_t)k] = s->l0[k];
     double tr = tr_clock_seconds();
-    if ((rc = tr_newton_i_rebuild(s, *y, err)))
+    if ((rc = tr_newton_i_rebuild(s, *y, &s->first_bound, err)))
         return rc;
     st->t_rebuild += tr_clock_seconds() - tr;
     s->warm_residual = s->start_residual = 1.0;
@@ -730,6 +730,10 @@ int tr_newton(tr_curve *cv, const tr_newton_params *prm, tr_newton_stats *st, tr
     solver s;
     memset(&s, 0, sizeof s);
     s.p = prm;
+    /* the first list build is the solve's whole cost at an absurd N (10^7
+     * vertices: N^2 pairs within the cutoff), before any step: it stops at
+     * the time limit or a signal (strut_list.c) */
+    s.first_bound = (tr_deadline){.at = prm->time_limit > 0 ? t0 + prm->time_limit : 0, .stop = prm->stop};
     double *y = NULL;
     /* The solver's unit: thickness 1, except where MinRad alone holds the
      * start below its struts by a little (a spline through a tight

@@ -14,6 +14,7 @@
 #include "geometry/neighbour_search.h"
 #include "geometry/struts.h"
 #include "solver/newton.h"
+#include "util/clock.h"
 #include "solver/solver_rows.h"
 #include "util/error.h"
 
@@ -25,6 +26,7 @@ typedef tr_strut_pair strut_row;
 typedef struct solver {
     tr_curve w; /* topology; x = the positions at the last list build */
     const tr_newton_params *p;
+    tr_deadline first_bound; /* the time limit and stop flag of the first list build */
     size_t nv, n; /* vertices, variables (3 nv + ncomp) */
     int nc;
     size_t *next, *prev;
@@ -147,7 +149,7 @@ int tr_newton_i_restore(solver *s, double *y, double deadline, double *viol, dou
 /* ---- the strut list (strut_list.c) ---- */
 
 /* rebuilds the strut list at y, carrying the multipliers of kept pairs */
-int tr_newton_i_rebuild(solver *s, const double *y, tr_error *err);
+int tr_newton_i_rebuild(solver *s, const double *y, const tr_deadline *bound, tr_error *err);
 
 /* ---- the warm start (warm_start.c) ---- */
 

@@ -47,7 +47,13 @@ typedef struct list_build {
     tr_strut_pair *out;
     size_t n, cap;
     int oom;
+    const tr_deadline *bound; /* NULL: none */
+    size_t calls;
+    int stopped; /* the bound passed: 1 the clock, 2 a signal */
 } list_build;
+
+/* pairs the search reports between two looks at the clock */
+#define LIST_CLOCK_EVERY (1u << 16)
 
 /* edge v's index in the search's numbering (neighbour_search.h) */
 static size_t edge_index(const solver *s, size_t v)
@@ -61,6 +67,8 @@ static int take_minimum(void *v, size_t ei, size_t ej, double *cutoff)
 {
     (void)cutoff;
     list_build *lb = v;
+    if (lb->bound && ++lb->calls % LIST_CLOCK_EVERY == 0 && (lb->stopped = tr_deadline_passed(lb->bound)))
+        return 1;
     const solver *s = lb->s;
     const tr_nsearch *ns = &s->ns;
     if (tr_nsearch_excluded(ns, ei, ej, (size_t)s->gap[ns->ecomp[ei]]))
@@ -93,15 +101,21 @@ static size_t sort_unique(tr_strut_pair *r, size_t n)
 /* The list at s->w.x: the local minima, then every pair (a', b') within
  * NEAR_MIN of a minimum (a, b) along both strands that the search would
  * have reported (an edge each, not excluded, within the cutoff). */
-static int build_list(solver *s, double cutoff, tr_strut_pair **list, size_t *n_list, tr_error *err)
+static int build_list(solver *s, double cutoff, tr_strut_pair **list, size_t *n_list, const tr_deadline *bound,
+                      tr_error *err)
 {
     const tr_nsearch *ns = &s->ns;
-    list_build lb = {.s = s, .cutoff = cutoff};
+    list_build lb = {.s = s, .cutoff = cutoff, .bound = bound};
     double cut = cutoff;
     int gmin = s->gap[0];
     for (int k = 1; k < s->nc; k++)
         gmin = s->gap[k] < gmin ? s->gap[k] : gmin;
     tr_nsearch_pairs(ns, &cut, (size_t)gmin, 0, take_minimum, &lb);
+    if (lb.stopped) {
+        free(lb.out);
+        return tr_fail(err, TR_EINTERRUPTED, "the strut list of %zu vertices: %s before it was built", s->nv,
+                       lb.stopped == 2 ? "stopped by a signal" : "the time limit came");
+    }
     size_t nmin = sort_unique(lb.out, lb.n);
     lb.n = nmin;
     for (size_t i = 0; i < nmin && !lb.oom; i++) {
@@ -148,11 +162,11 @@ static int build_list(solver *s, double cutoff, tr_strut_pair **list, size_t *n_
 }
 
 /* Rebuilds the strut list at y, carrying the multipliers of kept pairs. */
-int tr_newton_i_rebuild(solver *s, const double *y, tr_error *err)
+int tr_newton_i_rebuild(solver *s, const double *y, const tr_deadline *bound, tr_error *err)
 {
     memcpy(s->w.x, y, 3 * s->nv * sizeof *y);
     tr_nsearch_refit(&s->ns);
-    int rc = build_list(s, 2.0 + s->p->skin, &s->sp, &s->nsp, err);
+    int rc = build_list(s, 2.0 + s->p->skin, &s->sp, &s->nsp, bound, err);
     if (rc)
         return rc;
     free(s->pi_s);

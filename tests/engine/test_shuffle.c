@@ -99,7 +99,7 @@ static void test_moves_are_isotopies(void)
         double t0 = thickness(&c);
         memcpy(prev.x, c.x, 3 * c.nv * sizeof *c.x);
         long kk;
-        CHECK_OK(tr_curve_shuffle(&c, 1, 1.0, 0.0, 1000u + (uint64_t)k, &kk, &err));
+        CHECK_OK(tr_curve_shuffle(&c, 1, 1.0, 0.0, 1000u + (uint64_t)k, NULL, &kk, &err));
         if (!kk) {
             CHECK(memcmp(prev.x, c.x, 3 * c.nv * sizeof *c.x) == 0); /* a refused move changes nothing */
             continue;
@@ -131,7 +131,7 @@ static void test_hopf_keeps_linking(void)
     scale(&c, 4.0 / thickness(&c));
     double lk0 = linking_number(&c);
     long kept;
-    CHECK_OK(tr_curve_shuffle(&c, 5000, 1.0, 0.0, 3, &kept, &err));
+    CHECK_OK(tr_curve_shuffle(&c, 5000, 1.0, 0.0, 3, NULL, &kept, &err));
     double lk1 = linking_number(&c);
     printf("hopf: %ld of 5000 moves kept, linking number %.9f -> %.9f, thickness %.4f\n", kept, lk0, lk1,
            thickness(&c));
@@ -147,20 +147,20 @@ static void test_ratchet_and_seed(void)
     tr_curve a, b, d;
     tr_error err;
     thin_trefoil(&a);
-    CHECK_OK(tr_curve_shuffle(&a, 5000, 1.0, 0.0, 11, NULL, &err));
+    CHECK_OK(tr_curve_shuffle(&a, 5000, 1.0, 0.0, 11, NULL, NULL, &err));
     CHECK_OK(tr_curve_copy(&b, &a, &err));
     CHECK_OK(tr_curve_copy(&d, &a, &err));
     double before = ropelength(&a);
     long kept;
-    CHECK_OK(tr_curve_shuffle(&a, 20000, 1.0, 0.98, 12, &kept, &err));
+    CHECK_OK(tr_curve_shuffle(&a, 20000, 1.0, 0.98, 12, NULL, &kept, &err));
     double after = ropelength(&a);
     printf("ratchet 0.98: %ld of 20000 moves kept, ropelength %.3f -> %.3f\n", kept, before, after);
     CHECK(after < 0.97 * before);
     CHECK(thickness(&a) >= 1.0);
     /* the same seed, the same curve; another seed, another */
-    CHECK_OK(tr_curve_shuffle(&b, 20000, 1.0, 0.98, 12, NULL, &err));
+    CHECK_OK(tr_curve_shuffle(&b, 20000, 1.0, 0.98, 12, NULL, NULL, &err));
     CHECK(memcmp(a.x, b.x, 3 * a.nv * sizeof *a.x) == 0);
-    CHECK_OK(tr_curve_shuffle(&d, 20000, 1.0, 0.98, 13, NULL, &err));
+    CHECK_OK(tr_curve_shuffle(&d, 20000, 1.0, 0.98, 13, NULL, NULL, &err));
     CHECK(largest_move(&a, &d) > 1.0);
     tr_curve_free(&a);
     tr_curve_free(&b);
@@ -172,15 +172,45 @@ static void test_refused(void)
     tr_curve c, k;
     tr_error err;
     thin_trefoil(&c);
-    CHECK(tr_curve_shuffle(&c, 10, 5.0, 0.0, 1, NULL, &err) == TR_EGEOMETRY);
+    CHECK(tr_curve_shuffle(&c, 10, 5.0, 0.0, 1, NULL, NULL, &err) == TR_EGEOMETRY);
     CHECK_OK(tr_make_clasp(&k, 100, 1.5, &err));
-    CHECK(tr_curve_shuffle(&k, 10, 0.5, 0.0, 1, NULL, &err) == TR_EINVAL);
+    CHECK(tr_curve_shuffle(&k, 10, 0.5, 0.0, 1, NULL, NULL, &err) == TR_EINVAL);
     tr_curve_free(&k);
+    tr_curve_free(&c);
+}
+
+/* A bound that has passed (the clock, or a raised stop flag) ends the walk
+ * at once with TR_EINTERRUPTED, and what was walked is still a rope. */
+static void test_bound(void)
+{
+    tr_curve c;
+    tr_error err;
+    thin_trefoil(&c);
+    volatile sig_atomic_t stop = 1;
+    tr_deadline raised = {.stop = &stop};
+    long kept = -1;
+    CHECK(tr_curve_shuffle(&c, 100000, 1.0, 0.0, 5, &raised, &kept, &err) == TR_EINTERRUPTED);
+    CHECK(kept == 0);
+    CHECK(strstr(err.msg, "signal") != NULL);
+    tr_deadline past = {.at = tr_clock_seconds() - 1.0};
+    CHECK(tr_curve_shuffle(&c, 100000, 1.0, 0.0, 5, &past, NULL, &err) == TR_EINTERRUPTED);
+    CHECK(strstr(err.msg, "time limit") != NULL);
+    /* 0.2 s of a walk that would take far longer: it stops within the next
+     * SHUFFLE_CLOCK_EVERY moves, a valid walk */
+    tr_deadline soon = {.at = tr_clock_seconds() + 0.2};
+    double t0 = tr_clock_seconds();
+    CHECK(tr_curve_shuffle(&c, 100000000, 1.0, 0.0, 6, &soon, &kept, &err) == TR_EINTERRUPTED);
+    CHECK(tr_clock_seconds() - t0 < 2.0);
+    CHECK(kept > 0);
+    tr_thickness th;
+    CHECK_OK(tr_thickness_measure(&c, NULL, &th, NULL, &err));
+    CHECK(th.thickness >= 1.0);
     tr_curve_free(&c);
 }
 
 int main(void)
 {
+    test_bound();
     test_moves_are_isotopies();
     test_hopf_keeps_linking();
     test_ratchet_and_seed();
