@@ -1,19 +1,23 @@
 /* The batch table's line of one knot and its record file (batch_row.h). */
+#include <errno.h>
 #include <limits.h>
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include "cli/batch_row.h"
 #include "cli/cli_args.h"
 #include "util/json.h"
 
-#define NCOLS 14
-#define NCOLS_OLD 12 /* before seed and road */
+#define NCOLS 15
+/* the records of before: without the start (14), without seed and road (12) */
+static const int NCOLS_OLD[] = {14, 12};
 
-static const char header[] =
-    "knot\tN\tropelength\tthickness\tMinRad\tdcsd\tkkt_residual\ttime_s\ttries\tsteps\tstop\tresumed\tseed\troad";
+static const char header[] = "knot\tN\tropelength\tthickness\tMinRad\tdcsd\tkkt_residual\ttime_s\ttries\tsteps\tstop"
+                             "\tresumed\tseed\troad\tstart";
 
 const char *tr_batch_row_header(void) { return header; }
 
@@ -55,6 +59,7 @@ void tr_batch_row_format(tr_text *t, const tr_batch_row *r)
     known(t, r->seed, 0, "-");
     tr_text_printf(t, "\t");
     known(t, r->road, 1, "-");
+    tr_text_printf(t, "\t%s", r->start[0] ? r->start : "-");
 }
 
 void tr_batch_row_json_fields(tr_text *t, const tr_batch_row *r)
@@ -79,6 +84,11 @@ void tr_batch_row_json_fields(tr_text *t, const tr_batch_row *r)
     known(t, r->seed, 0, "null");
     tr_text_printf(t, ", \"road\": ");
     known(t, r->road, 1, "null");
+    tr_text_printf(t, ", \"start\": ");
+    if (r->start[0])
+        tr_json_string(t, r->start);
+    else
+        tr_text_printf(t, "null");
 }
 
 int tr_batch_row_write(const char *path, const tr_batch_row *r, tr_error *err)
@@ -110,6 +120,15 @@ static int field_long(const char *s, long max, long *v)
     return tr_arg_long(s, 0, max, v);
 }
 
+/* Whether s is an identity (tr_batch_start_id): 16 lower-case hex digits. */
+static int id_ok(const char *s)
+{
+    size_t i = 0;
+    while (i < 16 && ((s[i] >= '0' && s[i] <= '9') || (s[i] >= 'a' && s[i] <= 'f')))
+        i++;
+    return i == 16 && s[16] == '\0';
+}
+
 /* Parses the record's second line (tabs cut into NUL-separated fields),
  * ncols of them. */
 static int parse_fields(char *line, int ncols, tr_batch_row *r)
@@ -133,8 +152,11 @@ static int parse_fields(char *line, int ncols, tr_batch_row *r)
         field_double(f[6], &r->kkt_residual) || field_double(f[7], &r->time_s) ||
         tr_arg_long(f[8], 0, 1000000, &tries) || tr_arg_long(f[9], 0, LONG_MAX, &r->steps) ||
         tr_arg_long(f[11], 0, 1, &resumed) ||
-        (ncols == NCOLS && (field_long(f[12], LONG_MAX, &seed) || field_long(f[13], 1000000, &road))))
+        (ncols >= 14 && (field_long(f[12], LONG_MAX, &seed) || field_long(f[13], 1000000, &road))) ||
+        (ncols >= 15 && strcmp(f[14], "-") && !id_ok(f[14])))
         return -1;
+    if (ncols >= 15 && strcmp(f[14], "-"))
+        strcpy(r->start, f[14]);
     strcpy(r->knot, f[0]);
     strcpy(r->stop, f[10]);
     r->n = (size_t)n;
@@ -151,14 +173,17 @@ int tr_batch_row_read(const char *path, tr_batch_row *r, tr_error *err)
     int rc = tr_read_text_file(path, &text, NULL, err);
     if (rc != TR_OK)
         return rc;
-    /* the header of before is this one's first NCOLS_OLD columns */
-    size_t hl = strlen(header), hl_old = 0;
-    for (int c = 0; c < NCOLS_OLD; c++)
-        hl_old += strcspn(header + hl_old, "\t") + (c + 1 < NCOLS_OLD);
+    /* a header of before is this one's first columns */
+    size_t hl = strlen(header);
     int ncols = NCOLS;
-    if (!strncmp(text, header, hl_old) && text[hl_old] == '\n') {
-        ncols = NCOLS_OLD;
-        hl = hl_old;
+    for (size_t v = 0; v < sizeof NCOLS_OLD / sizeof NCOLS_OLD[0]; v++) {
+        size_t hl_old = 0;
+        for (int c = 0; c < NCOLS_OLD[v]; c++)
+            hl_old += strcspn(header + hl_old, "\t") + (c + 1 < NCOLS_OLD[v]);
+        if (!strncmp(text, header, hl_old) && text[hl_old] == '\n') {
+            ncols = NCOLS_OLD[v];
+            hl = hl_old;
+        }
     }
     char *line = text + hl + 1;
     if (strncmp(text, header, hl) || text[hl] != '\n')
@@ -175,6 +200,62 @@ int tr_batch_row_read(const char *path, tr_batch_row *r, tr_error *err)
                              ncols);
         }
     }
+    free(text);
+    return rc;
+}
+
+int tr_batch_start_id(const char *path, char id[TR_BATCH_ID_SIZE], tr_error *err)
+{
+    id[0] = '\0';
+    struct stat st;
+    if (stat(path, &st))
+        return tr_fail(err, TR_EIO, "%s: %s", path, strerror(errno));
+    if (!S_ISREG(st.st_mode))
+        return TR_OK;
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return tr_fail(err, TR_EIO, "%s: %s", path, strerror(errno));
+    /* FNV-1a: one multiply a byte, no table; 64 bits leave a chance
+     * collision at 2^-64, and the identity guards against mix-ups, not
+     * against an adversary */
+    uint64_t h = 14695981039346656037u;
+    unsigned char buf[65536];
+    size_t got;
+    while ((got = fread(buf, 1, sizeof buf, f)) > 0)
+        for (size_t i = 0; i < got; i++)
+            h = (h ^ buf[i]) * 1099511628211u;
+    int bad = ferror(f);
+    fclose(f);
+    if (bad)
+        return tr_fail(err, TR_EIO, "%s: a read failed", path);
+    snprintf(id, TR_BATCH_ID_SIZE, "%016llx", (unsigned long long)h);
+    return TR_OK;
+}
+
+int tr_batch_start_write(const char *path, const char *id, tr_error *err)
+{
+    tr_text t = {0};
+    tr_text_printf(&t, "%s\n", id[0] ? id : "-");
+    return tr_text_write_atomic(&t, path, err);
+}
+
+int tr_batch_start_read(const char *path, char id[TR_BATCH_ID_SIZE], tr_error *err)
+{
+    id[0] = '\0';
+    struct stat st;
+    if (stat(path, &st) && errno == ENOENT)
+        return 1;
+    char *text;
+    size_t len;
+    int rc = tr_read_text_file(path, &text, &len, err);
+    if (rc != TR_OK)
+        return rc;
+    if (len > 0 && text[len - 1] == '\n')
+        text[--len] = '\0';
+    if (id_ok(text))
+        strcpy(id, text);
+    else if (strcmp(text, "-"))
+        rc = tr_fail(err, TR_EPARSE, "%s:1: expected the start's identity (16 hex digits)", path);
     free(text);
     return rc;
 }

@@ -2,7 +2,12 @@
  * the output folder (NAME.row.tsv: the table's header and this one line).
  * The record is written last, after the tight curve, so its presence is
  * what "this knot is done" means; the table is rebuilt from the records,
- * whichever process (a GNU parallel job, a SLURM array task) wrote them. */
+ * whichever process (a GNU parallel job, a SLURM array task) wrote them.
+ *
+ * A record names the start it came from (tr_batch_start_id, a hash of the
+ * start file's bytes): a knot's name alone does not say which curve it
+ * was, and a manifest pointed at another file, or a start edited, must not
+ * leave the old result in the table or let --merge take it for this one. */
 #ifndef TR_BATCH_ROW_H
 #define TR_BATCH_ROW_H
 
@@ -11,6 +16,9 @@
 #include "cli/batch_manifest.h"
 #include "util/error.h"
 #include "util/text_file.h"
+
+/* A start's identity: 16 hex digits and the NUL; "" unknown. */
+#define TR_BATCH_ID_SIZE 17
 
 typedef struct tr_batch_row {
     char knot[TR_BATCH_NAME_MAX + 1];
@@ -24,6 +32,7 @@ typedef struct tr_batch_row {
     int resumed;   /* 1: its last run continued from a checkpoint */
     long seed;     /* the roads' --seed; -1 unknown (a resumed run, a record of before) */
     int road;      /* the road written, 1-based; 0 unknown */
+    char start[TR_BATCH_ID_SIZE]; /* the start's identity; "" unknown (a record of before) */
 } tr_batch_row;
 
 /* The table's column names, tab-separated, no newline. */
@@ -40,7 +49,23 @@ void tr_batch_row_json_fields(tr_text *t, const tr_batch_row *r);
 int tr_batch_row_write(const char *path, const tr_batch_row *r, tr_error *err);
 
 /* Reads a record; TR_EPARSE "PATH:LINE: ..." for anything else. A record
- * written before the seed and road columns is read with them unknown. */
+ * written before the seed and road columns, or before the start column,
+ * is read with them unknown. */
 int tr_batch_row_read(const char *path, tr_batch_row *r, tr_error *err);
+
+/* The identity of a start file: the 64-bit FNV-1a hash of its bytes, as
+ * 16 hex digits, so that a start renamed or moved is the same start and
+ * one edited in place is another. Anything but a regular file (a FIFO
+ * would be drained, a device never ends) has none: id "". TR_EIO when the
+ * file cannot be read. */
+int tr_batch_start_id(const char *path, char id[TR_BATCH_ID_SIZE], tr_error *err);
+
+/* The start a checkpoint continues, in a file beside it (NAME.start): the
+ * checkpoint holds the resampled, scaled curve, not the start's bytes, so
+ * without it a resumed run could not tell which start it came from. Write
+ * writes id atomically; read gets it, or returns 1 (id "") when there is
+ * no such file, TR_EPARSE for anything but an identity. */
+int tr_batch_start_write(const char *path, const char *id, tr_error *err);
+int tr_batch_start_read(const char *path, char id[TR_BATCH_ID_SIZE], tr_error *err);
 
 #endif

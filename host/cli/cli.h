@@ -37,6 +37,14 @@ typedef struct tr_tighten_report {
  * returned in *rep. Returns tighten's exit status. */
 int tr_tighten_command(int argc, char **argv, tr_tighten_report *rep);
 
+/* tighten's command-line checks alone, on argv as tr_tighten_command
+ * takes it: the options and their values, and the paths against each
+ * other; nothing is read, run or written. Returns -1 when they pass, else
+ * tighten's exit status, its one-line message printed on stderr. batch
+ * checks every knot's command line with it before it runs any, so that a
+ * bad option fails at once rather than when its knot comes (an hour in). */
+int tr_tighten_check_args(int argc, char **argv);
+
 /* Whether SIGINT/SIGTERM has asked the running tighten to stop (the
  * handler tighten installs stays in place after it returns). */
 int tr_tighten_stop_requested(void);

@@ -8,7 +8,12 @@
  * (batch_row.h), and the table of every knot done, table.tsv and
  * table.json (batch_table.h). A knot with a record is skipped and one with
  * a checkpoint resumes from it, so a batch killed at any moment is started
- * again with the same command. Scale-out is left to existing engines:
+ * again with the same command. A record and a checkpoint name the start
+ * they came from (NAME.start beside a checkpoint), so that neither is
+ * taken for the knot's once the manifest points it at another file.
+ * Everything a run of hours would fail on late is checked before anything
+ * runs: a file the batch writes that is one it reads, every knot's
+ * options. Scale-out is left to existing engines:
  * --only NAME and --job I --jobs J select independent parts, which GNU
  * parallel or a SLURM array (scripts/slurm_batch.sh) run at once into the
  * same OUT; each rewrites the table under a lock, and --table-only
@@ -50,8 +55,8 @@ static void usage(FILE *out)
             "                     the manifest; N the vertices per component of the tight curve,\n"
             "                     tighten --refine-to N, or --n N for a start with more, '-' none;\n"
             "                     options: tighten's, space-separated, for this knot)\n"
-            "  -o, --out OUT      output folder: NAME.vect (tight curve and certificate), NAME.ckpt\n"
-            "                     (while it runs), NAME.row.tsv (done), table.tsv and table.json\n"
+            "  -o, --out OUT      output folder: NAME.vect (tight curve and certificate), NAME.ckpt and\n"
+            "                     NAME.start (while it runs), NAME.row.tsv (done), table.tsv and table.json\n"
             "  --only NAME        this knot only (GNU parallel: one job per name of --list)\n"
             "  --job I --jobs J   the knots at places I, I+J, I+2J, ... of SRC (0 <= I < J):\n"
             "                     one of J independent jobs (a SLURM array, scripts/slurm_batch.sh)\n"
@@ -59,7 +64,11 @@ static void usage(FILE *out)
             "  --table-only       tighten nothing: rebuild the table from the knots done in OUT\n"
             "  --merge OTHER      tighten nothing: take each selected knot's result from OTHER (a batch\n"
             "                     output folder of the same knots, e.g. another --seed) where OUT has\n"
-            "                     none or OTHER's is shorter at the same N; then rebuild the table\n"
+            "                     none or OTHER's is shorter at the same N; then rebuild the table.\n"
+            "                     A record in OTHER of another start than the knot's file now (another\n"
+            "                     knot under the name) refuses the whole merge: exit 2, nothing merged;\n"
+            "                     one written before records named their start is merged on its name\n"
+            "                     alone, and said so on stderr\n"
             "  --compare REF      add a reference table's N and ropelength (a TSV with a header: knot\n"
             "                     name first, a column 'ropelength...'; '.' and '_' match in names)\n"
             "                     and the difference, ours - reference, absolute and in %%\n"
@@ -74,8 +83,17 @@ static void usage(FILE *out)
             "  --checkpoint-every S  seconds between a knot's checkpoints (default 30)\n"
             "  --quiet            no progress lines\n"
             "A knot done (its NAME.row.tsv exists) is skipped; one with a checkpoint resumes from it.\n"
+            "A record names the start it came from (a hash of the start file's bytes; the table's column\n"
+            "start): a record or checkpoint of another start (the manifest points the knot at another\n"
+            "file, or the file was edited) is not skipped or resumed, the knot is tightened afresh, and\n"
+            "the table leaves the record out until then.\n"
+            "Before anything runs or is written, batch refuses (one line, exit 2) a file it would write\n"
+            "for any knot (curve, checkpoint, record, table, OUT/retry-R's) that is one it reads (a start,\n"
+            "the manifest, --compare's), and any knot's options that tighten refuses (the line's with\n"
+            "those after --, and with each --retry-options), naming FILE:LINE.\n"
             "TIGHTEN-OPTIONS go to every knot (before the manifest's own), e.g. -- --scale --time-limit 120;\n"
-            "batch sets -o, --checkpoint, --checkpoint-every, --resume and --json itself.\n"
+            "batch sets -o, --checkpoint, --checkpoint-every, --resume and --json itself; a resumed run\n"
+            "leaves out --n, --scale, --tries, --shuffles and --seed (the checkpoint continues one road).\n"
             "Exit status: 0 every selected knot done (or running in another batch process); 1\n"
             "interrupted (SIGINT/SIGTERM: the running knot keeps its checkpoint) or a knot's run\n"
             "failed; 2 bad SRC, option or input.\n");
@@ -232,12 +250,16 @@ static int exists(const char *path) { return access(path, F_OK) == 0; }
 
 /* The options of a resumed run: the checkpoint holds the resampled and
  * scaled start, and tighten refuses --n and --scale with --resume; it
- * continues the road that was interrupted, so --tries and --seed go too. */
+ * continues the road that was interrupted, so --tries, --shuffles (which
+ * tighten refuses without --tries above it) and --seed go too. */
 static int start_only(char **opts, int j)
 {
     if (!strcmp(opts[j], "--scale"))
         return 1;
-    return !strcmp(opts[j], "--n") || !strcmp(opts[j], "--tries") || !strcmp(opts[j], "--seed") ? 2 : 0;
+    return !strcmp(opts[j], "--n") || !strcmp(opts[j], "--tries") || !strcmp(opts[j], "--shuffles") ||
+                   !strcmp(opts[j], "--seed")
+               ? 2
+               : 0;
 }
 
 /* Whether opts[j] (an option) is followed by its value: the next word is
@@ -299,52 +321,46 @@ static const char *n_option(const tr_batch_knot *k, int resume, tr_error *err, i
     return most > (size_t)k->n ? "--n" : "--refine-to";
 }
 
-/* Runs tighten on knot k (or resumes it) into folder dir, with --seed
- * seed and the retry options of recipe (o->ropts) where seed >= 0, and
- * writes its record. Returns tighten's exit
- * status, or 2 when the record cannot be written; *rep says what the run
- * came to. */
-static int run_knot(const batch_opts *o, const tr_batch_knot *k, const char *dir, long seed, int recipe,
-                    tr_tighten_report *rep)
+/* The tighten command line of one run of knot k into folder dir: from its
+ * start, or (resume) from dir/NAME.ckpt; n_opt says how N reaches tighten
+ * (n_option); seed >= 0 is a retry round's, with recipe's options
+ * (o->ropts) in place of the same options of the batch's and the knot's.
+ * The run and the checks before anything runs (check_args) build it here
+ * alike, so what is checked is what runs. */
+typedef struct run_args {
+    char vect[PATH_SIZE], ckpt[PATH_SIZE], nbuf[32], every[32], sbuf[32];
+    char **argv;
+    int argc;
+} run_args;
+
+static int build_args(const batch_opts *o, const tr_batch_knot *k, const char *dir, long seed, int recipe,
+                      int resume, const char *n_opt, run_args *a)
 {
     int own_seed = seed >= 0, has_recipe = own_seed && recipe >= 0 && recipe < o->nrecipes;
     char **ropts = has_recipe ? o->ropts[recipe] : NULL;
     int nropts = has_recipe ? o->nropts[recipe] : 0;
-    char vect[PATH_SIZE], ckpt[PATH_SIZE], row[PATH_SIZE], nbuf[32], every[32], sbuf[32];
-    knot_path(vect, sizeof vect, dir, k->name, "vect");
-    knot_path(ckpt, sizeof ckpt, dir, k->name, "ckpt");
-    knot_path(row, sizeof row, dir, k->name, "row.tsv");
-    int resume = exists(ckpt);
-    char **args = malloc((size_t)(16 + o->ntopts + k->nopts + nropts) * sizeof *args);
-    if (!args) {
-        fprintf(stderr, "tightrope batch: out of memory\n");
-        return 1;
-    }
+    knot_path(a->vect, sizeof a->vect, dir, k->name, "vect");
+    knot_path(a->ckpt, sizeof a->ckpt, dir, k->name, "ckpt");
+    a->argv = malloc((size_t)(16 + o->ntopts + k->nopts + nropts) * sizeof *a->argv);
+    if (!a->argv)
+        return -1;
+    char **args = a->argv;
     int na = 0;
     args[na++] = "tighten";
     if (resume) {
         args[na++] = "--resume";
-        args[na++] = ckpt;
+        args[na++] = a->ckpt;
     } else {
         args[na++] = k->file;
     }
-    snprintf(every, sizeof every, "%g", o->ckpt_every);
-    char *fixed[] = {"-o", vect, "--checkpoint", ckpt, "--checkpoint-every", every, "--quiet"};
+    snprintf(a->every, sizeof a->every, "%g", o->ckpt_every);
+    char *fixed[] = {"-o", a->vect, "--checkpoint", a->ckpt, "--checkpoint-every", a->every, "--quiet"};
     for (size_t j = 0; j < sizeof fixed / sizeof fixed[0]; j++)
         args[na++] = fixed[j];
-    tr_error err;
-    int rc = TR_OK;
     if (k->n > 0) {
-        const char *opt = n_option(k, resume, &err, &rc);
-        if (rc != TR_OK) {
-            fprintf(stderr, "tightrope batch: %s: %s\n", k->name, err.msg);
-            free(args);
-            *rep = (tr_tighten_report){0};
-            return rc == TR_ENOMEM ? 1 : 2;
-        }
-        snprintf(nbuf, sizeof nbuf, "%ld", k->n);
-        args[na++] = (char *)opt;
-        args[na++] = nbuf;
+        snprintf(a->nbuf, sizeof a->nbuf, "%ld", k->n);
+        args[na++] = (char *)n_opt;
+        args[na++] = a->nbuf;
     }
     /* a retry's own options replace the same options of the batch's and the knot's */
     add_opts(args, &na, o->topts, o->ntopts, resume, own_seed, ropts, nropts);
@@ -352,17 +368,91 @@ static int run_knot(const batch_opts *o, const tr_batch_knot *k, const char *dir
     if (own_seed)
         add_opts(args, &na, ropts, nropts, resume, own_seed, NULL, 0);
     if (own_seed && !resume) {
-        snprintf(sbuf, sizeof sbuf, "%ld", seed);
+        snprintf(a->sbuf, sizeof a->sbuf, "%ld", seed);
         args[na++] = "--seed";
-        args[na++] = sbuf;
+        args[na++] = a->sbuf;
     }
     args[na] = NULL;
-    int status = tr_tighten_command(na, args, rep);
-    free(args);
+    a->argc = na;
+    return 0;
+}
+
+/* Whether knot k's run into dir resumes: its checkpoint exists and
+ * continues the start the knot has now (start, tr_batch_start_id). A
+ * checkpoint of another start (the manifest points the knot at another
+ * file, or the file was edited) is removed with its NAME.start, both the
+ * batch's own, and the knot starts afresh: resuming would tabulate the
+ * other curve under this name. A checkpoint without NAME.start (made by a
+ * tightrope before records named their start) resumes as before, its
+ * start unknown. *id gets the identity the run's record will carry.
+ * Returns 0 or 1, or -1 with the message printed. */
+static int decide_resume(const batch_opts *o, const tr_batch_knot *k, const char *dir, const char *start,
+                         char id[TR_BATCH_ID_SIZE])
+{
+    char ckpt[PATH_SIZE], side[PATH_SIZE];
+    knot_path(ckpt, sizeof ckpt, dir, k->name, "ckpt");
+    knot_path(side, sizeof side, dir, k->name, "start");
+    snprintf(id, TR_BATCH_ID_SIZE, "%s", start);
+    if (!exists(ckpt))
+        return 0;
+    tr_error err;
+    int rc = tr_batch_start_read(side, id, &err);
+    if (rc < 0) {
+        fprintf(stderr, "tightrope batch: %s\n", err.msg);
+        return -1;
+    }
+    if (rc == 1 || !id[0] || !start[0] || !strcmp(id, start))
+        return 1;
+    if (!o->quiet)
+        fprintf(stderr, "batch: %s: %s is of another start (%s; %s is %s now): it starts afresh\n", k->name, ckpt,
+                id, k->file, start);
+    if ((unlink(ckpt) && errno != ENOENT) || (unlink(side) && errno != ENOENT)) {
+        fprintf(stderr, "tightrope batch: %s: cannot remove %s: %s\n", k->name, ckpt, strerror(errno));
+        return -1;
+    }
+    snprintf(id, TR_BATCH_ID_SIZE, "%s", start);
+    return 0;
+}
+
+/* Runs tighten on knot k into folder dir, from its start or (resume, as
+ * decide_resume says) from its checkpoint, with --seed seed and the retry
+ * options of recipe (o->ropts) where seed >= 0, and writes its record,
+ * which names the start (id, from decide_resume). Returns tighten's exit
+ * status, or 2 when the record cannot be written; *rep says what the run
+ * came to. */
+static int run_knot(const batch_opts *o, const tr_batch_knot *k, const char *dir, long seed, int recipe,
+                    int resume, const char *id, tr_tighten_report *rep)
+{
+    *rep = (tr_tighten_report){0};
+    char row[PATH_SIZE], side[PATH_SIZE];
+    knot_path(row, sizeof row, dir, k->name, "row.tsv");
+    knot_path(side, sizeof side, dir, k->name, "start");
+    tr_error err;
+    int rc = TR_OK;
+    const char *n_opt = k->n > 0 ? n_option(k, resume, &err, &rc) : NULL;
+    if (rc != TR_OK) {
+        fprintf(stderr, "tightrope batch: %s: %s\n", k->name, err.msg);
+        return rc == TR_ENOMEM ? 1 : 2;
+    }
+    /* the start's identity before the checkpoint it belongs to exists */
+    if (!resume && tr_batch_start_write(side, id, &err)) {
+        fprintf(stderr, "tightrope batch: %s\n", err.msg);
+        return 2;
+    }
+    run_args a;
+    if (build_args(o, k, dir, seed, recipe, resume, n_opt, &a)) {
+        fprintf(stderr, "tightrope batch: out of memory\n");
+        return 1;
+    }
+    int status = tr_tighten_command(a.argc, a.argv, rep);
+    free(a.argv);
     if (!rep->written || rep->interrupted) {
         if (resume && !rep->written)
             fprintf(stderr, "tightrope batch: %s: resuming from %s failed; remove it to start the knot afresh\n",
-                    k->name, ckpt);
+                    k->name, a.ckpt);
+        /* a run that failed before its first checkpoint leaves nothing to continue */
+        if (!exists(a.ckpt))
+            unlink(side);
         return status;
     }
     tr_batch_row r = {.n = rep->n, .ropelength = rep->ropelength, .thickness = rep->thickness,
@@ -371,19 +461,24 @@ static int run_knot(const batch_opts *o, const tr_batch_knot *k, const char *dir
                       .seed = rep->seed, .road = rep->road};
     snprintf(r.knot, sizeof r.knot, "%s", k->name);
     snprintf(r.stop, sizeof r.stop, "%s", rep->stop);
+    snprintf(r.start, sizeof r.start, "%s", id);
     /* the record last: with it the knot is done, and its checkpoint is
      * no longer needed */
     if (tr_batch_row_write(row, &r, &err)) {
         fprintf(stderr, "tightrope batch: %s\n", err.msg);
         return 2;
     }
-    unlink(ckpt);
+    unlink(a.ckpt);
+    unlink(side);
     return status;
 }
 
 /* Rebuilds OUT/table.* from the records of the knots of l (in l's order),
  * under an exclusive lock on OUT/.batch.lock, so that of several jobs
- * finishing at once the last to write has read every record. */
+ * finishing at once the last to write has read every record. A record of
+ * another start than the knot's now is left out (said unless --quiet):
+ * the table never shows another curve's numbers under a knot's name; the
+ * knot is tightened again when a batch selects it. */
 static int write_table(const batch_opts *o, const tr_batch_list *l, const tr_batch_ref *ref, size_t *rows_out)
 {
     char lock[PATH_SIZE], row[PATH_SIZE];
@@ -403,12 +498,16 @@ static int write_table(const batch_opts *o, const tr_batch_list *l, const tr_bat
         knot_path(row, sizeof row, o->out, l->knots[i].name, "row.tsv");
         if (!exists(row))
             continue;
-        if (tr_batch_row_read(row, &rows[n], &err) == TR_OK)
-            n++;
-        else {
+        char start[TR_BATCH_ID_SIZE];
+        if (tr_batch_row_read(row, &rows[n], &err) || tr_batch_start_id(l->knots[i].file, start, &err)) {
             fprintf(stderr, "tightrope batch: %s\n", err.msg);
             status = 2;
-        }
+        } else if (tr_batch_other_start(&rows[n], start)) {
+            if (!o->quiet)
+                fprintf(stderr, "batch: %s: %s is of another start than %s now; left out of the table until the "
+                                "knot is tightened again\n", l->knots[i].name, row, l->knots[i].file);
+        } else
+            n++;
     }
     if (status == 0 && tr_batch_table_write(o->out, rows, n, ref, &err)) {
         fprintf(stderr, "tightrope batch: %s\n", err.msg);
@@ -499,7 +598,8 @@ static long base_seed(const batch_opts *o, const tr_batch_knot *k)
  * killed during a retry and started again ends with the same table.
  * Returns 0, 1 (interrupted, or a run failed) or 2 (a record or folder
  * could not be read or written). */
-static int retry_knot(const batch_opts *o, const tr_batch_knot *k, const tr_batch_ref *ref, batch_progress *p)
+static int retry_knot(const batch_opts *o, const tr_batch_knot *k, const char *start, const tr_batch_ref *ref,
+                      batch_progress *p)
 {
     long line = tr_batch_ref_find(ref, k->name);
     if (line < 0)
@@ -526,16 +626,27 @@ static int retry_knot(const batch_opts *o, const tr_batch_knot *k, const tr_batc
             return 2;
         }
         knot_path(rrow, sizeof rrow, dir, k->name, "row.tsv");
-        if (!exists(rrow)) {
+        /* a round's record of another start (the knot's start changed since) is run again */
+        tr_batch_row done;
+        int again = !exists(rrow);
+        if (!again && tr_batch_row_read(rrow, &done, &err)) {
+            fprintf(stderr, "tightrope batch: %s\n", err.msg);
+            return 2;
+        }
+        if (again || tr_batch_other_start(&done, start)) {
             int recipe = o->nrecipes > 0 ? (int)((r - 1) % o->nrecipes) : -1;
             int at = snprintf(what, sizeof what, "%.6f is above the reference's %.6f: retry %ld of %ld, seed %ld",
                               cur.ropelength, target, r, o->retry, base + r);
             if (recipe >= 0 && at > 0 && (size_t)at < sizeof what)
                 snprintf(what + at, sizeof what - (size_t)at, ", %s", o->retry_text[recipe]);
+            char id[TR_BATCH_ID_SIZE];
+            int resume = decide_resume(o, k, dir, start, id);
+            if (resume < 0)
+                return 2;
             progress_line(o, p, k->name, "%s", what);
             double t = tr_clock_seconds();
             tr_tighten_report rep;
-            int rc = run_knot(o, k, dir, base + r, recipe, &rep);
+            int rc = run_knot(o, k, dir, base + r, recipe, resume, id, &rep);
             p->run_seconds += tr_clock_seconds() - t;
             if (rep.interrupted || tr_tighten_stop_requested()) {
                 if (!o->quiet)
@@ -551,10 +662,15 @@ static int retry_knot(const batch_opts *o, const tr_batch_knot *k, const tr_batc
         }
         tr_merge_outcome how;
         char merged[512];
-        int mc = tr_batch_merge_knot(o->out, dir, k->name, &how, merged, sizeof merged, &err);
+        int mc = tr_batch_merge_knot(o->out, dir, k->name, start, &how, merged, sizeof merged, &err);
         if (mc != TR_OK) {
             fprintf(stderr, "tightrope batch: %s\n", err.msg);
             return mc == TR_ENOMEM ? 1 : 2;
+        }
+        if (how == TR_MERGE_OTHER_START) {
+            /* the start changed while the round ran: nothing of it is this knot's */
+            fprintf(stderr, "tightrope batch: %s: retry %ld: %s\n", k->name, r, merged);
+            return 1;
         }
         snprintf(what, sizeof what, "retry %ld: %s", r, merged);
         progress_line(o, p, k->name, "%s", what);
@@ -565,14 +681,19 @@ static int retry_knot(const batch_opts *o, const tr_batch_knot *k, const tr_batc
 /* Tightens knot k (or resumes it) into OUT, with its progress lines.
  * Returns 0 done (*done = 1), -1 interrupted (the run keeps its
  * checkpoint), or the exit status of a failed run (1 or 2). */
-static int tighten_one(const batch_opts *o, const tr_batch_knot *k, batch_progress *p, int *done)
+static int tighten_one(const batch_opts *o, const tr_batch_knot *k, const char *start, batch_progress *p,
+                       int *done)
 {
-    char ckpt[PATH_SIZE], what[160];
-    knot_path(ckpt, sizeof ckpt, o->out, k->name, "ckpt");
-    progress_line(o, p, k->name, "%s", exists(ckpt) ? "resuming from its checkpoint" : "tightening");
+    char what[160], id[TR_BATCH_ID_SIZE];
+    int resume = decide_resume(o, k, o->out, start, id);
+    if (resume < 0) {
+        p->failed++;
+        return 2;
+    }
+    progress_line(o, p, k->name, "%s", resume ? "resuming from its checkpoint" : "tightening");
     double t = tr_clock_seconds();
     tr_tighten_report rep;
-    int rc = run_knot(o, k, o->out, -1, -1, &rep);
+    int rc = run_knot(o, k, o->out, -1, -1, resume, id, &rep);
     if (rep.interrupted || tr_tighten_stop_requested()) {
         if (!o->quiet && rep.interrupted)
             fprintf(stderr, "batch: interrupted; %s resumes from its checkpoint when the batch is run again\n",
@@ -596,6 +717,25 @@ static int tighten_one(const batch_opts *o, const tr_batch_knot *k, batch_progre
     return rc == 2 ? 2 : 1;
 }
 
+/* What knot k's record in OUT (path row) says of it, its start's identity
+ * being start now: 0 no record, 1 done from this start, 2 done from one
+ * unknown (a record of a tightrope before records named their start: kept,
+ * as it was), 3 done from another start (the manifest points the knot at
+ * another file, or the file was edited: to be tightened again), -1 the
+ * record cannot be read (message printed). */
+static int record_state(const char *row, const char *start)
+{
+    if (!exists(row))
+        return 0;
+    tr_batch_row r;
+    tr_error err;
+    if (tr_batch_row_read(row, &r, &err)) {
+        fprintf(stderr, "tightrope batch: %s\n", err.msg);
+        return -1;
+    }
+    return tr_batch_other_start(&r, start) ? 3 : r.start[0] ? 1 : 2;
+}
+
 /* Tightens the selected knots in turn (and retries them: --retry).
  * Returns the exit status. */
 static int run_all(const batch_opts *o, const tr_batch_list *l, const size_t *sel, size_t nsel, const tr_batch_ref *ref)
@@ -604,7 +744,7 @@ static int run_all(const batch_opts *o, const tr_batch_list *l, const size_t *se
     int status = 0;
     for (size_t s = 0; s < nsel; s++) {
         const tr_batch_knot *k = &l->knots[sel[s]];
-        char row[PATH_SIZE], ckpt[PATH_SIZE];
+        char row[PATH_SIZE], ckpt[PATH_SIZE], side[PATH_SIZE];
         knot_path(row, sizeof row, o->out, k->name, "row.tsv");
         knot_path(ckpt, sizeof ckpt, o->out, k->name, "ckpt");
         p.at = s + 1;
@@ -619,13 +759,30 @@ static int run_all(const batch_opts *o, const tr_batch_list *l, const size_t *se
             continue;
         }
         /* looked at under the lock: another process may just have finished it */
-        int done = exists(row), rc_run;
+        char start[TR_BATCH_ID_SIZE];
+        tr_error err;
+        int state = tr_batch_start_id(k->file, start, &err) ? -2 : record_state(row, start);
+        if (state < 0) {
+            if (state == -2)
+                fprintf(stderr, "tightrope batch: %s: %s\n", k->name, err.msg);
+            close(lock);
+            p.failed++;
+            status = 2;
+            continue;
+        }
+        int done = state == 1 || state == 2, rc_run;
+        if (state == 3)
+            progress_line(o, &p, k->name, "%s", "its record is of another start than its file now: tightened again");
         if (done) {
             /* a run killed between its record and the checkpoint's removal */
+            knot_path(side, sizeof side, o->out, k->name, "start");
             unlink(ckpt);
+            unlink(side);
             p.skipped++;
-            progress_line(o, &p, k->name, "%s", "done before, skipped");
-        } else if ((rc_run = tighten_one(o, k, &p, &done)) != 0) {
+            progress_line(o, &p, k->name, "%s",
+                          state == 1 ? "done before, skipped"
+                                     : "done before, skipped (its record names no start: made by an older tightrope)");
+        } else if ((rc_run = tighten_one(o, k, start, &p, &done)) != 0) {
             close(lock);
             if (rc_run < 0)
                 return 1;
@@ -633,7 +790,7 @@ static int run_all(const batch_opts *o, const tr_batch_list *l, const size_t *se
             continue;
         }
         /* a knot done here or before: retried while above its reference */
-        int rs = done && o->retry > 0 ? retry_knot(o, k, ref, &p) : 0;
+        int rs = done && o->retry > 0 ? retry_knot(o, k, start, ref, &p) : 0;
         close(lock);
         if (rs == 1 && tr_tighten_stop_requested())
             return 1;
@@ -658,18 +815,79 @@ static int is_folder(const char *path, const char *opt)
     return 1;
 }
 
-/* --merge: each selected knot's result from o->merge where it is shorter
- * (batch_merge.h), under the knot's lock. Returns the exit status. */
-static int merge_all(const batch_opts *o, const tr_batch_list *l, const size_t *sel, size_t nsel)
+/* Where knot k comes from, for a message: its manifest's FILE:LINE, or a
+ * folder's curve file. */
+static void knot_where(const batch_opts *o, const tr_batch_knot *k, char *buf, size_t size)
+{
+    if (k->line > 0)
+        snprintf(buf, size, "%s:%d", o->src, k->line);
+    else
+        snprintf(buf, size, "%s", k->file);
+}
+
+/* --merge, before anything is written: every record of OTHER for a
+ * selected knot is read, and one of another start than the knot's now
+ * (OTHER's batch had another curve under this name: a trefoil there, an
+ * unknot here) refuses the whole merge, said in one line with the first
+ * such knot: two folders that disagree on what a name is do not hold the
+ * same knots, and which of the others to believe cannot be told. Returns
+ * -1 to go on, else the exit status. */
+static int merge_check(const batch_opts *o, const tr_batch_list *l, const size_t *sel, size_t nsel)
 {
     if (tr_same_file(o->merge, o->out)) {
         fprintf(stderr, "tightrope batch: --merge %s is the output folder itself\n", o->merge);
         return 2;
     }
-
-    size_t counts[4] = {0};
+    const tr_batch_knot *first = NULL;
+    char theirs[TR_BATCH_ID_SIZE], ours[TR_BATCH_ID_SIZE];
+    size_t others = 0;
     for (size_t s = 0; s < nsel; s++) {
-        const char *name = l->knots[sel[s]].name;
+        const tr_batch_knot *k = &l->knots[sel[s]];
+        char row[PATH_SIZE], start[TR_BATCH_ID_SIZE];
+        knot_path(row, sizeof row, o->merge, k->name, "row.tsv");
+        if (!exists(row))
+            continue;
+        tr_batch_row r;
+        tr_error err;
+        if (tr_batch_row_read(row, &r, &err) || tr_batch_start_id(k->file, start, &err)) {
+            fprintf(stderr, "tightrope batch: --merge: %s\n", err.msg);
+            return 2;
+        }
+        if (!tr_batch_other_start(&r, start) || others++)
+            continue;
+        first = k;
+        memcpy(theirs, r.start, sizeof theirs);
+        memcpy(ours, start, sizeof ours);
+    }
+    if (!others)
+        return -1;
+    char row[PATH_SIZE], where[PATH_SIZE], more[64] = "";
+    knot_path(row, sizeof row, o->merge, first->name, "row.tsv");
+    knot_where(o, first, where, sizeof where);
+    if (others > 1)
+        snprintf(more, sizeof more, " (and %zu more such knots)", others - 1);
+    fprintf(stderr, "tightrope batch: --merge: %s is of another start than %s's %s (%s, not %s): another knot "
+                    "under the name %s%s; nothing merged\n", row, where, first->file, theirs, ours, first->name, more);
+    return 2;
+}
+
+/* --merge: each selected knot's result from o->merge where it is shorter
+ * (batch_merge.h), under the knot's lock; merge_check has passed. A record
+ * of another start found now (OTHER changed since) is left, said, and
+ * makes the exit status 2. Returns the exit status. */
+static int merge_all(const batch_opts *o, const tr_batch_list *l, const size_t *sel, size_t nsel)
+{
+    size_t counts[5] = {0};
+    int status = 0;
+    for (size_t s = 0; s < nsel; s++) {
+        const tr_batch_knot *k = &l->knots[sel[s]];
+        const char *name = k->name;
+        char start[TR_BATCH_ID_SIZE];
+        tr_error err;
+        if (tr_batch_start_id(k->file, start, &err)) {
+            fprintf(stderr, "tightrope batch: --merge: %s\n", err.msg);
+            return 2;
+        }
         int lock = lock_knot(o->out, name);
         if (lock == -2)
             return 2;
@@ -681,21 +899,23 @@ static int merge_all(const batch_opts *o, const tr_batch_list *l, const size_t *
         }
         tr_merge_outcome how;
         char what[512];
-        tr_error err;
-        int rc = tr_batch_merge_knot(o->out, o->merge, name, &how, what, sizeof what, &err);
+        int rc = tr_batch_merge_knot(o->out, o->merge, name, start, &how, what, sizeof what, &err);
         close(lock);
         if (rc != TR_OK) {
             fprintf(stderr, "tightrope batch: --merge: %s\n", err.msg);
             return rc == TR_ENOMEM ? 1 : 2;
         }
         counts[how]++;
-        if (!o->quiet)
+        if (how == TR_MERGE_OTHER_START) {
+            fprintf(stderr, "tightrope batch: --merge: %s: %s\n", name, what);
+            status = 2;
+        } else if (!o->quiet)
             fprintf(stderr, "batch merge [%zu/%zu] %s: %s\n", s + 1, nsel, name, what);
     }
     if (!o->quiet)
         fprintf(stderr, "batch merge: %zu taken, %zu shorter, %zu kept, %zu not in %s\n", counts[TR_MERGE_TAKEN],
                 counts[TR_MERGE_SHORTER], counts[TR_MERGE_KEPT], counts[TR_MERGE_ABSENT], o->merge);
-    return 0;
+    return status;
 }
 
 static void free_retry_options(batch_opts *o)
@@ -734,6 +954,262 @@ static int split_retry_options(batch_opts *o)
     return -1;
 }
 
+/* Runs tighten's own checks (tr_tighten_check_args) on one run's command
+ * line and catches what they print: their one line, tighten's name taken
+ * off, goes into msg, for batch to print in its own line, which says
+ * where the options came from (a manifest's FILE:LINE, --retry-options).
+ * Checking with tighten's parser, not a copy of its option table, keeps
+ * the two from drifting apart. Returns 1 when the line passes. */
+static int args_pass(const run_args *a, char *msg, size_t size)
+{
+    msg[0] = '\0';
+    for (int j = 1; j < a->argc; j++)
+        if (!strcmp(a->argv[j], "--help") || !strcmp(a->argv[j], "-h")) {
+            snprintf(msg, size, "%s is no option of a run (tightrope tighten --help lists them)", a->argv[j]);
+            return 0;
+        }
+    /* stderr into a pipe for the call (its write end non-blocking: a
+     * message longer than the pipe holds is cut, never waited on) */
+    int p[2], saved = -1, caught = 0;
+    fflush(stderr);
+    if (pipe(p) == 0) {
+        saved = dup(STDERR_FILENO);
+        caught = saved >= 0 && fcntl(p[1], F_SETFL, O_NONBLOCK) == 0 && dup2(p[1], STDERR_FILENO) >= 0;
+        close(p[1]);
+        if (!caught) {
+            close(p[0]);
+            if (saved >= 0)
+                close(saved);
+        }
+    }
+    int rc = tr_tighten_check_args(a->argc, a->argv);
+    if (!caught)
+        return rc < 0;
+    fflush(stderr);
+    dup2(saved, STDERR_FILENO);
+    close(saved);
+    clearerr(stderr);
+    size_t got = 0;
+    for (ssize_t r; got + 1 < size && (r = read(p[0], msg + got, size - 1 - got)) != 0;) {
+        if (r < 0 && errno == EINTR)
+            continue;
+        if (r < 0)
+            break;
+        got += (size_t)r;
+    }
+    close(p[0]);
+    msg[got] = '\0';
+    msg[strcspn(msg, "\n")] = '\0';
+    static const char prefix[] = "tightrope tighten: ";
+    if (!strncmp(msg, prefix, sizeof prefix - 1))
+        memmove(msg, msg + sizeof prefix - 1, strlen(msg + sizeof prefix - 1) + 1);
+    if (rc >= 0 && !msg[0])
+        snprintf(msg, size, "tighten refuses these options (exit status %d)", rc);
+    return rc < 0;
+}
+
+/* Whether the command lines of knot k's runs pass tighten's checks: the
+ * run from its start and the one from its checkpoint (which leaves out
+ * the start's options), a retry round's (recipe >= 0) with its own seed.
+ * *msg gets tighten's message; *resumed says which failed. */
+static int knot_args_pass(const batch_opts *o, const tr_batch_knot *k, int recipe, char *msg, size_t size,
+                          int *resumed)
+{
+    long seed = recipe >= 0 ? base_seed(o, k) + 1 : -1;
+    for (*resumed = 0; *resumed < 2; ++*resumed) {
+        run_args a;
+        /* --n and --refine-to take the same values: which one a run gives is
+         * the start's affair; --list has no OUT, and a folder of no file
+         * stands in for it (tighten compares the output with the input) */
+        if (build_args(o, k, o->out ? o->out : "(no -o)", seed, recipe, *resumed, "--refine-to", &a)) {
+            snprintf(msg, size, "out of memory");
+            return 0;
+        }
+        int ok = args_pass(&a, msg, size);
+        free(a.argv);
+        if (!ok)
+            return 0;
+    }
+    return 1;
+}
+
+/* Every knot's tighten options (the batch's after --, the manifest's,
+ * each --retry-options with each knot it can retry: one with a reference
+ * line) checked before anything runs or is written, so that a bad one is
+ * one line naming where it came from, exit 2, and not the failure of a
+ * knot an hour into the batch. Options that fail together but not apart
+ * (--shuffles after -- with each line's --tries) are judged together:
+ * what is blamed is what fails alone. Returns -1 to go on, else the exit
+ * status. */
+static int check_args(const batch_opts *o, const tr_batch_list *l, const tr_batch_ref *ref)
+{
+    char msg[1024], alone[1024], where[PATH_SIZE];
+    int resumed, resumed_alone;
+    /* the first knot's start and the batch's options, the manifest's left out */
+    tr_batch_knot bare = l->knots[0];
+    bare.n = 0;
+    bare.opts = NULL;
+    bare.nopts = 0;
+    for (int q = -1; q < (o->retry > 0 ? o->nrecipes : 0); q++)
+        for (size_t i = 0; i < l->count; i++) {
+            const tr_batch_knot *k = &l->knots[i];
+            if (q >= 0 && tr_batch_ref_find(ref, k->name) < 0)
+                continue;
+            if (knot_args_pass(o, k, q, msg, sizeof msg, &resumed))
+                continue;
+            const char *as = " (as a resumed run takes them)";
+            if (!knot_args_pass(o, &bare, q, alone, sizeof alone, &resumed_alone)) {
+                if (q < 0)
+                    fprintf(stderr, "tightrope batch: the tighten options after --: %s%s\n", alone,
+                            resumed_alone ? as : "");
+                else
+                    fprintf(stderr, "tightrope batch: --retry-options '%s': %s%s\n", o->retry_text[q], alone,
+                            resumed_alone ? as : "");
+                return 2;
+            }
+            knot_where(o, k, where, sizeof where);
+            if (q < 0)
+                fprintf(stderr, "tightrope batch: %s: %s%s\n", where, msg, resumed ? as : "");
+            else
+                fprintf(stderr, "tightrope batch: --retry-options '%s' with %s: %s%s\n", o->retry_text[q], where,
+                        msg, resumed ? as : "");
+            return 2;
+        }
+    return -1;
+}
+
+/* A file the batch reads, by identity (stat's device and inode). */
+typedef struct batch_input {
+    dev_t dev;
+    ino_t ino;
+    const char *path;
+    const tr_batch_knot *k; /* whose start it is (a manifest line), or NULL */
+    const char *what;       /* what it is when k is NULL, or --merge's */
+} batch_input;
+
+static int by_identity(const void *pa, const void *pb)
+{
+    const batch_input *a = pa, *b = pb;
+    if (a->dev != b->dev)
+        return a->dev < b->dev ? -1 : 1;
+    return a->ino < b->ino ? -1 : a->ino > b->ino;
+}
+
+/* Appends path to in (sized for it) when it exists. */
+static void add_input(batch_input *in, size_t *n, const char *path, const tr_batch_knot *k, const char *what)
+{
+    struct stat st;
+    if (stat(path, &st) == 0)
+        in[(*n)++] = (batch_input){.dev = st.st_dev, .ino = st.st_ino, .path = path, .k = k, .what = what};
+}
+
+/* The input that path is, or NULL (in sorted by identity). */
+static const batch_input *input_at(const batch_input *in, size_t n, const char *path)
+{
+    struct stat st;
+    if (stat(path, &st))
+        return NULL;
+    batch_input key = {.dev = st.st_dev, .ino = st.st_ino};
+    return bsearch(&key, in, n, sizeof *in, by_identity);
+}
+
+/* Says that output path (what the batch writes there: owner's what) is
+ * input hit; returns 2. */
+static int collision(const batch_opts *o, const batch_input *hit, const char *path, const char *owner,
+                     const char *what)
+{
+    char where[PATH_SIZE];
+    if (hit->k && !hit->what) {
+        /* a folder's knot is its file: the path says where it is */
+        snprintf(where, sizeof where, "%s:%d: ", o->src, hit->k->line);
+        fprintf(stderr, "tightrope batch: %sthe start %s of %s is the file this batch writes as %s%s%s (%s); "
+                        "it would be lost: give another -o, or move the start out of %s\n",
+                hit->k->line > 0 ? where : "", hit->path, hit->k->name, owner, owner[0] ? "'s " : "", what, path,
+                o->out);
+    } else
+        fprintf(stderr, "tightrope batch: %s %s is the file this batch writes as %s%s%s (%s); it would be lost: "
+                        "give another -o\n", hit->what, hit->path, owner, owner[0] ? "'s " : "", what, path);
+    return 2;
+}
+
+/* No file the batch writes (for any knot of the manifest, selected or not:
+ * its curve, checkpoint, record and start record in OUT and in every
+ * OUT/retry-R, and the table) may be one it reads (a knot's start, the
+ * manifest, --compare's table, --merge's files), else the batch would
+ * write over it and, worse, go on to tighten and tabulate what it wrote:
+ * refused before anything runs, one line naming the start's manifest
+ * line. An output that does not exist yet is no input, which exists; one
+ * that does is compared by identity (tr_same_file's device and inode),
+ * which sees through ./, ../, symbolic and hard links alike. The lock
+ * files are left out: opened, never written, they change nothing. Returns
+ * -1 to go on, else the exit status. */
+static int check_collisions(const batch_opts *o, const tr_batch_list *l, const size_t *sel, size_t nsel)
+{
+    static const char *exts[] = {"vect", "ckpt", "row.tsv", "start"};
+    static const char *what[] = {"curve", "checkpoint", "record", "start record"};
+    size_t nmerged = o->merge ? 2 * nsel : 0;
+    char **merged = calloc(nmerged + 1, sizeof *merged);
+    batch_input *in = malloc((l->count + 2 + nmerged) * sizeof *in);
+    int oom = !in || !merged;
+    for (size_t s = 0; !oom && s < nmerged; s++) {
+        char path[PATH_SIZE];
+        knot_path(path, sizeof path, o->merge, l->knots[sel[s / 2]].name, s % 2 ? "row.tsv" : "vect");
+        oom = !(merged[s] = strdup(path));
+    }
+    if (oom) {
+        for (size_t s = 0; merged && s < nmerged; s++)
+            free(merged[s]);
+        free(in);
+        free(merged);
+        fprintf(stderr, "tightrope batch: out of memory\n");
+        return 1;
+    }
+    size_t n = 0;
+    for (size_t i = 0; i < l->count; i++)
+        add_input(in, &n, l->knots[i].file, &l->knots[i], NULL);
+    struct stat st;
+    if (stat(o->src, &st) == 0 && !S_ISDIR(st.st_mode))
+        add_input(in, &n, o->src, NULL, "the manifest");
+    if (o->compare)
+        add_input(in, &n, o->compare, NULL, "--compare's table");
+    for (size_t s = 0; s < nmerged; s++)
+        add_input(in, &n, merged[s], &l->knots[sel[s / 2]], "--merge's");
+    qsort(in, n, sizeof *in, by_identity);
+    int status = -1;
+    char path[PATH_SIZE], dir[PATH_SIZE / 2], whatr[64];
+    const batch_input *hit;
+    for (int t = 0; status < 0 && t < 2; t++) {
+        snprintf(path, sizeof path, "%s/%s", o->out, t ? "table.json" : "table.tsv");
+        if ((hit = input_at(in, n, path)))
+            status = collision(o, hit, path, "", "its table");
+    }
+    for (long r = 0; status < 0 && r <= o->retry; r++) {
+        if (r == 0)
+            snprintf(dir, sizeof dir, "%s", o->out);
+        else
+            snprintf(dir, sizeof dir, "%s/retry-%ld", o->out, r);
+        /* nothing can be in a folder that is not there */
+        if (r > 0 && access(dir, F_OK))
+            continue;
+        for (size_t i = 0; status < 0 && i < l->count; i++)
+            for (size_t e = 0; status < 0 && e < sizeof exts / sizeof exts[0]; e++) {
+                knot_path(path, sizeof path, dir, l->knots[i].name, exts[e]);
+                if (!(hit = input_at(in, n, path)))
+                    continue;
+                if (r > 0)
+                    snprintf(whatr, sizeof whatr, "retry %ld %s", r, what[e]);
+                else
+                    snprintf(whatr, sizeof whatr, "%s", what[e]);
+                status = collision(o, hit, path, l->knots[i].name, whatr);
+            }
+    }
+    for (size_t s = 0; s < nmerged; s++)
+        free(merged[s]);
+    free(in);
+    free(merged);
+    return status;
+}
+
 int tr_cmd_batch(int argc, char **argv)
 {
     batch_opts o;
@@ -753,6 +1229,7 @@ int tr_cmd_batch(int argc, char **argv)
     }
     if (o.compare && tr_batch_ref_read(o.compare, &ref, &err)) {
         fprintf(stderr, "tightrope batch: %s\n", err.msg);
+        free_retry_options(&o);
         tr_batch_list_free(&l);
         return 2;
     }
@@ -774,12 +1251,18 @@ int tr_cmd_batch(int argc, char **argv)
         fprintf(stderr, "tightrope batch: no knot '%s' in %s (tightrope batch %s --list names them)\n", o.only,
                 o.src, o.src);
         status = 2;
+    } else if (status < 0 && !o.list && (status = check_collisions(&o, &l, sel, nsel)) >= 0) {
+        /* said */
+    } else if (status < 0 && (status = check_args(&o, &l, &ref)) >= 0) {
+        /* said */
     } else if (status < 0 && o.list) {
         for (size_t s = 0; s < nsel; s++)
             printf("%s\n", l.knots[sel[s]].name);
         status = 0;
     } else if (status < 0 && o.merge && !is_folder(o.merge, "--merge")) {
         status = 2;
+    } else if (status < 0 && o.merge && (status = merge_check(&o, &l, sel, nsel)) >= 0) {
+        /* said */
     } else if (status < 0 && o.table_only && access(o.out, F_OK)) {
         fprintf(stderr, "tightrope batch: --table-only: no output folder %s: %s\n", o.out, strerror(errno));
         status = 2;
