@@ -200,6 +200,9 @@ typedef struct tighten_opts {
     double bound_at;
     int residual_given; /* the default residual is a stopping rule, not a goal */
     int refine_given;   /* --refine-to given (or taken from a checkpoint): a goal */
+    /* subtracted from the start's coordinates (start_shift): a knot far
+     * from the origin is tightened about it (0: as it is) */
+    double shift[3];
     int json, quiet, no_polish, newton, no_newton, scale, kkt; /* kkt -1: up to KKT_AUTO_MAX_N */
 } tighten_opts;
 
@@ -634,6 +637,41 @@ static const shuffle_recipe SHUFFLE_RECIPES[] = {
     {4.0, 20000, 100000, 0.98},
     {6.0, 20000, 200000, 0.995},
 };
+/* Ropelength does not see where a knot is, but the engine's doubles do: a
+ * trefoil moved to 1e6 tightened to 32.889 (KKT residual 0.45) where at
+ * the origin it reaches 32.837 (1e-4), its differences of coordinates
+ * losing six digits. So a start whose box does not hold the origin along an
+ * axis is moved by the middle of its extent there (as the oracle measures,
+ * curve.h), and the tight knot is written about the origin (said in its
+ * comments). A box that holds the origin is left bit for bit as it is; a
+ * constrained rope (a clasp) stays on its planes. */
+static void start_shift(tighten_opts *o)
+{
+    memset(o->shift, 0, sizeof o->shift);
+    tr_curve c;
+    tr_error err;
+    if (o->resume || !o->in || tr_curve_read(o->in, TR_FORMAT_AUTO, &c, &err))
+        return;
+    if (c.ncst == 0 && c.nv > 0)
+        for (int a = 0; a < 3; a++) {
+            double lo = c.x[a], hi = c.x[a];
+            for (size_t i = 1; i < c.nv; i++) {
+                lo = fmin(lo, c.x[3 * i + (size_t)a]);
+                hi = fmax(hi, c.x[3 * i + (size_t)a]);
+            }
+            if (lo > 0 || hi < 0)
+                o->shift[a] = 0.5 * lo + 0.5 * hi;
+        }
+    tr_curve_free(&c);
+}
+
+static void shift_curve(tr_curve *c, const double shift[3])
+{
+    for (size_t i = 0; i < c->nv; i++)
+        for (int a = 0; a < 3; a++)
+            c->x[3 * i + (size_t)a] -= shift[a];
+}
+
 /* The command's hard bound: its --time-limit and the stop flag. */
 static tr_deadline command_bound(const tighten_opts *o)
 {
@@ -700,6 +738,8 @@ static int read_start(const tighten_opts *o, tr_curve *c, tr_error *err)
     rc = tr_curve_read(in, TR_FORMAT_AUTO, c, err);
     if (rc != TR_OK)
         return rc;
+    if (c->ncst == 0)
+        shift_curve(c, o->shift);
     if (o->shuffled && (rc = shuffle_start(o, c, err))) {
         tr_curve_free(c);
         return rc;
@@ -774,6 +814,9 @@ static int read_start(const tighten_opts *o, tr_curve *c, tr_error *err)
         if (!(t0.thickness > 0 && isfinite(t0.thickness)))
             rc = tr_fail(err, TR_EGEOMETRY, "--scale: %s has thickness %g; no scale makes it a rope", in,
                          t0.thickness);
+        else if (!isfinite(1.0 / t0.thickness))
+            rc = tr_fail(err, TR_EGEOMETRY, "--scale: %s has thickness %g, too thin for the factor 1/%g to be a "
+                         "double; scale the file up first", in, t0.thickness, t0.thickness);
         if (rc == TR_OK)
             scale_curve(c, 1.0 / t0.thickness);
         /* also after --n: a count too coarse for thickness 1 (a road of
@@ -1102,6 +1145,9 @@ static int write_output(const tighten_opts *o, tr_engine *e, const tighten_resul
                        p->newton_seconds, p->newton_iters);
     if (r->tries > 1)
         tr_text_printf(&cm, "tries %d, seed %ld: the shortest was road %d\n", r->tries, o->seed, r->best_try + 1);
+    if (o->shift[0] != 0 || o->shift[1] != 0 || o->shift[2] != 0)
+        tr_text_printf(&cm, "centred: the start was moved by (%.17g, %.17g, %.17g) to be tightened about the "
+                            "origin\n", 0.0 - o->shift[0], 0.0 - o->shift[1], 0.0 - o->shift[2]);
     char *comments = tr_text_take(&cm, NULL);
     if (!comments)
         return tr_fail(err, TR_ENOMEM, "out of memory");
@@ -1257,6 +1303,7 @@ int tr_tighten_command(int argc, char **argv, tr_tighten_report *rep)
     if (o.resume && (rc = resume_goals(&o, &elapsed_before)) >= 0)
         return rc;
     choose_route(&o);
+    start_shift(&o);
     /* the bound counts from here: reading, shuffling and settling the
      * start are the command's time too; a resumed run's limit counts the
      * time before its checkpoint (as the engine's steps do) */

@@ -39,6 +39,27 @@ scaled() {
 pi='atan2(0, -1)'
 
 case $case_ in
+far_tighten)
+  # tighten ran the engine in the file's coordinates: a trefoil moved to
+  # (1e6, -3e6, 0) lost six digits of its differences and tightened to
+  # 32.889 (KKT residual 0.45). The start is moved to the origin first and
+  # the tight knot written there, with a comment that says by how much.
+  "$tr" make torus 2 3 --n 100 -o t.vect >/dev/null || fail "make"
+  awk '/^#/ || NR <= 5 || NF != 3 { print; next } { printf "%.17g %.17g %.17g\n", $1 + 1e6, $2 - 3e6, $3 }' \
+    t.vect >far.vect
+  run "$tr" tighten far.vect -o o.vect --steps 300 --device reference --quiet --json
+  [ "$rc" = 0 ] || fail "tighten: exit $rc: $(cat err)"
+  grep -q "^# centred: the start was moved by (-1000000[.0-9]*, 3000000, 0)" o.vect ||
+    fail "no 'centred' comment: $(grep '^# c' o.vect)"
+  awk '/^#/ || NR <= 5 || NF != 3 { next } { for (a = 1; a <= 3; a++) if ($a > 10 || $a < -10) bad = 1 }
+       END { exit bad }' o.vect || fail "the tight knot is not about the origin"
+  "$tr" measure --json o.vect >m.json || fail "measure o.vect"
+  rl=$(json_get ropelength m.json)
+  awk -v r="$rl" 'BEGIN { exit !(r > 32.7 && r < 40) }' || fail "ropelength $rl"
+  # a start about the origin is left where it is: no comment
+  run "$tr" tighten t.vect -o p.vect --steps 10 --device reference --quiet
+  grep -q "^# centred" p.vect && fail "a start about the origin was moved"
+  ;;
 far_origin)
   # A regular 64-gon of circumradius 5 moved along x. Each coordinate is
   # then rounded by at most u/2, u the step between doubles at the shift:
