@@ -14,3 +14,22 @@ add_test(NAME cli_vertex_contacts_polygon
       exit !ok }'")
 add_test(NAME cli_vertex_contacts_bad
   COMMAND ${CMAKE_COMMAND} -E env sh -c "printf 'not a curve\\n' > vc_bad.txt; '$<TARGET_FILE:vertex_contacts>' vc_bad.txt; test $? -eq 2")
+# tightrope measure --contacts vertex (oracle/vertex_thickness.h), scale free, on the regular
+# 100-gon of circumradius 7: at R = MinRad = 7 cos(pi/100), K = ceil(pi / (2 tan(pi/100))) = 50,
+# the vertices 50 apart are 14 apart (> 2R), so the thickness is MinRad and the ropelength
+# 200 tan(pi/100); the JSON says which model. --kkt with it, or another model, is exit 2 with one line.
+add_test(NAME cli_measure_contacts_vertex
+  COMMAND ${CMAKE_COMMAND} -E env sh -c "set -e
+    f=\$(mktemp --suffix=.txt)
+    awk 'BEGIN { p = atan2(0, -1); for (i = 0; i < 100; i++) printf \"%.17g %.17g 0\\n\", 7 * cos(2 * p * i / 100), 7 * sin(2 * p * i / 100) }' > \$f
+    out=\$('$<TARGET_FILE:tightrope>' measure --contacts vertex \$f); js=\$('$<TARGET_FILE:tightrope>' measure --json --contacts vertex \$f); rm -f \$f
+    echo \"\$out\"; echo \"\$js\" | grep -q '\"contacts\": \"vertex\", \"vertex_contacts\": {\"edge\": [0-9.e-]*, \"exclusion\": 50, '
+    echo \"\$out\" | grep -q '^contacts vertex (SP-FEM'
+    echo \"\$out\" | awk '\$1 == \"vertex\" { p = atan2(0, -1); n++
+      ok = \$3 == 50 && (\$5 - 14)^2 < 1e-24 && (\$6 - 7 * cos(p / 100))^2 < 1e-20 && (\$7 - 200 * sin(p / 100) / cos(p / 100))^2 < 1e-20 }
+      END { exit !(n == 1 && ok) }'")
+add_test(NAME cli_measure_contacts_vertex_kkt
+  COMMAND ${CMAKE_COMMAND} -E env sh -c "printf '0 0 0\\n1 0 0\\n0 1 0\\n' > mcv.txt
+    '$<TARGET_FILE:tightrope>' measure --contacts vertex --kkt mcv.txt > mcv.out 2> mcv.err; rc=\$?
+    test \$rc -eq 2 && test ! -s mcv.out && test \$(wc -l < mcv.err) -eq 1 || exit 1
+    '$<TARGET_FILE:tightrope>' measure --contacts edge mcv.txt 2> mcv.err; test \$? -eq 2 && test \$(wc -l < mcv.err) -eq 1")

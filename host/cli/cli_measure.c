@@ -1,5 +1,6 @@
 /* tightrope measure FILE... [--json] [--struts OUT] [--per-component] [--strut-tol REL]
  *                           [--kkt] [--kkt-band REL] [--kkt-forces OUT]
+ *                           [--contacts segment|vertex] [--invariants]
  *
  * Length, MinRad, shortest strut (dcsd), thickness, ropelength and the
  * paper's L_p, L_c, L_a of each curve file (thickness.h), and with --kkt
@@ -14,6 +15,8 @@
 
 #include "cli/cli.h"
 #include "cli/cli_args.h"
+#include "cli/measure_invariants.h"
+#include "cli/measure_vertex.h"
 #include "curve/curve_io.h"
 #include "util/json.h"
 #include "oracle/kkt.h"
@@ -40,7 +43,12 @@ static void usage(FILE *out)
             "                  limit holds (0: critical, 1: nothing holds it)\n"
             "  --kkt-band REL  constraints within REL of their bound may hold (default %g)\n"
             "  --kkt-forces OUT  write, per vertex, the tension and the part of it nothing\n"
-            "                  holds (CSV; one FILE only): where a curve is not critical\n",
+            "                  holds (CSV; one FILE only): where a curve is not critical\n"
+            "  --contacts M    segment: Rawdon's thickness only (default); vertex: also\n"
+            "                  SP-FEM's vertex model (vertices at least 2R apart that are\n"
+            "                  K = ceil(pi R / e) or more apart along the rope); not with --kkt\n"
+            "  --invariants    also the knot type: Alexander polynomial (t^-h .. t^h, Delta(1) = 1),\n"
+            "                  determinant and crossings of a generic projection (one closed component)\n",
             DEFAULT_STRUT_TOL, TR_KKT_DEFAULT_BAND);
 }
 
@@ -154,7 +162,7 @@ static int write_struts(const char *path, const tr_curve *c, const tr_thickness 
 
 int tr_cmd_measure(int argc, char **argv)
 {
-    int json = 0, per_comp = 0, kkt = 0;
+    int json = 0, per_comp = 0, kkt = 0, vertex_contacts = 0, invariants = 0;
     tr_kkt_params kp;
     tr_kkt_params_default(&kp);
     const char *struts_path = NULL, *forces_path = NULL;
@@ -195,6 +203,16 @@ int tr_cmd_measure(int argc, char **argv)
                 free(files);
                 return 2;
             }
+        } else if (!strcmp(a, "--invariants")) {
+            invariants = 1;
+        } else if (!strcmp(a, "--contacts") && i + 1 < argc) {
+            const char *m = argv[++i];
+            if (strcmp(m, "segment") && strcmp(m, "vertex")) {
+                fprintf(stderr, "tightrope measure: --contacts wants segment or vertex, got '%s'\n", m);
+                free(files);
+                return 2;
+            }
+            vertex_contacts = !strcmp(m, "vertex");
         } else if (a[0] == '-' && a[1] == '-') {
             fprintf(stderr, "tightrope measure: unknown or incomplete option '%s' (see tightrope measure --help)\n", a);
             free(files);
@@ -202,6 +220,14 @@ int tr_cmd_measure(int argc, char **argv)
         } else {
             files[nfiles++] = a;
         }
+    }
+    if (vertex_contacts && kkt) {
+        /* The certificate's constraints are Rawdon's struts; the vertex
+         * model's multipliers are not defined here. */
+        fprintf(stderr, "tightrope measure: --contacts vertex has no KKT certificate (--kkt, --kkt-band, "
+                        "--kkt-forces are Rawdon's)\n");
+        free(files);
+        return 2;
     }
     if (nfiles == 0 || ((struts_path || forces_path) && nfiles != 1)) {
         fprintf(stderr, nfiles ? "tightrope measure: --struts and --kkt-forces take exactly one FILE\n"
@@ -308,8 +334,20 @@ int tr_cmd_measure(int argc, char **argv)
             tr_json_string(&out, files[f]);
             tr_text_printf(&out, ", \"components\": %d, ", c->ncomp);
             json_fields(&out, &m);
+            if (vertex_contacts && (status = tr_measure_vertex_append(&out, c, &m, 1, &err))) {
+                fprintf(stderr, "tightrope measure: %s: %s\n", files[f], err.msg);
+                status = status == TR_ENOMEM ? 1 : 2;
+                free(pc);
+                break;
+            }
             if (kkt)
                 json_kkt(&out, &kr, kp.band);
+            if (invariants && (status = tr_measure_invariants_append(&out, c, 1, &err))) {
+                fprintf(stderr, "tightrope measure: %s: %s\n", files[f], err.msg);
+                status = status == TR_ENOMEM ? 1 : 2;
+                free(pc);
+                break;
+            }
             tr_text_printf(&out, ", \"per_component\": [");
             for (int k = 0; k < c->ncomp; k++) {
                 tr_text_printf(&out, "%s{\"component\": %d, \"closed\": %s, ", k ? ", " : "", k,
@@ -328,8 +366,20 @@ int tr_cmd_measure(int argc, char **argv)
                 snprintf(label, sizeof label, "comp %d", k);
                 table_row(&out, label, &pc[k]);
             }
+            if (vertex_contacts && (status = tr_measure_vertex_append(&out, c, &m, 0, &err))) {
+                fprintf(stderr, "tightrope measure: %s: %s\n", files[f], err.msg);
+                status = status == TR_ENOMEM ? 1 : 2;
+                free(pc);
+                break;
+            }
             if (kkt)
                 table_kkt(&out, &kr, kp.band);
+            if (invariants && (status = tr_measure_invariants_append(&out, c, 0, &err))) {
+                fprintf(stderr, "tightrope measure: %s: %s\n", files[f], err.msg);
+                status = status == TR_ENOMEM ? 1 : 2;
+                free(pc);
+                break;
+            }
             if (f + 1 < nfiles)
                 tr_text_printf(&out, "\n");
         }
