@@ -3,7 +3,7 @@
 # test per case of tests/scripts/hostile_limits.sh. The load case runs two
 # busy loops beside a 40 s run: it is serial, so that the suite's other
 # tests neither slow it nor are slowed by it.
-set(_limits_cases roads shuffles load refine_goal sighup first_checkpoint resume_goals)
+set(_limits_cases roads shuffles load huge_n refine_goal sighup first_checkpoint resume_goals)
 foreach(c ${_limits_cases})
   add_test(NAME cli_limits_${c}
     COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/scripts/hostile_limits.sh ${c} $<TARGET_FILE:tightrope>

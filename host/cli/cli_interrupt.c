@@ -1,5 +1,5 @@
-/* This file contains the interrupt flag of the commands that clean up
- * before they stop (cli_interrupt.h). */
+/* This file contains the interrupt flag of the commands that stop cleanly
+ * on a signal (cli_interrupt.h): the one piece of process state. */
 #include "cli/cli_interrupt.h"
 
 #include <signal.h>
@@ -23,3 +23,5 @@ void tr_cli_catch_interrupts(void)
 }
 
 int tr_cli_interrupted(void) { return interrupted; }
+
+volatile sig_atomic_t *tr_cli_interrupt_flag(void) { return &interrupted; }

@@ -22,6 +22,7 @@
 
 #include "cli/cli.h"
 #include "cli/cli_args.h"
+#include "cli/cli_interrupt.h"
 #include "curve/curve_io.h"
 #include "engine/engine.h"
 #include "curve/generate.h"
@@ -33,20 +34,10 @@
 #include "util/text_file.h"
 #include "oracle/thickness.h"
 
-/* The one piece of process state: raised by the signal handler, polled by
- * the engine between steps. */
-static volatile sig_atomic_t stop_requested = 0;
-
 /* The certificate costs ~0.05 s at N = 400, ~1.2 s at 1600 and ~12 s at
  * 2400 on a 2-core machine (bench/RESULTS.md), growing faster than N^2:
  * above this it runs only when asked for (--kkt). */
 #define KKT_AUTO_MAX_N 2400
-
-static void on_signal(int sig)
-{
-    (void)sig;
-    stop_requested = 1;
-}
 
 static void usage(FILE *out)
 {
@@ -672,10 +663,18 @@ static void shift_curve(tr_curve *c, const double shift[3])
             c->x[3 * i + (size_t)a] -= shift[a];
 }
 
+/* What the bound keeps back of --time-limit T for the run to end in: the
+ * step, settle pass or solver iteration under way when the bound passes
+ * (each looks at the clock only between its own iterations: up to a second
+ * at N = 9600 on a loaded machine), the certificate and the write. Beside
+ * two busy loops, `--refine-to 9600 --time-limit 40` ended 0.1 to 2 s past
+ * its limit without it. */
+static double finish_reserve(double t) { return fmin(0.05 * t, 2.0); }
+
 /* The command's hard bound: its --time-limit and the stop flag. */
 static tr_deadline command_bound(const tighten_opts *o)
 {
-    return (tr_deadline){.at = o->bound_at, .stop = &stop_requested};
+    return (tr_deadline){.at = o->bound_at, .stop = tr_cli_interrupt_flag()};
 }
 
 static int shuffle_start(const tighten_opts *o, tr_curve *c, tr_error *err)
@@ -740,6 +739,10 @@ static int read_start(const tighten_opts *o, tr_curve *c, tr_error *err)
         return rc;
     if (c->ncst == 0)
         shift_curve(c, o->shift);
+    /* the start's measures are within the command's bound: at 10^7
+     * vertices (--n) each is tens of seconds */
+    tr_deadline bound = command_bound(o);
+    tr_thickness_opts bounded = {.bound = &bound};
     if (o->shuffled && (rc = shuffle_start(o, c, err))) {
         tr_curve_free(c);
         return rc;
@@ -762,6 +765,12 @@ static int read_start(const tighten_opts *o, tr_curve *c, tr_error *err)
             tr_thickness before, after;
             rc = adds ? tr_resample_smooth(c, per, &r, err) : tr_resample(c, per, &r, err);
             free(per);
+            int past = rc == TR_OK ? tr_deadline_passed(&bound) : 0;
+            if (past) {
+                tr_curve_free(&r);
+                rc = tr_fail(err, TR_EINTERRUPTED, "%s resampled to %ld vertices: %s", in, o->n,
+                             past == 2 ? "stopped by a signal" : "the time limit came");
+            }
             /* A spline through a tight polygon bulges out between its
              * vertices, so strands that touched come closer than before
              * (1.99835 for the 2 x 40 Hopf link refined to 80): the added
@@ -769,7 +778,8 @@ static int read_start(const tighten_opts *o, tr_curve *c, tr_error *err)
              * which ropelength does not see. Constraint planes are fixed,
              * so a constrained rope is left as it is. */
             if (rc == TR_OK && adds && c->ncst == 0 &&
-                !tr_thickness_measure(c, NULL, &before, NULL, err) && !tr_thickness_measure(&r, NULL, &after, NULL, err) &&
+                !tr_thickness_measure(c, &bounded, &before, NULL, err) &&
+                !tr_thickness_measure(&r, &bounded, &after, NULL, err) &&
                 isfinite(before.dcsd) && after.dcsd < before.dcsd && after.dcsd > 0.5 * before.dcsd)
                 scale_curve(&r, before.dcsd / after.dcsd);
             if (rc == TR_OK) {
@@ -801,7 +811,7 @@ static int read_start(const tighten_opts *o, tr_curve *c, tr_error *err)
                              in, k, q ? "last" : "first", ends[q] - c->start[k]);
     }
     tr_thickness t0;
-    if (rc == TR_OK && (rc = tr_thickness_measure(c, NULL, &t0, NULL, err)))
+    if (rc == TR_OK && (rc = tr_thickness_measure(c, &bounded, &t0, NULL, err)))
         tr_fail_wrap(err, rc, "%s", in);
     if (rc == TR_OK && !o->scale && tr_curve_scale_exponent(c))
         rc = tr_fail(err, TR_EGEOMETRY,
@@ -837,22 +847,19 @@ static int read_start(const tighten_opts *o, tr_curve *c, tr_error *err)
     return rc;
 }
 
-/* SIGINT/SIGTERM/SIGHUP raise stop_requested: the run (and a solver run at
- * the engine's start) stops at its next step and writes what it has. A
- * closed terminal or SSH session (SIGHUP) must not cost the run, and its
- * last messages then go to a closed pipe: SIGPIPE is ignored so that the
- * write fails (and is let go) instead of killing the process before the
- * output is written. */
+/* SIGINT/SIGTERM/SIGHUP raise the interrupt flag (cli_interrupt.h): the
+ * run (and a solver run at the engine's start) stops at its next step and
+ * writes what it has. A closed terminal or SSH session (SIGHUP) must not
+ * cost the run, and its last messages then go to a closed pipe: SIGPIPE is
+ * ignored so that the write fails (and is let go) instead of killing the
+ * process before the output is written. */
 static void catch_signals(void)
 {
+    tr_cli_catch_interrupts();
     struct sigaction sa;
     memset(&sa, 0, sizeof sa);
-    sa.sa_handler = on_signal;
-    sigemptyset(&sa.sa_mask);
-    sigaction(SIGINT, &sa, NULL);
-    sigaction(SIGTERM, &sa, NULL);
-    sigaction(SIGHUP, &sa, NULL);
     sa.sa_handler = SIG_IGN;
+    sigemptyset(&sa.sa_mask);
     sigaction(SIGPIPE, &sa, NULL);
 }
 
@@ -985,7 +992,7 @@ static int open_start(const tighten_opts *o, tr_engine **e)
              * second-order solver first (engine.h, newton_first) */
             prm.newton_first = !o->no_newton && (o->refine_to <= 0 || c.nv / (size_t)c.ncomp >= (size_t)o->refine_to);
             prm.newton_first_limit = o->time_limit;
-            prm.newton_first_stop = &stop_requested;
+            prm.newton_first_stop = tr_cli_interrupt_flag();
             prm.newton_first_checkpoint = o->ckpt;
             prm.newton_first_checkpoint_every = o->ckpt ? o->ckpt_every : 0;
             catch_signals();
@@ -1045,7 +1052,7 @@ static int run(const tighten_opts *o, tr_engine *e, tr_stop_reason *why)
                             .coarse_residual = 1e-3,
                             .checkpoint_every = o->ckpt ? o->ckpt_every : 0,
                             .checkpoint_path = o->ckpt,
-                            .stop = &stop_requested,
+                            .stop = tr_cli_interrupt_flag(),
                             .progress_every = 0.25,
                             .progress = on_progress,
                             .user = &pctx};
@@ -1257,7 +1264,7 @@ static void fill_report(const tighten_opts *o, const tighten_result *r, tr_tight
     rep->road = o->resume ? 0 : r->tries > 0 ? r->best_try + 1 : 1;
 }
 
-int tr_tighten_stop_requested(void) { return stop_requested != 0; }
+int tr_tighten_stop_requested(void) { return tr_cli_interrupted() != 0; }
 
 int tr_cmd_tighten(int argc, char **argv) { return tr_tighten_command(argc, argv, NULL); }
 
@@ -1308,7 +1315,7 @@ int tr_tighten_command(int argc, char **argv, tr_tighten_report *rep)
      * start are the command's time too; a resumed run's limit counts the
      * time before its checkpoint (as the engine's steps do) */
     if (o.time_limit > 0)
-        o.bound_at = tr_clock_seconds() + fmax(o.time_limit - elapsed_before, 0.0);
+        o.bound_at = tr_clock_seconds() + fmax(o.time_limit - elapsed_before - finish_reserve(o.time_limit), 0.0);
     /* --tries: the roads one after the other, each with an equal share of
      * the time left; of the certified ones the finest, then the shortest,
      * is kept. A road that fails after the first is skipped (said on
@@ -1420,7 +1427,7 @@ int tr_tighten_command(int argc, char **argv, tr_tighten_report *rep)
         r.tries = (int)(t < o.tries ? t + 1 : o.tries);
     }
     /* an interrupted series is an interrupted run, whichever road is kept */
-    if (stop_requested)
+    if (tr_cli_interrupted())
         r.why = TR_STOP_SIGNAL;
     tr_error err;
     rc = write_output(&o, e, &r, argc, argv, &err);

@@ -614,10 +614,15 @@ static int pairs_walk(const tr_nsearch *s, double *cutoff, size_t min_gap, unsig
         si = &si_store;
     }
     int rc = 0;
+    size_t leaves = 0;
     for (size_t id = 0; id < s->nnodes && rc == 0; id++) {
         const node_t *leaf = &s->node[id];
         if (leaf->left != 0)
             continue;
+        if (s->bound && ++leaves % 64 == 0 && tr_deadline_passed(s->bound)) {
+            rc = TR_NSEARCH_STOPPED;
+            break;
+        }
         if ((flags & (TR_NSEARCH_CRITICAL | TR_NSEARCH_SLAB)) && isfinite(*cutoff) && leaf->comp >= 0 &&
             leaf->b - leaf->a > 1) {
             rc = query_block(s, leaf, min_gap, flags, pad, si, cutoff, fn, ctx, &cand);

@@ -28,6 +28,7 @@
 #include <stddef.h>
 
 #include "curve/curve.h"
+#include "util/clock.h"
 
 /* Global edge numbering: the edges of component 0 first (edge l of a
  * component runs from its vertex l to vertex l+1, the last edge of a closed
@@ -41,7 +42,16 @@ typedef struct tr_nsearch {
     size_t *estart;    /* ncomp+1: first global edge of each component */
     size_t nnodes;
     struct tr_nsearch_node *node;
+    /* NULL (tr_nsearch_build's): none. Else a walk of tr_nsearch_pairs looks
+     * at it between runs of leaves and, once it has passed, stops with
+     * TR_NSEARCH_STOPPED: at 10^7 edges one walk is tens of seconds, which
+     * a --time-limit must be able to cut (the caller sets it). */
+    const tr_deadline *bound;
 } tr_nsearch;
+
+/* What tr_nsearch_pairs returns when s->bound stopped it (never a
+ * callback's own value: callbacks return small positive codes). */
+#define TR_NSEARCH_STOPPED (-1000)
 
 /* Flags for a query. */
 enum {

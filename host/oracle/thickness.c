@@ -379,6 +379,13 @@ static int crossing_candidate(void *ctx, size_t ei, size_t ej, double *cutoff)
     return 1; /* found: stops the search */
 }
 
+/* The measure's bound has passed (tr_thickness_opts.bound). */
+static int stopped(const tr_nsearch *ns, tr_error *err)
+{
+    return tr_fail(err, TR_EINTERRUPTED, "measuring %zu vertices: %s before the measure was done", ns->c->nv,
+                   tr_deadline_passed(ns->bound) == 2 ? "stopped by a signal" : "the time limit came");
+}
+
 static int find_crossing(const tr_nsearch *ns, tr_error *err)
 {
     const tr_curve *c = ns->c;
@@ -390,6 +397,8 @@ static int find_crossing(const tr_nsearch *ns, tr_error *err)
     int rc = tr_nsearch_pairs(ns, &cutoff, 2, 0, crossing_candidate, &X);
     if (rc == 0)
         return TR_OK;
+    if (rc == TR_NSEARCH_STOPPED)
+        return stopped(ns, err);
     if (rc != 1)
         return tr_fail(err, TR_ENOMEM, "out of memory looking for self-crossings");
     int ki = ns->ecomp[X.ei], kj = ns->ecomp[X.ej];
@@ -449,6 +458,7 @@ static int measure_frame(const tr_curve *c, const tr_thickness_opts *opts, tr_th
     int rc = tr_nsearch_build(&ns, c, err);
     if (rc)
         return rc;
+    ns.bound = opts ? opts->bound : NULL;
     if ((rc = find_crossing(&ns, err))) {
         tr_nsearch_free(&ns);
         return rc;
@@ -470,9 +480,13 @@ static int measure_frame(const tr_curve *c, const tr_thickness_opts *opts, tr_th
         if (rc == 0)
             rc = tr_nsearch_pairs(&ns, &cutoff, pc, TR_NSEARCH_CRITICAL, strut_candidate, &S);
     }
+    if (rc == TR_NSEARCH_STOPPED)
+        rc = stopped(&ns, err);
+    else if (rc)
+        rc = tr_fail(err, TR_ENOMEM, "out of memory collecting struts");
     tr_nsearch_free(&ns);
     if (rc)
-        return tr_fail(err, TR_ENOMEM, "out of memory collecting struts");
+        return rc;
 
     out->dcsd = S.best;
     if (isfinite(S.best))

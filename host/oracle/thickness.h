@@ -29,6 +29,7 @@
 #define TR_THICKNESS_H
 
 #include "curve/curve.h"
+#include "util/clock.h"
 
 /* A strut: a doubly-critical closest-point pair between edges ei and ej,
  * at parameters si, sj in [0,1] along them. Edges are numbered globally as in
@@ -65,6 +66,10 @@ typedef struct tr_thickness_opts {
     double strut_rel_tol;
     /* Look at all N^2 edge pairs instead of the tree search (tests). */
     int brute_force;
+    /* NULL: none. Else the measure stops with TR_EINTERRUPTED once it has
+     * passed (its searches look at it as they go): a start of 10^7
+     * vertices is tens of seconds a measure, within a --time-limit. */
+    const tr_deadline *bound;
 } tr_thickness_opts;
 
 /* Whole curve. struts may be NULL. */

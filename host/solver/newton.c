@@ -716,7 +716,11 @@ int tr_newton(tr_curve *cv, const tr_newton_params *prm, tr_newton_stats *st, tr
         prm->max_inner < 1)
         return tr_fail(err, TR_EINVAL, "newton: need 0 < max_move <= skin / 8, max_bend > 0 and at least one iteration");
     tr_thickness th0;
-    int rc = tr_thickness_measure(cv, NULL, &th0, NULL, err);
+    /* the start's measure is within the time limit and the stop flag too
+     * (seconds at 10^6 vertices and more), as the first list build is */
+    tr_deadline start_bound = {.at = prm->time_limit > 0 ? t0 + prm->time_limit : 0, .stop = prm->stop};
+    tr_thickness_opts start_opts = {.bound = &start_bound};
+    int rc = tr_thickness_measure(cv, &start_opts, &th0, NULL, err);
     if (rc)
         return rc;
     if (!(th0.thickness > 0) || !isfinite(th0.thickness))

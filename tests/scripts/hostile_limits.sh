@@ -66,6 +66,17 @@ load)
   [ "$rc" = 0 ] || [ "$rc" = 1 ] || fail "exit $rc: $(tail -2 err)"
   valid o.vect
   ;;
+huge_n)
+  # --n far beyond what can be tightened in the time: the start's
+  # resampling and measures (seconds each at 10^6 to 10^7 vertices) and the
+  # solver's first strut list (N^2 pairs) did not look at the clock (46 s
+  # past a 10 s limit at 10^7 vertices; at 2 x 10^6 minutes): exit 1,
+  # nothing written, within the limit
+  timed 2 "$tr" tighten t100.vect -o o.vect --n 2000000 --time-limit 2 --device reference
+  [ "$rc" = 1 ] || fail "exit $rc, want 1: $(tail -2 err)"
+  grep -q "time limit came" err || fail "no reason: $(tail -2 err)"
+  [ -e o.vect ] && fail "o.vect written"
+  ;;
 refine_goal)
   # a --refine-to the time does not reach is not a success (an interrupted
   # --refine-to 3200 resumed with --time-limit 3 wrote N = 800 with exit
