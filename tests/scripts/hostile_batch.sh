@@ -10,21 +10,11 @@
 # vertices stays at n here), and a regular n-gon's closed-form ropelength
 # 2n tan(pi/n) (a circle's tight shape), never numbers of our own earlier runs.
 set -u
+. "$(cd "$(dirname "$0")" && pwd)/cli_testlib.sh"
 case_=$1 tr=$2 work=$3
 rm -rf "$work" && mkdir -p "$work" && cd "$work" || exit 1
-fail() { echo "FAIL: $*"; exit 1; }
 export TIGHTROPE_DEVICE=reference
 tab=$'\t'
-# run CMD...: stdout to out, stderr to err, status in rc
-run() { "$@" >out 2>err; rc=$?; }
-# refused PATTERN CMD...: exit 2 with one line on stderr matching PATTERN
-refused() {
-  local pat=$1; shift
-  run "$@"
-  [ "$rc" = 2 ] || fail "$*: exit $rc, want 2: $(cat err)"
-  [ "$(wc -l <err)" = 1 ] || fail "$*: want one line on stderr, got: $(cat err)"
-  grep -Eq -- "$pat" err || fail "$*: message does not match '$pat': $(cat err)"
-}
 # col TABLE KNOT COLUMN: the knot's value under the column's header
 col() {
   awk -F'\t' -v k="$2" -v c="$3" 'NR == 1 { for (i = 1; i <= NF; i++) if ($i == c) n = i; next } $1 == k { print $n }' "$1"
@@ -50,31 +40,31 @@ cross)
   mkdir xo && cp t.vect xo/y.vect
   printf 'y\tc.vect\nx\txo/y.vect\n' >cross.tsv
   before=$(sums xo/y.vect)
-  refused '^tightrope batch: cross.tsv:2: .*xo/y.vect.* y' "$tr" batch cross.tsv -o xo -- --steps 3
+  refused 2 '^tightrope batch: cross.tsv:2: .*xo/y.vect.* y' "$tr" batch cross.tsv -o xo -- --steps 3
   [ "$(sums xo/y.vect)" = "$before" ] || fail "x's start xo/y.vect changed"
   [ "$(ls -A xo)" = y.vect ] || fail "written into xo: $(ls -A xo)"
   # ... by a symbolic link in OUT to the start (the writer replaces a link's target)
   mkdir lo && ln -s ../t.vect lo/y.vect
   printf 'y\tc.vect\nx\tt.vect\n' >link.tsv
   before=$(sums t.vect)
-  refused '^tightrope batch: link.tsv:2: .*t.vect' "$tr" batch link.tsv -o lo -- --steps 3
+  refused 2 '^tightrope batch: link.tsv:2: .*t.vect' "$tr" batch link.tsv -o lo -- --steps 3
   [ "$(sums t.vect)" = "$before" ] && [ -L lo/y.vect ] || fail "t.vect or the link changed"
   # ... by ../ and a hard link
   mkdir ho && ln t.vect ho/y.vect
-  refused '^tightrope batch: link.tsv:2: ' "$tr" batch link.tsv -o ho/../ho -- --steps 3
+  refused 2 '^tightrope batch: link.tsv:2: ' "$tr" batch link.tsv -o ho/../ho -- --steps 3
   [ "$(sums t.vect)" = "$before" ] || fail "t.vect changed through a hard link"
   # ... a knot's retry round's curve (OUT/retry-1/NAME.vect)
   mkdir -p ro/retry-1 && cp t.vect ro/retry-1/y.vect
   printf 'y\tc.vect\nx\tro/retry-1/y.vect\n' >retry.tsv
   printf 'knot\tropelength\ny\t1\n' >ref.tsv
-  refused '^tightrope batch: retry.tsv:2: .*retry 1 curve' "$tr" batch retry.tsv -o ro --compare ref.tsv --retry 1
+  refused 2 '^tightrope batch: retry.tsv:2: .*retry 1 curve' "$tr" batch retry.tsv -o ro --compare ref.tsv --retry 1
   cmp -s t.vect ro/retry-1/y.vect || fail "ro/retry-1/y.vect changed"
   # ... the manifest itself as the table, and a folder of starts as its own OUT
   mkdir mo && printf 'y\t../c.vect\n' >mo/table.tsv && cp mo/table.tsv m.copy
-  refused '^tightrope batch: the manifest mo/table.tsv .*table' "$tr" batch mo/table.tsv -o mo --table-only
+  refused 2 '^tightrope batch: the manifest mo/table.tsv .*table' "$tr" batch mo/table.tsv -o mo --table-only
   cmp -s m.copy mo/table.tsv || fail "the manifest was written over"
   mkdir so && cp c.vect so/a.vect
-  refused 'the start so/a.vect of a ' "$tr" batch so -o so
+  refused 2 'the start so/a.vect of a ' "$tr" batch so -o so
   cmp -s c.vect so/a.vect && [ "$(ls -A so)" = a.vect ] || fail "so changed: $(ls -A so)"
   # the same manifest into a folder of its own: each knot is what its start is
   run "$tr" batch cross.tsv -o fresh -- --steps 3
@@ -170,9 +160,9 @@ merge_other_start)
   printf 'tref\tc.vect\n' >mb.tsv
   "$tr" batch ma.tsv -o a --quiet 2>err && "$tr" batch mb.tsv -o b --quiet 2>err || fail "batches: $(cat err)"
   before=$(sums a/tref.vect a/tref.row.tsv a/table.tsv)
-  refused '^tightrope batch: --merge: b/tref.row.tsv is of another start than ma.tsv:1' "$tr" batch ma.tsv -o a --merge b
+  refused 2 '^tightrope batch: --merge: b/tref.row.tsv is of another start than ma.tsv:1' "$tr" batch ma.tsv -o a --merge b
   [ "$(sums a/tref.vect a/tref.row.tsv a/table.tsv)" = "$before" ] || fail "a changed"
-  refused 'another start' "$tr" batch ma.tsv -o d --merge b
+  refused 2 'another start' "$tr" batch ma.tsv -o d --merge b
   [ -e d ] && fail "a refused merge made its folder"
   # the same start from another run (more steps: shorter) is merged
   printf 'tref\tt.vect\t-\t--steps 60\n' >mc.tsv
@@ -194,18 +184,18 @@ options_early)
   circle 40 c.vect
   trefoil 64 t.vect
   printf 'a\tt.vect\t-\t--steps 5\nb\tc.vect\t-\t--tries x\n' >m.tsv
-  refused "^tightrope batch: m.tsv:2: bad --tries 'x'" "$tr" batch m.tsv -o o
+  refused 2 "^tightrope batch: m.tsv:2: bad --tries 'x'" "$tr" batch m.tsv -o o
   printf 'a\tt.vect\t-\t--steps 5\n# comment\nb\tc.vect\t-\t--bogus\n' >m.tsv
-  refused "^tightrope batch: m.tsv:3: unknown option '--bogus'" "$tr" batch m.tsv -o o
-  refused "^tightrope batch: m.tsv:3: unknown option '--bogus'" "$tr" batch m.tsv --list
+  refused 2 "^tightrope batch: m.tsv:3: unknown option '--bogus'" "$tr" batch m.tsv -o o
+  refused 2 "^tightrope batch: m.tsv:3: unknown option '--bogus'" "$tr" batch m.tsv --list
   printf 'a\tt.vect\t-\t--tries 3 --shuffles 2\nb\tc.vect\t-\t--steps 5\n' >m.tsv
   printf 'knot\tropelength\na\t1\nb\t1\n' >ref.tsv
-  refused "^tightrope batch: --retry-options '--tries 0': bad --tries '0'" \
+  refused 2 "^tightrope batch: --retry-options '--tries 0': bad --tries '0'" \
     "$tr" batch m.tsv -o o --compare ref.tsv --retry 2 --retry-options "--tries 4" --retry-options "--tries 0"
   # a recipe that fails only with a line's options names the line
-  refused "^tightrope batch: --retry-options '--tries 2' with m.tsv:1: .*--shuffles" \
+  refused 2 "^tightrope batch: --retry-options '--tries 2' with m.tsv:1: .*--shuffles" \
     "$tr" batch m.tsv -o o --compare ref.tsv --retry 1 --retry-options "--tries 2"
-  refused "^tightrope batch: the tighten options after --: bad --steps '0'" "$tr" batch m.tsv -o o -- --steps 0
+  refused 2 "^tightrope batch: the tighten options after --: bad --steps '0'" "$tr" batch m.tsv -o o -- --steps 0
   [ -e o ] && fail "a refused batch made its output folder: $(ls -A o)"
   true
   ;;

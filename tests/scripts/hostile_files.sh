@@ -10,6 +10,7 @@
 # made with mknod (root, as here and in CI; skipped otherwise); the system's
 # own /dev/null is never named, so that an old binary cannot replace it.
 set -u
+. "$(cd "$(dirname "$0")" && pwd)/cli_testlib.sh"
 case_=$1 tr=$2 work=$3
 here=$(cd "$(dirname "$0")" && pwd)
 # a tmpfs left mounted by a killed run of disk_full
@@ -22,17 +23,6 @@ cleanup() {
   true
 }
 trap cleanup EXIT
-fail() { echo "FAIL: $*"; exit 1; }
-# run CMD...: stdout to out, stderr to err, status in rc
-run() { "$@" >out 2>err; rc=$?; }
-# refused STATUS WHAT-TO-GREP CMD...: exits STATUS with one line on stderr matching the pattern
-refused() {
-  local want=$1 pat=$2; shift 2
-  run "$@"
-  [ "$rc" = "$want" ] || fail "$*: exit $rc, want $want: $(cat err)"
-  [ "$(wc -l <err)" = 1 ] || fail "$*: want one line on stderr, got: $(cat err)"
-  grep -Eq -- "$pat" err || fail "$*: message does not match '$pat': $(cat err)"
-}
 # ok CMD...: exits 0
 ok() { run "$@"; [ "$rc" = 0 ] || fail "$*: exit $rc: $(cat err)"; }
 # reader FIFO FILE: reads FIFO into FILE in the background (its stdout and

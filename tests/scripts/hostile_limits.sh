@@ -6,9 +6,9 @@
 # Usage: hostile_limits.sh CASE TIGHTROPE WORK_DIR. Exit 0 pass, 1 fail.
 # The bounds are the issue's: wall clock at most the limit plus one second.
 set -u
+. "$(cd "$(dirname "$0")" && pwd)/cli_testlib.sh"
 case_=$1 tr=$2 work=$3
 rm -rf "$work" && mkdir -p "$work" && cd "$work" || exit 1
-fail() { echo "FAIL: $*"; exit 1; }
 # timed LIMIT CMD...: runs CMD, status in rc, seconds in wall; fails past LIMIT + 1
 timed() {
   local lim=$1; shift

@@ -9,24 +9,10 @@
 # rounding of the coordinates, or the same curve at the origin; never our own
 # earlier output.
 set -u
+. "$(cd "$(dirname "$0")" && pwd)/cli_testlib.sh"
 case_=$1 tr=$2 work=$3
 here=$(cd "$(dirname "$0")" && pwd)
 rm -rf "$work" && mkdir -p "$work" && cd "$work" || exit 1
-fail() { echo "FAIL: $*"; exit 1; }
-# run CMD...: stdout to out, stderr to err, status in rc
-run() { "$@" >out 2>err; rc=$?; }
-# refused STATUS WHAT-TO-GREP CMD...: exits STATUS with one line on stderr matching the pattern
-refused() {
-  local want=$1 pat=$2; shift 2
-  run "$@"
-  [ "$rc" = "$want" ] || fail "$*: exit $rc, want $want: $(cat err)"
-  [ "$(wc -l <err)" = 1 ] || fail "$*: want one line on stderr, got: $(cat err)"
-  grep -Eq -- "$pat" err || fail "$*: message does not match '$pat': $(cat err)"
-}
-# rel GOT WANT TOL: |got/want - 1| <= tol
-rel() { awk -v g="$1" -v w="$2" -v t="$3" 'BEGIN { r = (g - w) / w; if (r < 0) r = -r; exit !(r <= t && g == g) }'; }
-# json_get KEY FILE: the first number of "KEY": in a JSON text
-json_get() { grep -o "\"$1\": [-+0-9.eE]*" "$2" | head -1 | sed 's/.*: //'; }
 # moved DX IN OUT: a VECT file with DX added to every x (awk's doubles: the
 # sum rounded to the doubles at DX, as any program that moved it would)
 moved() {
