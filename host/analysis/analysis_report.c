@@ -31,6 +31,20 @@ static void sb_num(tr_text *b, double v)
     tr_json_number(b, "%.10g", v);
 }
 
+/* "m = 1 (...)": which averaging block was used and why, so a reader of
+ * the report knows whether the paper's window or the caller chose it. */
+static void sb_m_reason(tr_text *b, const tr_analysis *a)
+{
+    double e = a->L / (double)a->n, r = TR_PAPER_WINDOW_ARCLENGTH / e;
+    if (!a->m_default)
+        tr_text_printf(b, "m = %zu (given; the paper's window of arclength %.4g is %.3g edges e = %.4g)", a->m,
+                       TR_PAPER_WINDOW_ARCLENGTH, r, e);
+    else
+        tr_text_printf(b, "m = %zu (the paper's window of arclength %.4g at e = %.4g: max(1, round(%.3g))%s)",
+                       a->m, TR_PAPER_WINDOW_ARCLENGTH, e, r,
+                       a->m < floor(r + 0.5) ? ", at most N/4" : "");
+}
+
 int tr_report_curvature_csv(const tr_analysis *a, char **out)
 {
     tr_text b = {0};
@@ -206,6 +220,12 @@ int tr_report_summary_json(const tr_analysis *a, const tr_report_ctx *ctx, char 
     tr_json_string(&b, ctx->input ? ctx->input : "");
     tr_text_printf(&b, ",\n  \"component\": %d,\n  \"vertices\": %zu,\n  \"m\": %zu,\n", ctx->component,
               a->n, a->m);
+    /* why this m: the paper's arclength window over the edge, or given */
+    tr_text_printf(&b, "  \"m_rule\": \"%s\", \"m_window_arclength\": ", a->m_default ? "paper_window" : "given");
+    sb_num(&b, TR_PAPER_WINDOW_ARCLENGTH);
+    tr_text_printf(&b, ", \"edge\": ");
+    sb_num(&b, a->L / (double)a->n);
+    tr_text_printf(&b, ",\n");
     tr_text_printf(&b, "  \"scale_to_unit_thickness\": ");
     sb_num(&b, ctx->scale);
     tr_text_printf(&b, ",\n  \"ropelength\": {");
@@ -359,8 +379,9 @@ int tr_report_text(const tr_analysis *a, const tr_report_ctx *ctx, char **out)
     tr_text b = {0};
     const tr_symmetry *s = &a->sym;
     int cmp = ctx->compare_paper;
-    tr_text_printf(&b, "shape analysis of %s, component %d: N = %zu, m = %zu\n", ctx->input, ctx->component,
-              a->n, a->m);
+    tr_text_printf(&b, "shape analysis of %s, component %d: N = %zu, ", ctx->input, ctx->component, a->n);
+    sb_m_reason(&b, a);
+    tr_text_printf(&b, "\n");
     if (ctx->thick) {
         const tr_thickness *t = ctx->thick;
         tr_text_printf(&b, "  scaled by %.10g to thickness 1: length %.10g, MinRad %.10g, shortest strut %.10g,\n"

@@ -78,13 +78,33 @@ static int summarise_jump(const tr_analysis *a, tr_jump_quantity q, double r, in
     return TR_OK;
 }
 
+size_t tr_analysis_default_m(double L, size_t n)
+{
+    if (n < 4 || !(L > 0) || !isfinite(L))
+        return 1;
+    /* s / e = s n / L, in double before any conversion: a curve given in
+     * tiny units (a library caller's, not at thickness 1) would overflow size_t */
+    double q = floor(TR_PAPER_WINDOW_ARCLENGTH * (double)n / L + 0.5);
+    double cap = (double)(n / 4);
+    if (!(q >= 1.0))
+        return 1;
+    return q > cap ? n / 4 : (size_t)q;
+}
+
 int tr_analyze_component(const double *x, size_t n, const tr_contact_pair *pairs, size_t npairs,
                          const tr_analysis_opts *opts, tr_analysis *out, tr_error *err)
 {
     memset(out, 0, sizeof *out);
     tr_analysis_opts o = opts ? *opts : (tr_analysis_opts){0};
-    if (!o.m)
-        o.m = 10;
+    if (!o.m) { /* a fixed arclength window, not a fixed count (tr_analysis_default_m) */
+        double *s0 = malloc((n + 1) * sizeof *s0);
+        if (!s0)
+            return tr_fail(err, TR_ENOMEM, "out of memory");
+        tr_polyline_arclength(x, n, s0);
+        o.m = tr_analysis_default_m(s0[n], n);
+        free(s0);
+        out->m_default = 1;
+    }
     if (!(o.plateau_eps > 0))
         o.plateau_eps = 1e-4;
     if (!o.plateau_min)

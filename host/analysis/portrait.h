@@ -16,7 +16,7 @@
 #include "analysis/symmetry.h"
 
 typedef struct tr_analysis_opts {
-    size_t m;             /* averaging block; 0: 10 (the paper's choice) */
+    size_t m;             /* averaging block; 0: tr_analysis_default_m (the paper's window) */
     double plateau_eps;   /* plateau level 1 - eps; <= 0: 1e-4 */
     size_t plateau_min;   /* minimum arcs at 1 - eps in a plateau; 0: 2 */
     double plateau_edge;  /* a plateau extends over arcs with kappa >= 1 - edge on either side
@@ -43,6 +43,7 @@ typedef struct tr_analysis {
     size_t n;        /* input vertices */
     double L;        /* input polygon length */
     size_t m;
+    int m_default;   /* m was chosen by tr_analysis_default_m (opts.m was 0), not given */
     tr_symmetry sym;
     tr_averaged_knot avg;  /* positions from the origin */
     tr_arc_profile prof;   /* on avg, positions from the origin */
@@ -69,6 +70,22 @@ typedef struct tr_analysis {
     tr_cycle *cycles;
     size_t ncycles;
 } tr_analysis;
+
+/* The arclength over which Przybyl & Pieranski averaged (REFERENCE.md 3.1,
+ * the paper's section 3): their K_p^(10), m = 10 blocks of the N = 200640
+ * trefoil's edges e_av = 1.63192456437e-4 (rope radius 1), so the window is
+ * 10 x 1.63192456437e-4 = 1.632e-3. The window, not m, is what suppresses
+ * the discretisation artefacts without smearing the plateau ends: a fixed m
+ * averages over m L/N, which at N = 2400 (m = 10: 0.136, near the plateau
+ * width 0.161) drew the trefoil's kappa = 1 plateaus down to a peak of 0.89. */
+#define TR_PAPER_WINDOW_ARCLENGTH (10.0 * 1.63192456437e-4)
+
+/* The default block: m = max(1, round(s / e)), s the paper's window, e = L/n
+ * the mean edge of a closed polygon of length L (in rope radii: the curve at
+ * thickness 1), and at most n/4 so that 4 averaged vertices remain. The
+ * paper's own N = 200640, L_p = 32.742934460 gives its m = 10; any N below
+ * about 30 000 for the trefoil gives m = 1. 1 when L or n is unusable. */
+size_t tr_analysis_default_m(double L, size_t n);
 
 /* x: closed component of n vertices; pairs: contacts (arclengths on x, any
  * origin), may be empty. */

@@ -54,7 +54,9 @@ static void usage(FILE *f)
             "unchanged, and refuses to write over anything else (a file of yours, the input).\n"
             "\n"
             "options:\n"
-            "  -m M               averaging block (default 10, the paper's; 1 = raw polygon; at most N/4)\n"
+            "  -m M               averaging block, 1 = raw polygon, at most N/4 (default: the paper's\n"
+            "                     window of arclength 0.00163 = 10 of its N = 200640 edges, in edges:\n"
+            "                     max(1, round(0.00163 N / L)), so m = 1 below N ~ 30000 for a trefoil)\n"
             "  --plots            also draw PNGs with gnuplot (needed on PATH)\n"
             "  --tube-size PX     the tube pictures' width and height, 200 to 4000 pixels (default 720)\n"
             "  --plateau-eps E    plateau = arcs with kappa >= 1 - E, 0 < E < 1 (default 1e-4)\n"
@@ -631,7 +633,9 @@ int tr_cmd_analyze(int argc, char **argv)
     }
     /* Everything about the input and the options is checked, and every
      * component analysed, before the output directory is made. */
-    size_t m = o.ao.m ? o.ao.m : 10;
+    /* An explicit -m must leave 4 averaged vertices; the default follows
+     * each component's N and length (tr_analysis_default_m, at most N/4). */
+    size_t m = o.ao.m;
     int nres = c.ncomp; /* every component, closed or open */
     for (int k = 0; k < c.ncomp; k++) {
         size_t nv = tr_comp_nv(&c, k);
@@ -644,7 +648,7 @@ int tr_cmd_analyze(int argc, char **argv)
             }
             continue;
         }
-        if (nv / m < 4) {
+        if (m && nv / m < 4) {
             fprintf(stderr, "tightrope analyze: -m %zu leaves fewer than 4 averaged vertices on component %d of %s (%zu vertices)\n",
                     m, k, in, nv);
             tr_curve_free(&c);

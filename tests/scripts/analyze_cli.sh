@@ -45,10 +45,11 @@ plots_coarse)
   # Coarse knots (N = 100 and 400, m = 10: averaged arcs of 3.3 and 1.0) have no kappa = 1
   # plateau and few points: every plot must still be drawn and hold data (the zoom was once
   # fixed to [0, 0.6], empty there, and gnuplot failed), and no temporary file is left.
+  # -m 10 explicitly: the default now follows N (m = 1 here) and would not leave few points.
   command -v gnuplot >/dev/null || { echo "gnuplot not installed"; exit 77; }
   for n in 100 400; do
     "$tr" make torus 2 3 --n $n -o "$work/t$n.vect" >/dev/null 2>&1 || fail "make N = $n"
-    "$tr" analyze "$work/t$n.vect" --out "$work/o$n" --plots >"$work/stdout" 2>"$work/stderr" || fail "N = $n: exit $?: $(cat "$work/stderr")"
+    "$tr" analyze "$work/t$n.vect" --out "$work/o$n" -m 10 --plots >"$work/stdout" 2>"$work/stderr" || fail "N = $n: exit $?: $(cat "$work/stderr")"
     for f in curvature_torsion plateau_zoom accumulated_torsion; do
       [ "$(head -c 4 "$work/o$n/$f.png" | od -An -c | tr -d ' ')" = '211PNG' ] || fail "N = $n: $f.png is not a PNG"
     done
