@@ -1184,10 +1184,14 @@ static int check_collisions(const batch_opts *o, const tr_batch_list *l, const s
             status = collision(o, hit, path, "", "its table");
     }
     for (long r = 0; status < 0 && r <= o->retry; r++) {
-        if (r == 0)
-            snprintf(dir, sizeof dir, "%s", o->out);
-        else
-            snprintf(dir, sizeof dir, "%s/retry-%ld", o->out, r);
+        int w = r == 0 ? snprintf(dir, sizeof dir, "%s", o->out)
+                       : snprintf(dir, sizeof dir, "%s/retry-%ld", o->out, r);
+        /* a folder's name cut short would be checked in another's place */
+        if (w < 0 || (size_t)w >= sizeof dir) {
+            fprintf(stderr, "tightrope batch: -o %s: the path is too long\n", o->out);
+            status = 2;
+            break;
+        }
         /* nothing can be in a folder that is not there */
         if (r > 0 && access(dir, F_OK))
             continue;

@@ -641,7 +641,10 @@ static void start_shift(tighten_opts *o)
     memset(o->shift, 0, sizeof o->shift);
     tr_curve c;
     tr_error err;
-    if (o->resume || !o->in || tr_curve_read(o->in, TR_FORMAT_AUTO, &c, &err))
+    /* a pipe (cat k.vect | tighten /dev/stdin) is read once, by read_start */
+    struct stat st;
+    if (o->resume || !o->in || stat(o->in, &st) != 0 || !S_ISREG(st.st_mode) ||
+        tr_curve_read(o->in, TR_FORMAT_AUTO, &c, &err))
         return;
     if (c.ncst == 0 && c.nv > 0)
         for (int a = 0; a < 3; a++) {

@@ -130,7 +130,10 @@ static int search_fast(vertex_search *S, double du_max, double e_max)
     size_t K = S->K;
     for (int k = 0; k < c->ncomp; k++) {
         size_t v0 = c->start[k], n = tr_comp_nv(c, k);
-        if (c->closed[k] && K <= n - K) /* (a): the shorter way round is K */
+        /* (a): the shorter way round is K; K comes from the whole curve's
+         * mean edge, so on a small component of a link it can exceed n,
+         * where n - K would wrap (a vertex paired with itself) */
+        if (c->closed[k] && K <= n / 2)
             for (size_t l = 0; l < n; l++)
                 offer(S, v0 + (l + K) % n, v0 + l);
         else if (!c->closed[k] && K <= n - 1)

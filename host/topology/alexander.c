@@ -241,12 +241,14 @@ int tr_alexander_from_pd(const int (*pd)[4], int n, tr_alexander *a, tr_error *e
     /* For a knot Delta(1) = +-1 and Delta is symmetric up to a unit: both
      * are checked, as the proof that the code was one knot's diagram and
      * the arithmetic right. */
-    long long sum = 0;
+    /* summed in 128 bits: coefficients near the 64-bit bound must not
+     * overflow into a false +-1 */
+    i128 sum = 0;
     for (int k = lo; lo >= 0 && k <= hi; k++)
         sum += coef[k];
     if (lo < 0 || (sum != 1 && sum != -1)) {
-        rc = tr_fail(err, TR_EINVAL, "the Alexander matrix gives Delta(1) = %lld, not +-1: not one knot's diagram",
-                     lo < 0 ? 0 : sum);
+        rc = tr_fail(err, TR_EINVAL, "the Alexander matrix gives Delta(1) = %s, not +-1: not one knot's diagram",
+                     lo < 0 || sum == 0 ? "0" : sum > 1 ? "more than 1" : "less than -1");
         goto done;
     }
     int span = hi - lo;

@@ -259,6 +259,21 @@ static void test_against_brute(void)
     REQUIRE_OK(tr_make_hopf(&c, 150, &err));
     compare_with_brute(&c, "Hopf 2 x 150");
     tr_curve_free(&c);
+    /* a link of a small and a large component: K, from the whole curve's
+     * mean edge, is larger than the hexagon's 6 vertices (K mod 6 = 0 at
+     * 2100 circle vertices paired each hexagon vertex with itself: thickness
+     * 0.015 where it is the hexagon's sqrt(3)/2) */
+    size_t nv[2] = {6, 2100};
+    REQUIRE_OK(tr_curve_alloc(&c, 2, nv, NULL, &err));
+    put_ngon(c.x, 6, 1.0, 0.0);
+    put_ngon(c.x + 18, 2100, 10.0, 0.0);
+    for (size_t i = 6; i < 2106; i++)
+        c.x[3 * i + 2] = 50.0;
+    compare_with_brute(&c, "hexagon and a 2100-gon");
+    tr_vertex_thickness v;
+    CHECK_OK(tr_vertex_thickness_measure(&c, NULL, NULL, &v, &err));
+    CHECK_NEAR(v.thickness, sqrt(3.0) / 2.0, 1e-12);
+    tr_curve_free(&c);
 }
 
 int main(void)

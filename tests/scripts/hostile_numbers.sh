@@ -45,6 +45,9 @@ far_tighten)
   # a start about the origin is left where it is: no comment
   run "$tr" tighten t.vect -o p.vect --steps 10 --device reference --quiet
   grep -q "^# centred" p.vect && fail "a start about the origin was moved"
+  # a start from a pipe is read once (the look for a shift must not eat it)
+  cat far.vect | "$tr" tighten /dev/stdin --n 100 -o q.vect --steps 5 --device reference --quiet >out 2>err ||
+    fail "tighten from a pipe: $(cat err)"
   ;;
 far_origin)
   # A regular 64-gon of circumradius 5 moved along x. Each coordinate is
