@@ -131,15 +131,37 @@ restore:;
         free(keep);
         return rc;
     }
+    /* Stopped by the bound: the polished (or solved) curve is a rope at
+     * thickness 1 with its constraints held, only not yet on the engine's
+     * exact edge set; it is the run's best, so it is what the run hands
+     * out (polish_x, as when a settle costs length), while the engine
+     * goes back to its own settled state. */
+    double *polished_x = NULL;
+    if (rc_settle == TR_EINTERRUPTED && ps.accepted) {
+        polished_x = malloc(3 * e->curve.nv * sizeof *polished_x);
+        if (polished_x)
+            memcpy(polished_x, e->curve.x, 3 * e->curve.nv * sizeof *polished_x);
+    }
     memcpy(e->curve.x, keep, 3 * e->curve.nv * sizeof *keep);
     rc = e->be.ops->upload(e->be.state, keep, keep + 3 * e->curve.nv, err);
     free(keep);
-    if (rc)
-        return rc;
     tr_measure m;
-    if ((rc = tr_engine_i_rebuild_contacts(e, 1, NULL, err)) || (rc = tr_engine_i_measure(e, &m, err)))
+    if (rc == TR_OK && (rc = tr_engine_i_rebuild_contacts(e, 1, NULL, err)) == TR_OK)
+        rc = tr_engine_i_measure(e, &m, err);
+    if (rc) {
+        free(polished_x);
         return rc;
+    }
     tr_engine_i_fill_state(e, &m);
+    if (polished_x) {
+        free(e->polish_x);
+        e->polish_x = polished_x;
+        e->polish_steps = e->steps;
+        e->polished = 1;
+        e->polish_after = ps.ropelength_after;
+        e->polish_why = NULL;
+        return TR_OK;
+    }
     e->polished = -1;
     e->polish_after = e->polish_before;
     e->polish_why = rc_settle == TR_EINTERRUPTED ? "stopped before the polished curve was settled"

@@ -261,10 +261,10 @@ retry)
     sort -g | head -1)
   rl=$(col r/table.tsv 3_1 ropelength)
   awk -v a="$rl" -v b="$best" 'BEGIN { exit !(a <= b * (1 + 1e-9)) }' || fail "table 3_1 $rl, a retry measured $best"
-  # (a tie keeps the knot's own run: under the sanitizers a 2 s run can end
-  # where it began, the start as given, in every round)
+  # (a tie keeps the knot's own run: under the sanitizers a 2 s run of
+  # every round can end at the same state; the table prints 10 decimals)
   cmp -s r/3_1.vect r/retry-1/3_1.vect || cmp -s r/3_1.vect r/retry-2/3_1.vect ||
-    awk -v a="$rl" -v b="$best" 'BEGIN { exit !(a <= b) }' || fail "3_1's curve is none of the runs'"
+    awk -v a="$rl" -v b="$best" 'BEGIN { exit !(a <= b * (1 + 1e-9)) }' || fail "3_1's curve is none of the runs'"
   # started again: nothing runs, the table is the same
   cp r/table.tsv retry.before
   "$tr" batch mr.tsv -o r --compare ref.tsv --retry 2 -- --seed 7 2>err.log || fail "again: $(cat err.log)"
