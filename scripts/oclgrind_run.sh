@@ -32,7 +32,10 @@ trap 'rm -rf "$work"' EXIT
 read -r -a flags <<< "${TIGHTROPE_OCLGRIND_FLAGS:---check-api --data-races}"
 mkdir "$work/no-vendors"
 : > "$work/log"
-OCL_ICD_VENDORS="$work/no-vendors" oclgrind "${flags[@]}" --log "$work/log" "$@" \
+# TIGHTROPE_CL_BUILD_STDERR=keep: Tightrope leaves stderr to the runtime while
+# a program builds (it otherwise keeps a compiler's chatter off the user's
+# terminal), so Oclgrind's report of a failed clBuildProgram reaches $work/err
+TIGHTROPE_CL_BUILD_STDERR=keep OCL_ICD_VENDORS="$work/no-vendors" oclgrind "${flags[@]}" --log "$work/log" "$@" \
   > "$work/out" 2> "$work/err"
 rc=$?
 cat "$work/out"
