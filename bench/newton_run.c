@@ -78,13 +78,22 @@ int main(int argc, char **argv)
     if (argc == 4 && !strcmp(argv[1], "--restore"))
         return restore_only(argv[2], argv[3]);
     const char *device = NULL;
-    if (argc > 2 && !strcmp(argv[1], "--device")) {
-        device = argv[2];
-        argv += 2;
-        argc -= 2;
+    int vertex = 0;
+    for (;;) {
+        if (argc > 2 && !strcmp(argv[1], "--device")) {
+            device = argv[2];
+            argv += 2;
+            argc -= 2;
+        } else if (argc > 1 && !strcmp(argv[1], "--vertex")) {
+            /* SP-FEM's vertex contacts (newton.h vertex_contacts) */
+            vertex = 1;
+            argv++;
+            argc--;
+        } else
+            break;
     }
     if (argc < 3) {
-        fprintf(stderr, "usage: newton_run [--device SPEC] IN OUT [N | sN] [TIME_LIMIT_S] [CKPT_S]\n"
+        fprintf(stderr, "usage: newton_run [--device SPEC] [--vertex] IN OUT [N | sN] [TIME_LIMIT_S] [CKPT_S]\n"
                         "       newton_run --restore IN OUT\n");
         return 2;
     }
@@ -115,6 +124,7 @@ int main(int argc, char **argv)
     }
     tr_newton_params p;
     tr_newton_params_default(&p);
+    p.vertex_contacts = vertex;
     p.progress = show;
     if (argc > 4)
         p.time_limit = atof(argv[4]);

@@ -355,7 +355,7 @@ static int has_constrained_vertex(const tr_curve *c)
 static int measure_iterate(solver *s, const double *y, double *rl, tr_thickness *th, tr_error *err)
 {
     memcpy(s->probe.x, y, 3 * s->nv * sizeof *y);
-    int rc = tr_thickness_measure(&s->probe, NULL, th, NULL, err);
+    int rc = tr_newton_i_model_thickness(s->p, &s->probe, NULL, th, err);
     if (rc)
         return rc;
     *rl = th->ropelength;
@@ -712,6 +712,17 @@ int tr_newton(tr_curve *cv, const tr_newton_params *prm, tr_newton_stats *st, tr
     memset(st, 0, sizeof *st);
     double t0 = tr_clock_seconds();
     int constrained = has_constrained_vertex(cv);
+    /* the vertex model's rows are evaluated here: a backend's strut rows
+     * are segment rows (backend.h) */
+    tr_newton_params vertex_prm;
+    if (prm->vertex_contacts) {
+        for (int k = 0; k < cv->ncomp; k++)
+            if (!cv->closed[k])
+                return tr_fail(err, TR_EINVAL, "newton: the vertex contact model takes closed components only");
+        vertex_prm = *prm;
+        vertex_prm.backend = NULL;
+        prm = &vertex_prm;
+    }
     if (!(prm->max_move > 0 && prm->max_move <= prm->skin / 8) || !(prm->max_bend > 0) || prm->max_iter < 1 ||
         prm->max_inner < 1)
         return tr_fail(err, TR_EINVAL, "newton: need 0 < max_move <= skin / 8, max_bend > 0 and at least one iteration");
@@ -720,7 +731,7 @@ int tr_newton(tr_curve *cv, const tr_newton_params *prm, tr_newton_stats *st, tr
      * (seconds at 10^6 vertices and more), as the first list build is */
     tr_deadline start_bound = {.at = prm->time_limit > 0 ? t0 + prm->time_limit : 0, .stop = prm->stop};
     tr_thickness_opts start_opts = {.bound = &start_bound};
-    int rc = tr_thickness_measure(cv, &start_opts, &th0, NULL, err);
+    int rc = tr_newton_i_model_thickness(prm, cv, &start_opts, &th0, err);
     if (rc)
         return rc;
     if (!(th0.thickness > 0) || !isfinite(th0.thickness))
@@ -843,7 +854,7 @@ int tr_newton(tr_curve *cv, const tr_newton_params *prm, tr_newton_stats *st, tr
     for (size_t q = 0; q < s.ncv; q++)
         tr_constraint_project(tr_newton_i_vertex_cst(&s, s.cv[q]), s.w.x + 3 * s.cv[q]);
     tr_thickness th;
-    if ((rc = tr_thickness_measure(&s.w, NULL, &th, NULL, err)))
+    if ((rc = tr_newton_i_model_thickness(prm, &s.w, NULL, &th, err)))
         goto done;
     if (!(th.thickness > 0) || !isfinite(th.thickness)) {
         st->why_rejected = "the result has no finite positive thickness";
@@ -852,7 +863,7 @@ int tr_newton(tr_curve *cv, const tr_newton_params *prm, tr_newton_stats *st, tr
     if (!constrained) {
         for (size_t i = 0; i < 3 * s.nv; i++)
             s.w.x[i] /= th.thickness;
-        if ((rc = tr_thickness_measure(&s.w, NULL, &th, NULL, err)))
+        if ((rc = tr_newton_i_model_thickness(prm, &s.w, NULL, &th, err)))
             goto done;
     }
     double rl = constrained ? constrained_ropelength(&th) : th.ropelength;
@@ -889,11 +900,13 @@ int tr_newton_restore(tr_curve *cv, const tr_newton_params *prm, double *before,
         tr_newton_params_default(&p);
     /* the rows as they stand: no multipliers to start with */
     p.warm_start = 0;
+    if (p.vertex_contacts)
+        p.backend = NULL; /* a backend's strut rows are segment rows */
     *before = *after = NAN;
     if (has_constrained_vertex(cv))
         return tr_fail(err, TR_EINVAL, "restore: a curve with constrained vertices keeps its planes (not restored)");
     tr_thickness th0;
-    int rc = tr_thickness_measure(cv, NULL, &th0, NULL, err);
+    int rc = tr_newton_i_model_thickness(&p, cv, NULL, &th0, err);
     if (rc)
         return rc;
     if (!(th0.thickness > 0) || !isfinite(th0.thickness))

@@ -14,7 +14,8 @@
  *              every row's gradient is O(1 / S); S = 4, or 0.1 for a tight
  *              start whose MinRad overshoots (newton.c, MINRAD_ROW_SCALE_*);
  *   struts     d(a, b) - 2 >= 0 for every listed edge pair, d the exact
- *              segment distance (strut_hessian.h: closest points recomputed
+ *              segment distance (or, in SP-FEM's vertex model, the
+ *              distance of the edges' first vertices: vertex_contacts) (strut_hessian.h: closest points recomputed
  *              at every evaluation, so the rope cannot slip between frozen
  *              sample points); the list holds every pair beyond the
  *              exclusion gap ceil(pi / l) within 2 + skin (neighbour_search.h),
@@ -146,6 +147,13 @@ typedef struct tr_newton_params {
                           * their bound as a barrier would, with this weight times the band (newton_rows.c);
                           * 0: not at all */
     int warm_start;    /* first multipliers by least squares (warm_start.c); 0: cold */
+    /* The contact model (contact_model.c): 0 Rawdon's, strut rows on the
+     * segment distance of edge pairs, the result judged by the thickness
+     * oracle; 1 SP-FEM's, strut rows |x_a - x_b| >= 2 on vertex pairs at
+     * least K = ceil(pi / l) apart along a component, the result judged by
+     * the vertex oracle (oracle/vertex_thickness.h). The vertex model takes
+     * closed components only and evaluates its rows here (backend ignored). */
+    int vertex_contacts;
     int tight_only;    /* give up at once (not accepted) unless the warm start finds the start tight */
     volatile sig_atomic_t *stop; /* raised by a signal handler: stop as at the time limit */
     /* NULL: every row evaluated here. Else the strut rows (the distances, the

@@ -13,6 +13,7 @@
 #include "curve/curve.h"
 #include "geometry/neighbour_search.h"
 #include "geometry/struts.h"
+#include "oracle/thickness.h"
 #include "solver/newton.h"
 #include "util/clock.h"
 #include "solver/solver_rows.h"
@@ -150,6 +151,24 @@ int tr_newton_i_restore(solver *s, double *y, double deadline, double *viol, dou
 
 /* rebuilds the strut list at y, carrying the multipliers of kept pairs */
 int tr_newton_i_rebuild(solver *s, const double *y, const tr_deadline *bound, tr_error *err);
+
+/* ---- the contact model (contact_model.c) ---- */
+
+/* the distance strut row (a, b) holds at 2, at positions x: the segment
+ * distance of edges a and b, or (vertex_contacts) that of vertices a, b */
+double tr_newton_i_pair_distance(const solver *s, const double *x, size_t a, size_t b);
+/* the row's coordinates (12 for edges, 6 for vertices) in idx; returns
+ * their number */
+int tr_newton_i_strut_index(const solver *s, size_t a, size_t b, size_t *idx);
+/* the same with *d the distance, g its gradient and h (may be NULL) its
+ * Hessian (m x m, row major) on idx's coordinates; returns m */
+int tr_newton_i_strut_derivs(const solver *s, const double *x, size_t a, size_t b, double *d, double *g,
+                             double *h, size_t *idx);
+/* c's thickness in the contact model: the oracle's (thickness.h), and with
+ * vertex_contacts its thickness, ropelength and dcsd replaced by the vertex
+ * model's (vertex_thickness.h) */
+int tr_newton_i_model_thickness(const tr_newton_params *p, const tr_curve *c, const tr_thickness_opts *opts,
+                                tr_thickness *th, tr_error *err);
 
 /* ---- the warm start (warm_start.c) ---- */
 

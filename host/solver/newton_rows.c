@@ -5,7 +5,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "solver/strut_hessian.h"
 #include "util/clock.h"
 #include "util/vec3.h"
 
@@ -275,9 +274,8 @@ double tr_newton_i_al_eval(solver *s, const double *y, double *grad, int hess)
         vs = fmax(vs, 0.5 * (2.0 - dev.dmin));
     }
     for (size_t r = 0; r < s->nsp && !(on_dev && !grad); r++) {
-        size_t a = s->sp[r].a, b = s->sp[r].b, na = s->next[a], nb = s->next[b];
-        double d = on_dev ? dev.d[r]
-                          : tr_strut_distance_derivs(x + 3 * a, x + 3 * na, x + 3 * b, x + 3 * nb, NULL, NULL);
+        size_t a = s->sp[r].a, b = s->sp[r].b;
+        double d = on_dev ? dev.d[r] : tr_newton_i_pair_distance(s, x, a, b);
         dmin = fmin(dmin, d);
         double pi, term = ineq_term(d - 2.0, s->sp[r].lam, mu, &pi);
         if (!on_dev)
@@ -289,20 +287,19 @@ double tr_newton_i_al_eval(solver *s, const double *y, double *grad, int hess)
         if (pi == 0.0 && !(hess && d - 2.0 < s->band * NEAR_ACTIVE))
             continue;
         active += pi > 0.0;
-        double gr[12], H[144];
+        double gr[12], H[144], dd;
         const double *pg = gr, *pH = H;
+        size_t idx[12];
+        int m;
         /* the backend's block, or (not selected there: its rounding put
          * the row on the other side of the test) this one */
         if (on_dev && dev.sel[r] >= 0) {
+            m = tr_newton_i_strut_index(s, a, b, idx);
             pg = dev.g + 12 * (size_t)dev.sel[r];
             pH = hess ? dev.h + 144 * (size_t)dev.sel[r] : NULL;
         } else
-            tr_strut_distance_derivs(x + 3 * a, x + 3 * na, x + 3 * b, x + 3 * nb, gr, hess ? H : NULL);
-        size_t vx[4] = {a, na, b, nb}, idx[12];
-        for (int j = 0; j < 4; j++)
-            for (int d = 0; d < 3; d++)
-                idx[3 * j + d] = 3 * vx[j] + (size_t)d;
-        row_terms(s, 12, idx, pg, hess ? pH : NULL, mu, -pi, pi, grad, hess);
+            m = tr_newton_i_strut_derivs(s, x, a, b, &dd, gr, hess ? H : NULL, idx);
+        row_terms(s, m, idx, pg, hess ? pH : NULL, mu, -pi, pi, grad, hess);
     }
     if (!grad)
         s->t_value += tr_clock_seconds() - tv;

@@ -7,15 +7,9 @@
 #include "geometry/neighbour_search.h"
 #include "geometry/struts.h"
 
-#include "segment_distance.h"
-
-/* the distance between edges a and b at the positions the list was built at */
-static double pair_dist(const solver *s, size_t a, size_t b)
-{
-    double sp, tp;
-    const double *x = s->w.x;
-    return tr_segment_distance(x + 3 * a, x + 3 * s->next[a], x + 3 * b, x + 3 * s->next[b], &sp, &tp);
-}
+/* the distance of row (a, b) (edges, or their first vertices: contact_model.c)
+ * at the positions the list was built at */
+static double pair_dist(const solver *s, size_t a, size_t b) { return tr_newton_i_pair_distance(s, s->w.x, a, b); }
 
 /* Is b a local minimum of d(a, .) along its strand, or a one of d(., b)? */
 static int is_local_min(const solver *s, size_t a, size_t b, double d)

@@ -5,7 +5,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "solver/strut_hessian.h"
 #include "util/vec3.h"
 
 /* The multipliers that best balance the tension at y: with every edge's
@@ -193,17 +192,15 @@ static int warm_multipliers_band(solver *s, const double *y, double band, tr_err
         rowp[++nr] = nz;
     }
     for (size_t qq = 0; qq < s->nsp; qq++) {
-        size_t a = s->sp[qq].a, b = s->sp[qq].b, na = s->next[a], nb = s->next[b];
-        double gr[12];
-        double d = tr_strut_distance_derivs(x + 3 * a, x + 3 * na, x + 3 * b, x + 3 * nb, gr, NULL);
+        double gr[12], d;
+        size_t idx[12];
+        int m = tr_newton_i_strut_derivs(s, x, s->sp[qq].a, s->sp[qq].b, &d, gr, NULL, idx);
         if ((d - 2.0) / 2.0 > band)
             continue;
-        size_t vx[4] = {a, na, b, nb};
-        for (int j = 0; j < 4; j++)
-            for (int dd = 0; dd < 3; dd++) {
-                col[nz] = 3 * vx[j] + (size_t)dd;
-                val[nz++] = gr[3 * j + dd];
-            }
+        for (int j = 0; j < m; j++) {
+            col[nz] = idx[j];
+            val[nz++] = gr[j];
+        }
         row_of[nv + qq] = nr;
         rowp[++nr] = nz;
     }
