@@ -262,6 +262,23 @@ int tr_curve_to_frame(tr_curve *dst, const tr_curve *c, const tr_curve_frame *f,
     return TR_OK;
 }
 
+int tr_curve_oracle_frame(const tr_curve *c, tr_curve_frame *f, tr_curve *moved, const tr_curve **use,
+                          tr_error *err)
+{
+    memset(moved, 0, sizeof *moved);
+    *use = c;
+    int rc = tr_curve_check_resolution(c, NULL, err);
+    if (rc)
+        return rc;
+    tr_curve_frame_of(c, f);
+    if (tr_curve_frame_is_identity(f))
+        return TR_OK;
+    if ((rc = tr_curve_to_frame(moved, c, f, err)))
+        return rc;
+    *use = moved;
+    return TR_OK;
+}
+
 double tr_double_step(double v)
 {
     v = fabs(v);

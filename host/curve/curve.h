@@ -108,6 +108,12 @@ void tr_curve_frame_of(const tr_curve *c, tr_curve_frame *f);
 int tr_curve_frame_is_identity(const tr_curve_frame *f);
 /* dst: a copy of c in frame f, constraints moved with it. */
 int tr_curve_to_frame(tr_curve *dst, const tr_curve *c, const tr_curve_frame *f, tr_error *err);
+/* What an oracle opens with: c refused if its numbers cannot hold its shape
+ * (tr_curve_check_resolution, below), else *f its frame and *use the curve
+ * to measure: c itself when the frame is the identity, else *moved, c in
+ * frame *f. *moved is zeroed first; the caller frees it either way. */
+int tr_curve_oracle_frame(const tr_curve *c, tr_curve_frame *f, tr_curve *moved, const tr_curve **use,
+                          tr_error *err);
 
 /* Whether the numbers that hold c can hold its shape at all. A vertex is
  * known to the step between doubles at its coordinates: 2.2e-16 of the

@@ -612,13 +612,14 @@ int tr_kkt_certify_forces(const tr_curve *c, const tr_kkt_params *prm, tr_kkt *o
     for (size_t i = 0; i < 3 * c->nv; i++)
         if (!isfinite(c->x[i]))
             return tr_fail(err, TR_EGEOMETRY, "KKT certificate: vertex %zu is not finite", i / 3);
-    int rc = tr_curve_check_resolution(c, NULL, err);
-    if (rc)
-        return rc;
     tr_curve_frame f;
-    tr_curve_frame_of(c, &f);
-    if (tr_curve_frame_is_identity(&f))
-        return certify_frame(c, prm, out, tension, unresolved, err);
+    tr_curve s;
+    const tr_curve *use;
+    int rc = tr_curve_oracle_frame(c, &f, &s, &use, err);
+    if (rc || use == c) {
+        tr_curve_free(&s);
+        return rc ? rc : certify_frame(c, prm, out, tension, unresolved, err);
+    }
     tr_kkt_params sp;
     if (prm)
         sp = *prm;
@@ -626,9 +627,6 @@ int tr_kkt_certify_forces(const tr_curve *c, const tr_kkt_params *prm, tr_kkt *o
         tr_kkt_params_default(&sp);
     if (sp.radius > 0.0)
         sp.radius = ldexp(sp.radius, -f.e);
-    tr_curve s;
-    if ((rc = tr_curve_to_frame(&s, c, &f, err)))
-        return rc;
     rc = certify_frame(&s, &sp, out, tension, unresolved, err);
     tr_curve_free(&s);
     out->radius = ldexp(out->radius, f.e);

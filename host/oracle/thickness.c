@@ -522,19 +522,14 @@ int tr_thickness_measure(const tr_curve *c, const tr_thickness_opts *opts, tr_th
         if (!isfinite(c->x[i]))
             return measure_frame(c, opts, out, struts, err); /* which names the vertex */
     memset(out, 0, sizeof *out);
-    int rc = tr_curve_check_resolution(c, NULL, err);
-    if (rc)
-        return rc;
     tr_curve_frame f;
-    tr_curve_frame_of(c, &f);
-    if (tr_curve_frame_is_identity(&f))
-        return measure_frame(c, opts, out, struts, err);
     tr_curve s;
-    if ((rc = tr_curve_to_frame(&s, c, &f, err)))
-        return rc;
-    rc = measure_frame(&s, opts, out, struts, err);
+    const tr_curve *use;
+    int rc = tr_curve_oracle_frame(c, &f, &s, &use, err);
+    if (!rc)
+        rc = measure_frame(use, opts, out, struts, err);
     tr_curve_free(&s);
-    if (rc)
+    if (rc || use == c)
         return rc;
     int e = f.e;
     double *len[] = {&out->length, &out->minrad, &out->dcsd, &out->thickness, &out->shortest.dist,
