@@ -504,20 +504,23 @@ void tr_out_folder_finish(tr_out_folder *f, const char *const *keep, size_t nkee
     sigset_t old;
     hold(&old);
     /* The earlier runs' files this one did not write would read as this
-     * run's: they go, if still as written and not an input. */
+     * run's: they go, if still as written and not an input. One that
+     * cannot be removed (a read-only folder) stays ours: its entry goes
+     * into the new record (stale), so a later run still knows it. */
+    tr_out_list stale = {0};
+    int oom = 0;
     for (size_t i = 0; i < f->old.n; i++) {
         const tr_out_entry *e = &f->old.e[i];
         char t[4400];
         if (e->dir || listed_file(&f->now, e->rel) || target_of(f->out, e->rel, t, sizeof t) != 0 ||
             kept(t, keep, nkeep))
             continue;
-        if (recorded(&f->old, e->rel, t))
-            unlink(t);
+        if (recorded(&f->old, e->rel, t) && unlink(t) != 0 && errno != ENOENT)
+            oom |= list_add(&stale, e->rel, 0, e->size, e->hash);
     }
     /* Subfolders ours and no longer used go if empty: a file of the
      * user's in one keeps it (and it stays ours). */
     tr_out_list dirs = {0};
-    int oom = 0;
     for (size_t i = 0; i < f->old.n; i++) {
         const tr_out_entry *e = &f->old.e[i];
         char t[4400];
@@ -543,11 +546,13 @@ void tr_out_folder_finish(tr_out_folder *f, const char *const *keep, size_t nkee
         if (!f->now.e[i].dir)
             tr_text_printf(&t, "file %016" PRIx64 " %" PRIu64 " %s\n", f->now.e[i].hash, f->now.e[i].size,
                            f->now.e[i].rel);
+    append_entries(&t, &stale);
     if (!oom)
         (void)tr_text_write_atomic(&t, f->record, NULL);
     else
         free(tr_text_take(&t, NULL));
     list_free(&dirs);
+    list_free(&stale);
     remove_stage(f->stage, 0);
     f->committed = 0;
     release(f);
