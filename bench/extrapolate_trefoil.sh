@@ -20,7 +20,8 @@
 # Environment: BUILD (default build), START (default bench/data/trefoil_2400.vect),
 # RESOLVES, RESOLVE_TIME (seconds per re-solve, default 600), TIME_LIMIT (tighten's,
 # default 900), KKT_MAX_N, PREV (another run's ladder.tsv: s is at least the change from
-# its value at the same N). Heavy: run it niced, alone (RESULTS.md has the times).
+# its value at the same N). Heavy: run it niced, alone (the times:
+# bench/notes/2026-11-25-extrapolation.md).
 set -euo pipefail
 here=$(cd "$(dirname "$0")/.." && pwd)
 out=${1:?usage: extrapolate_trefoil.sh OUTDIR [N ...]}

@@ -1,7 +1,8 @@
 /* bench/newton_run: the second-order solver (host/newton.h) alone on a
  * curve, optionally spline-resampled to N vertices per component, with one
  * progress line per Newton step: how the solver is measured apart from the
- * engine's route (bench/RESULTS.md, "Second-order solver").
+ * engine's route (bench/RESULTS.md, "Trefoil: the ladder and the paper's
+ * numbers").
  *   newton_run [--device SPEC] IN.vect OUT.vect [N | sN] [TIME_LIMIT_S] [CKPT_S]
  * N: the engine's low-pass refinement; sN: the cubic spline tighten --n
  * uses (tr_resample_smooth). --device: the strut rows by that backend

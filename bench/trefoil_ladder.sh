@@ -6,8 +6,9 @@
 # sN TIME_LIMIT CKPT` (TIME_LIMIT default 6000 s; CKPT 300 s at N >= 10^5, else 600 s), its
 # progress in OUTDIR/LN.log, its `/usr/bin/time -v` in OUTDIR/LN.err. OUTDIR/curve.txt gets a
 # line "N seconds-since-start <tightrope measure's line>" per checkpoint and per rung result;
-# OUTDIR/curve.png plots it when gnuplot is there. Heavy (bench/RESULTS.md, "N = 102 400
-# settles": 51 minutes to 102 400 on the 2-core VM): run it alone, in the background.
+# OUTDIR/curve.png plots it when gnuplot is there. Heavy
+# (bench/notes/2026-11-28-n102400-settles.md: 51 minutes to 102 400 on the 2-core VM):
+# run it alone, in the background.
 # Resumable: a rung whose OUTDIR/LN.vect exists is skipped; a rung with a checkpoint
 # (OUTDIR/LN.vect.ckpt, from a run that was stopped) restarts from it, not from the rung below.
 # The seconds in curve.txt count from this invocation's start (a resumed ladder's are its own).

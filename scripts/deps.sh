@@ -6,7 +6,7 @@ set -euo pipefail
 # which its test runs for real
 # libopenblas0-serial: CHOLMOD's dense kernels (the second-order solver's and the KKT
 # certificate's factorisations) through OpenBLAS instead of the reference BLAS; one thread,
-# so the two cores stay the tests' (bench/RESULTS.md, "Second-order solver")
+# so the two cores stay the tests' (bench/notes/2026-11-25-converged-last-digits.md)
 pkgs=(build-essential cmake pkg-config ocl-icd-opencl-dev opencl-headers pocl-opencl-icd clinfo
       clang libclang-rt-14-dev gnuplot-nox libsuitesparse-dev libopenblas0-serial parallel "$@")
 missing=()

@@ -637,7 +637,8 @@ int tr_engine_refine(tr_engine *e, size_t n, tr_error *err)
      * rope, a clasp whose levels the solver takes is not settled at all:
      * make clasp in one command, with the rejected-but-settled levels
      * counted as solved (tr_engine_i_newton), went from 74 s to 33.5 s at
-     * 2 x 1000 and from 111 s to 25 s at 2 x 2000 (bench/RESULTS.md).
+     * 2 x 1000 and from 111 s to 25 s at 2 x 2000
+     * (bench/notes/2026-11-25-clasps-through-solver.md).
      * Should the solver not take the level, the refinement fails
      * (level_loop.c). */
     int to_solver = e->curve.ncst > 0 && (e->prm.newton || e->prm.newton_tight) && e->prm.polish;

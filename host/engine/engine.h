@@ -65,7 +65,8 @@ typedef struct tr_engine_params {
      * a step like the last one can slide into. It is 0 by default: the
      * check after each step rejects a step that lost a contact, and on the
      * N = 2400 trefoil both settings take the same steps, the smaller list
-     * faster (bench/RESULTS.md). The list stays linear in N. */
+     * faster (bench/notes/2026-11-23-contact-list-tree-walk.md). The list
+     * stays linear in N. */
     double tilt_edges, tilt_motion;
     double max_move;       /* per-vertex cap of the tension move */
     double guard_move;     /* reject a step that moved any vertex further */
@@ -112,7 +113,8 @@ typedef struct tr_engine_params {
     /* Coarse levels (all but the last of a run with refine_to) with fewer
      * vertices than this run on the serial reference instead of the chosen
      * device: there an OpenCL device's cost per kernel launch outweighs its
-     * throughput (bench/RESULTS.md: PoCL took 91 s to the N = 1200 level of
+     * throughput (bench/notes/2026-11-23-pocl-end-to-end.md: PoCL took 91 s
+     * to the N = 1200 level of
      * the N = 2400 trefoil, the reference 28 s). 0: the chosen device at
      * every level. */
     size_t device_min_n;

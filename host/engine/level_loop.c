@@ -69,7 +69,8 @@ static int run_polish(tr_engine *e, double seconds, double target, int solver_le
     memset(&ps, 0, sizeof ps);
     if (newton) {
         /* at the finest level the second-order solver takes the polish's
-         * place (bench/RESULTS.md, "Second-order solver") */
+         * place (bench/RESULTS.md, "Trefoil: the ladder and the paper's
+         * numbers") */
         int nacc = 0;
         if ((rc = tr_engine_i_newton(e, seconds, tight_only, stop, &nacc, err))) {
             free(keep);
@@ -173,8 +174,9 @@ restore:;
 
 /* The levels the second-order solver may take: the finest, and for ropes
  * with vertex constraints (clasps) every level. A clasp's first-order
- * steps do not tighten it beyond ~100 vertices per rope (bench/RESULTS.md,
- * "Second-order solver"), while a tight coarser clasp refined is pressed a
+ * steps do not tighten it beyond ~100 vertices per rope
+ * (bench/notes/2026-11-25-clasps-through-solver.md), while a tight
+ * coarser clasp refined is pressed a
  * little through itself and the solver restores and tightens it in well
  * under a second at 2 x 200; so the route for a clasp is the first-order
  * steps at the coarsest level and the solver at each refined one. A

@@ -1,7 +1,8 @@
 /* The polish stage: a final tightening of a nearly tight rope by direct
  * minimisation, which reaches the fine-level optimum that the engine's
- * projected-gradient steps stall short of (bench/RESULTS.md, "Tightening
- * engine"). It runs serially on the host, on a downloaded curve: the
+ * projected-gradient steps stall short of
+ * (bench/notes/2026-11-22-tighten-before-polish.md). It runs serially on
+ * the host, on a downloaded curve: the
  * backends never see it.
  *
  * Problem (rope radius 1, thickness-1 units): minimise the polygon length

@@ -37,7 +37,7 @@
 /* Rows within 1e-6 of their bound may hold: a tight knot's contacts sit
  * at ~1e-9 (engine tolerance) while the next ring of near-contacts starts
  * ~1e-5 away at N ~ 400; a wider band lets non-touching rows "hold" and the
- * residual then says nothing (bench/RESULTS.md, "KKT certificate"). */
+ * residual then says nothing (bench/notes/2026-11-23-kkt-certificate.md). */
 #define TR_KKT_DEFAULT_BAND 1e-6
 
 typedef struct tr_kkt_params {

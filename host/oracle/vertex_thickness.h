@@ -21,8 +21,7 @@
  * K reported. Between two curved strands an edge may dip into the other
  * strand's tube by its sag e^2/8, which this model does not see (Rawdon's,
  * thickness.h, measures edges): a knot tightened in it is shorter, by
- * O(e^2) (bench/RESULTS.md, "The paper's N = 200 640 length is a
- * vertex-contact length").
+ * O(e^2) (bench/notes/2026-11-28-vertex-contact-length.md).
  *
  * The least vertex distance is found in time linear in N for tight or smooth
  * curves: the least pair either has its index gap exactly K (N pairs, looked

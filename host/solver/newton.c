@@ -62,7 +62,7 @@ void tr_newton_params_default(tr_newton_params *p)
  * (the N = 2400 trefoil as the engine leaves it) they settle 2e-7 longer.
  * So S = 0.1 when the start was scaled to its struts (tr_newton) and the
  * warm start's multipliers balance all but TIGHT_RESIDUAL of the tension
- * (bench/RESULTS.md, "Second-order solver"): a wobbled circle leaves all of
+ * (bench/notes/2026-11-25-converged-last-digits.md): a wobbled circle leaves all of
  * it (1.0), the N = 2400 trefoil spline-refined to 9600 0.19, to 19 200
  * 0.21, to 38 400 0.29 (warm_start.c). */
 #define MINRAD_ROW_SCALE_LOOSE 4.0
@@ -281,7 +281,8 @@ static int solver_init(solver *s, const tr_curve *cv, double scale, tr_error *er
  * stretch (kappa 0.97 to 1) that the direction bent by 0.3, and that vertex
  * moved on along the rope one or two vertices a step for hundreds of
  * steps; with its bend taken back the rest of the rope takes its full
- * step, and the solve settled in 263 steps against 455 (bench/RESULTS.md).
+ * step, and the solve settled in 263 steps against 455
+ * (bench/notes/2026-11-27-bend-take-back.md).
  * The Armijo test judges the point reached, and a short enough step takes
  * nothing back (every vertex's bound lies max_bend beyond where it is), so
  * the backtracking ends where a straight one would. */
@@ -529,7 +530,7 @@ static int minimise(solver *s, double *y, tr_newton_stats *st, double t0, tr_err
              * (many struts on one edge: the discrete problem's multipliers
              * are then not unique and the force the wrap puts on that edge
              * has no balance within MinRad), while the length no longer
-             * moves: bench/RESULTS.md, "Second-order solver". */
+             * moves: bench/notes/2026-11-25-converged-last-digits.md. */
             /* or no step accepted over three passes: the line search
              * finds no decrease left to resolve, and the multiplier
              * updates alone do not move the rope */
@@ -652,7 +653,8 @@ static int minimise(solver *s, double *y, tr_newton_stats *st, double t0, tr_err
          * moved vertices by 1e-11 with decrements of 1e-16), and every
          * pass then ran its max_inner steps: the N = 9600 trefoil from
          * the N = 2400 file took 225 steps, 93 with this; 2400 587 and
-         * 247, 19 200 240 and 140 (bench/RESULTS.md) */
+         * 247, 19 200 240 and 140
+         * (bench/notes/2026-11-27-newton-decrement.md) */
         if (last_full && -slope <= p->inner_decrement * s->length)
             inner_done = 1;
         moved = 1;

@@ -98,8 +98,8 @@ static void row_terms(solver *s, int m, const size_t *idx, const double *gr, con
  * NEAR_ACTIVE mu0 / mu): the true L_A is flat along an inactive row, and
  * a spring of stiffness mu on every row within 1e-6 of its bound froze the
  * rows that had yet to close, so the solver settled 1.2e-6 above the
- * converged ropelength at N = 9600 (bench/RESULTS.md, "Second-order
- * solver"); at mu0 the band is as before. */
+ * converged ropelength at N = 9600
+ * (bench/notes/2026-11-25-converged-last-digits.md); at mu0 the band is as before. */
 #define NEAR_ACTIVE 1e-6
 
 /* The MinRad guard (s->guard > 0, where bends are taken back: newton.c).
@@ -107,7 +107,8 @@ static void row_terms(solver *s, int m, const size_t *idx, const double *gr, con
  * a second difference w of size l0^2 kappa, so a step's vertex-scale
  * wiggles of a few l0^2 (1.8e-7 at N = 76 800), which the tension hardly
  * resists, bend a vertex at kappa 0.95 past 1; the bends were taken back in
- * 94 % of the first 50 steps at N = 38 400 (bench/RESULTS.md). So the
+ * 94 % of the first 50 steps at N = 38 400
+ * (bench/notes/2026-11-27-n76800-end-game.md). So the
  * matrix sees each inactive row with 0 < g < g_s (g_s = l0^4 / S, the row
  * at kappa = 0) as the barrier -nu log g would: nu / g^2 grad g grad g^T -
  * nu / g hess g (positive semidefinite over the vertices, g being concave
@@ -125,7 +126,7 @@ static void row_terms(solver *s, int m, const size_t *idx, const double *gr, con
  * grows, so the end game is Newton's on L_A again (at a fixed eta the
  * N = 38 400 trefoil settled 2e-7 long in 186 steps). Measured at N = 38 400
  * from the converged 19 200: 178 steps and 32.7429351298, against 263-310
- * and 32.7429351323-1406 without (bench/RESULTS.md, "The MinRad guard"). */
+ * and 32.7429351323-1406 without (bench/notes/2026-11-27-minrad-guard.md). */
 static double minrad_guard_lambda(const solver *s)
 {
     double sum = 0.0;

@@ -9,7 +9,7 @@
  * carries: moving those few vertices back costs about sum lambda_i |g_i|.
  * The end game of a large solve (N >= 76 800) spends hundreds of steps with
  * violations of 1e-7 to 1e-4 while its length is already below where the
- * rescaled iterate lands (bench/RESULTS.md).
+ * rescaled iterate lands (bench/notes/2026-11-27-restoration.md).
  *
  * The correction is the proximal penalty projection
  *   min rho / 2 |y - y0|^2 + mu_r / 2 sum_rows min(0, g)^2 (edges: h^2),

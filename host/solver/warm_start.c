@@ -306,7 +306,8 @@ done:
  * reads the start as loose: with the sag's band always, rows up to 1.9e-3
  * from their bound took multipliers on the N = 2400 trefoil (no refined
  * start: its contacts are at 2 to 1e-9), and the solve settled 2.0e-7
- * higher in 316 steps instead of 235 (bench/RESULTS.md). */
+ * higher in 316 steps instead of 235
+ * (bench/notes/2026-11-25-time-per-step-vs-n.md). */
 int tr_newton_i_warm_multipliers(solver *s, const double *y, tr_error *err)
 {
     double sag = fmin(WARM_BAND_MAX, WARM_BAND_SAG * s->l0min * s->l0min);

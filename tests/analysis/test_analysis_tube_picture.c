@@ -181,7 +181,8 @@ static void test_trefoil(void)
     tr_analysis_opts o = {.m = 1, .plateau_eps = 3e-3};
     REQUIRE_OK(tr_analyze_component(c.x, n, pairs, np, &o, &a, &err));
     CHECK(a.sym.verdict == TR_SYM_D3);
-    CHECK(a.nplateaus == 6); /* bench/RESULTS.md: l1 ~ 0.164, l2 ~ 0.309 at every image */
+    /* bench/notes/2026-11-24-tube-pictures.md: l1 ~ 0.164, l2 ~ 0.309 at every image */
+    CHECK(a.nplateaus == 6);
 
     size_t K = 16;
     tr_tube_picture tp;

@@ -13,7 +13,7 @@
  *    vertices average to 1/2 within 0.02;
  *  - nowhere more bent than the limit, and most bent at the tip (the kink
  *    K; its curvature reaches 1 only from ~100 vertices per rope on,
- *    bench/RESULTS.md). */
+ *    bench/notes/2026-11-23-simple-clasp-polish.md). */
 #include <math.h>
 #include <stdio.h>
 

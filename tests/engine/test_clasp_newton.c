@@ -14,7 +14,8 @@
  *    computed on the curve alone) below 1e-3;
  *  - the published anatomy (REFERENCE.md 6.2): the kink K at the tip has
  *    curvature 1 (the curvature limit, reached at this resolution, as the
- *    first-order route reaches it at 2 x 100: bench/RESULTS.md), and the
+ *    first-order route reaches it at 2 x 100:
+ *    bench/notes/2026-11-23-simple-clasp-polish.md), and the
  *    shoulder S, on a circle of radius 2 about the other rope's tip,
  *    curvature 1/2 (the mean of four vertices: the polygon zigzags about it
  *    with period 2);

@@ -68,7 +68,8 @@ static void test_unknot(size_t n, double radius, int max_steps)
     CHECK_NEAR(st.ropelength_after, got, 1e-12 * got);
     /* second-order: tens of steps, not the thousands of a first-order
      * method (at n = 64 the n / 2 opposite struts, all exactly at 2, make
-     * the multipliers far from unique and the updates crawl: bench/RESULTS.md) */
+     * the multipliers far from unique and the updates crawl:
+     * bench/notes/2026-11-25-converged-last-digits.md) */
     CHECK(st.iters < max_steps);
     tr_curve_free(&c);
 }

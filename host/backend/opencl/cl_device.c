@@ -274,7 +274,8 @@ int tr_device_select(const char *spec, tr_device_choice *out, tr_error *err)
     if (!strcmp(spec, "auto") || !strcmp(spec, "opencl")) {
         /* "auto" means the fastest: an OpenCL driver running on this host's
          * own CPU (PoCL) was measured slower than the serial reference on the
-         * whole step (bench/RESULTS.md), so auto takes the best GPU or
+         * whole step (bench/notes/2026-11-23-opencl-targets-issue-4.md), so
+         * auto takes the best GPU or
          * accelerator, whatever a CPU driver scores; "opencl" or P:D still
          * selects a CPU driver. */
         int best = -1, best_accel = -1;

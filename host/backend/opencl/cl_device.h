@@ -62,7 +62,8 @@ const char *tr_device_spec_default(void);
  * GPU/accelerator, or the reference with a warning when there is none; "P:D" -> that
  * device; anything else -> the single usable device whose platform or device
  * name contains it (case-insensitive). "auto" skips OpenCL drivers that run
- * on the host CPU (slower than the reference, bench/RESULTS.md), and falls
+ * on the host CPU (slower than the reference,
+ * bench/notes/2026-11-23-opencl-targets-issue-4.md), and falls
  * back to the reference when OpenCL itself is missing; "opencl" is the best
  * usable device of any type. Any other choice, "opencl" included, of an
  * unusable or missing device is an error, never a silent fallback. */
