@@ -7,8 +7,11 @@ set -euo pipefail
 # libopenblas0-serial: CHOLMOD's dense kernels (the second-order solver's and the KKT
 # certificate's factorisations) through OpenBLAS instead of the reference BLAS; one thread,
 # so the two cores stay the tests' (bench/notes/2026-11-25-converged-last-digits.md)
+# python3-venv: pip install ./python into a venv (scripts/test.sh --python); python3-numpy,
+# python3-pytest: the Python package's tests against the build's library (ctest -L python)
 pkgs=(build-essential cmake pkg-config ocl-icd-opencl-dev opencl-headers pocl-opencl-icd clinfo
-      clang libclang-rt-14-dev gnuplot-nox libsuitesparse-dev libopenblas0-serial parallel "$@")
+      clang libclang-rt-14-dev gnuplot-nox libsuitesparse-dev libopenblas0-serial parallel
+      python3-venv python3-numpy python3-pytest "$@")
 missing=()
 for p in "${pkgs[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

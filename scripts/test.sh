@@ -4,8 +4,25 @@
 #   scripts/test.sh --sanitize   -fsanitize=address,undefined build in build-asan/
 #   scripts/test.sh --oclgrind   the OpenCL tests under Oclgrind (installed if missing) in
 #                                build-oclgrind/: scripts/oclgrind_run.sh fails on any report
+#   scripts/test.sh --python     the Python package as a user installs it: pip install ./python
+#                                in a fresh venv (build-python/venv), then its pytest tests
+#                                against the installed package (the normal run's ctest already
+#                                runs them against build/'s library, label python)
 set -euo pipefail
 cd "$(dirname "$0")/.."
+if [ "${1:-}" = "--python" ]; then
+  bash scripts/deps.sh
+  rm -rf build-python
+  python3 -m venv build-python/venv
+  start=$(date +%s)
+  build-python/venv/bin/pip install --quiet ./python pytest
+  echo "pip install ./python pytest: $(( $(date +%s) - start )) s"
+  # from outside the source tree, so that "import tightrope" is the installed package;
+  # the command line of the normal run (if built) for the measure --json comparison
+  cd build-python
+  [ -x ../build/tightrope ] && export TIGHTROPE_CLI=$PWD/../build/tightrope
+  exec venv/bin/python -m pytest -q -p no:cacheprovider ../python/tests
+fi
 if [ "${1:-}" = "--oclgrind" ]; then
   bash scripts/deps.sh oclgrind
   # only what the leg runs: the OpenCL tests (label backend/opencl, at their

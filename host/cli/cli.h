@@ -15,9 +15,10 @@ int tr_cmd_analyze(int argc, char **argv);
 int tr_cmd_batch(int argc, char **argv);
 
 /* What one tighten came to, for batch, which runs tighten's own steps on
- * every curve of a manifest rather than a process per curve. written: the
- * output (with its certificate) was written; interrupted: SIGINT/SIGTERM
- * stopped the run (the output and the checkpoint hold its last state). */
+ * every curve of a manifest (cli_tighten.h, tr_cli_tighten_run) rather
+ * than a process per curve. written: the output (with its certificate) was
+ * written; interrupted: SIGINT/SIGTERM stopped the run (the output and the
+ * checkpoint hold its last state). */
 typedef struct tr_tighten_report {
     int written, interrupted;
     const char *stop; /* tr_stop_reason_name, static */
@@ -31,18 +32,13 @@ typedef struct tr_tighten_report {
     int road;            /* the road written, 1-based (1: the start's own); 0 resumed */
 } tr_tighten_report;
 
-/* tighten with argv as tr_cmd_tighten takes it (argv[0] the command's
- * name): the same parsing, run, certificate and output, and the same
- * messages on stderr; with rep the summary is not printed on stdout but
- * returned in *rep. Returns tighten's exit status. */
-int tr_tighten_command(int argc, char **argv, tr_tighten_report *rep);
-
-/* tighten's command-line checks alone, on argv as tr_tighten_command
- * takes it: the options and their values, and the paths against each
- * other; nothing is read, run or written. Returns -1 when they pass, else
- * tighten's exit status, its one-line message printed on stderr. batch
- * checks every knot's command line with it before it runs any, so that a
- * bad option fails at once rather than when its knot comes (an hour in). */
+/* tighten's command-line checks alone, on argv as tr_cmd_tighten takes it
+ * (argv[0] the command's name): the options and their values, and the
+ * paths against each other; nothing is read, run or written. Returns -1
+ * when they pass, else tighten's exit status, its one-line message printed
+ * on stderr. batch checks every knot's command line with it before it runs
+ * any, so that a bad option fails at once rather than when its knot comes
+ * (an hour in). */
 int tr_tighten_check_args(int argc, char **argv);
 
 /* Whether SIGINT/SIGTERM has asked the running tighten to stop (the

@@ -1,8 +1,9 @@
 /* tightrope batch SRC -o OUT [options] [-- tighten options]
  *
  * Tightens every knot of a manifest or a folder (batch_manifest.h) with
- * tighten's own code (tr_tighten_command, in this process: the same
- * checks, certificate and output as `tightrope tighten`), one after the
+ * tighten's own code (tr_cli_tighten_parse and tr_cli_tighten_run over the
+ * tightening layer, in this process: the same checks, certificate and
+ * output as `tightrope tighten`), one after the
  * other, into OUT: NAME.vect (the tight curve, its certificate in
  * comments), NAME.ckpt while it runs, NAME.row.tsv once it is done
  * (batch_row.h), and the table of every knot done, table.tsv and
@@ -40,6 +41,7 @@
 #include "cli/batch_table.h"
 #include "cli/cli.h"
 #include "cli/cli_args.h"
+#include "cli/cli_tighten.h"
 #include "curve/curve.h"
 #include "curve/curve_io.h"
 #include "util/clock.h"
@@ -444,7 +446,14 @@ static int run_knot(const batch_opts *o, const tr_batch_knot *k, const char *dir
         fprintf(stderr, "tightrope batch: out of memory\n");
         return 1;
     }
-    int status = tr_tighten_command(a.argc, a.argv, rep);
+    /* the run's words (the same the checks before the batch passed, and
+     * the command line the output's comments record) parsed into tighten's
+     * options, and the run on that struct (cli_tighten.h, tr_tighten) */
+    tr_cli_tighten t;
+    *rep = (tr_tighten_report){.kkt_residual = NAN, .stop = ""};
+    int status = tr_cli_tighten_parse(a.argc, a.argv, &t);
+    if (status < 0)
+        status = tr_cli_tighten_run(&t, a.argc, a.argv, rep);
     free(a.argv);
     if (!rep->written || rep->interrupted) {
         if (resume && !rep->written)

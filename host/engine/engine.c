@@ -291,7 +291,7 @@ int tr_engine_i_newton(tr_engine *e, double seconds, int tight_only, volatile si
     /* tried, whatever comes of it: the level loop must not try again */
     e->newton_tried = 1;
     /* The solver's strut rows on the run's device (backend.h strut_rows):
-     * the open backend, or, for the solve before the settle (newton_first,
+     * the open backend, or, for the solve before the settle (tr_engine_solve,
      * before the engine opens one), one opened for the solve on the same
      * spec; a device that cannot be opened leaves the rows to the solver,
      * as does the serial reference, whose rows are the solver's own. */
@@ -332,20 +332,18 @@ int tr_engine_i_newton(tr_engine *e, double seconds, int tight_only, volatile si
     return TR_OK;
 }
 
-/* The second-order solver on a tight start before the settle
- * (engine.h, newton_first); a loose one is left to the level loop, which
- * tries the solver again in the polish's place. */
-static int newton_first(tr_engine *e, tr_error *err)
+int tr_engine_solve(tr_engine *e, double seconds, volatile sig_atomic_t *stop, const char *checkpoint,
+                    double checkpoint_every, int *accepted, tr_error *err)
 {
-    if (!(e->prm.newton || e->prm.newton_tight) || !e->prm.newton_first)
-        return TR_OK;
-    double seconds = 0.0;
-    if (e->prm.newton_first_limit > 0)
-        seconds = fmax(e->prm.newton_first_limit - (tr_clock_seconds() - e->t0), 1e-3);
-    int accepted;
+    *accepted = 0;
+    if (e->be.ops)
+        return tr_fail(err, TR_EINVAL, "tr_engine_solve: the start is settled already (solve before "
+                                       "tr_engine_settle_start)");
+    e->ckpt_path = checkpoint;
+    e->ckpt_every = checkpoint ? checkpoint_every : 0;
     /* (tr_engine_i_newton keeps the solve within e->bound too) */
-    int rc = tr_engine_i_newton(e, seconds, 1, e->prm.newton_first_stop, &accepted, err);
-    if (rc == TR_OK && accepted) {
+    int rc = tr_engine_i_newton(e, seconds, 1, stop, accepted, err);
+    if (rc == TR_OK && *accepted) {
         e->polished = 1;
         e->polish_before = e->newton_before;
         e->polish_after = e->newton_after;
@@ -379,7 +377,7 @@ static int settle_scaled(tr_engine *e, int rc, tr_error *err)
 
 /* The start's settle stopped by the bound (the time limit, or a signal
  * 2 s into a run): the curve before the settle is the run's best, the
- * solver's result where newton_first took the start (a rope already, its
+ * solver's result where tr_engine_solve took the start (a rope already, its
  * edges equal to the solver's tolerance), else the start as it came (it
  * passed the settle's checks: no overlap, not too coarse). The engine
  * holds it as it is, and the run, stopping on the bound at once, writes it
@@ -399,8 +397,8 @@ static int keep_unsettled_start(tr_engine *e, tr_error *err)
     return rc;
 }
 
-int tr_engine_create(tr_engine **out, const tr_curve *c, const char *device,
-                     const tr_engine_params *p, tr_error *err)
+int tr_engine_open(tr_engine **out, const tr_curve *c, const char *device, const tr_engine_params *p,
+                   tr_error *err)
 {
     *out = NULL;
     tr_engine *e = tr_engine_i_new(device, p);
@@ -409,12 +407,17 @@ int tr_engine_create(tr_engine **out, const tr_curve *c, const char *device,
     int rc = tr_curve_copy(&e->curve, c, err);
     if (!rc)
         rc = tr_engine_i_alloc_comp_arrays(e, err);
-    e->ckpt_path = e->prm.newton_first_checkpoint;
-    e->ckpt_every = e->prm.newton_first_checkpoint_every;
-    if (!rc)
-        rc = newton_first(e, err);
-    if (!rc)
-        rc = tr_engine_i_open_backend(e, &e->curve, err);
+    if (rc) {
+        tr_engine_destroy(e);
+        return rc;
+    }
+    *out = e;
+    return TR_OK;
+}
+
+int tr_engine_settle_start(tr_engine *e, tr_error *err)
+{
+    int rc = tr_engine_i_open_backend(e, &e->curve, err);
     if (!rc)
         rc = tr_engine_i_keep_presettle(e, err);
     if (!rc)
@@ -423,11 +426,23 @@ int tr_engine_create(tr_engine **out, const tr_curve *c, const char *device,
         rc = keep_unsettled_start(e, err);
     if (rc == TR_EGEOMETRY)
         rc = settle_scaled(e, rc, err);
-    if (rc) {
+    if (rc)
+        return rc;
+    e->h = e->ebar[0];
+    return TR_OK;
+}
+
+int tr_engine_create(tr_engine **out, const tr_curve *c, const char *device,
+                     const tr_engine_params *p, tr_error *err)
+{
+    tr_engine *e;
+    int rc = tr_engine_open(&e, c, device, p, err);
+    if (rc)
+        return rc;
+    if ((rc = tr_engine_settle_start(e, err))) {
         tr_engine_destroy(e);
         return rc;
     }
-    e->h = e->ebar[0];
     *out = e;
     return TR_OK;
 }

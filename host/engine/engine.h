@@ -92,24 +92,13 @@ typedef struct tr_engine_params {
      * coarse levels). Kept only if the oracle finds its result shorter at
      * thickness 1. */
     int newton;
-    /* With newton, at tr_engine_create: a start that is tight (a converged
-     * knot resampled by --n) goes to the solver before the engine settles
-     * it, for up to newton_first_limit seconds (0: none), stopping when
-     * *newton_first_stop is raised; the caller sets it where the start is
-     * the finest level. The settle would first remove a spline's MinRad
-     * overshoot by lengthening the rope (1.7e-3 at N = 9600, in 48 s). */
-    int newton_first;
     /* A tight finest level goes to the solver first even without newton
      * (newton then adds the solver in the polish's place for loose ones);
-     * 0 keeps the solver out altogether. Default 1. */
+     * 0 keeps the solver out altogether. Default 1. (A tight start goes to
+     * the solver before the engine settles it through tr_engine_solve,
+     * which the tightening layer calls between tr_engine_open and
+     * tr_engine_settle_start.) */
     int newton_tight;
-    double newton_first_limit;
-    volatile sig_atomic_t *newton_first_stop;
-    /* where that solve writes its checkpoints (the shortest iterate so far,
-     * in the checkpoint format, every newton_first_checkpoint_every
-     * seconds; NULL: none): tr_engine_run's limits come too late for it */
-    const char *newton_first_checkpoint;
-    double newton_first_checkpoint_every;
     /* Coarse levels (all but the last of a run with refine_to) with fewer
      * vertices than this run on the serial reference instead of the chosen
      * device: there an OpenCL device's cost per kernel launch outweighs its
@@ -118,11 +107,11 @@ typedef struct tr_engine_params {
      * the N = 2400 trefoil, the reference 28 s). 0: the chosen device at
      * every level. */
     size_t device_min_n;
-    /* The hard bound of everything the engine does (tr_engine_create's
-     * solve and settle, tr_engine_run's levels, refinements and settles):
+    /* The hard bound of everything the engine does (tr_engine_solve,
+     * the start's settle, tr_engine_run's levels, refinements and settles):
      * past it a settle stops where it is and the engine goes back to its
      * last settled state. tr_engine_run adds its stop flag to it. Zero:
-     * none. The soft shares (newton_first_limit, tr_engine_run's
+     * none. The soft shares (tr_engine_solve's seconds, tr_engine_run's
      * time_limit, a level's half of the time left) divide the time within
      * it. */
     tr_deadline bound;
@@ -191,9 +180,34 @@ typedef struct tr_engine_limits {
 typedef struct tr_engine tr_engine;
 
 /* Opens the backend for the curve, checks it (too coarse, overlapping,
- * too tightly bent), and equalises its edges. */
+ * too tightly bent), and equalises its edges: tr_engine_open, then
+ * tr_engine_settle_start. */
 int tr_engine_create(tr_engine **out, const tr_curve *c, const char *device,
                      const tr_engine_params *p, tr_error *err);
+
+/* tr_engine_create in two steps, for a caller that solves the start
+ * first (tr_engine_solve): tr_engine_open takes the curve as it is (no
+ * backend opened, nothing checked or moved); tr_engine_settle_start opens
+ * the backend, checks and settles it. After a failed settle the caller
+ * destroys the engine. A settle the bound stops keeps the start as it
+ * was (the solver's result, if it took it), a rope already. */
+int tr_engine_open(tr_engine **out, const tr_curve *c, const char *device, const tr_engine_params *p,
+                   tr_error *err);
+int tr_engine_settle_start(tr_engine *e, tr_error *err);
+
+/* The second-order solver (solver/newton.h) on the engine's curve, before
+ * tr_engine_settle_start: a start that is tight (a converged knot resampled
+ * by --n) is solved at once, where the settle would first remove a
+ * spline's MinRad overshoot by lengthening the rope (1.7e-3 at N = 9600,
+ * in 48 s); a loose one is left alone (the level loop tries the solver
+ * again in the polish's place). For up to seconds (0: none), within the
+ * params' bound, stopping when *stop is raised (NULL: the bound's flag);
+ * every checkpoint_every seconds its shortest iterate goes to checkpoint
+ * in the checkpoint format (NULL: none), since tr_engine_run's limits come
+ * after it. *accepted: the result was shorter at thickness 1 and kept. The
+ * level loop reaches the solver through the same path (one way in). */
+int tr_engine_solve(tr_engine *e, double seconds, volatile sig_atomic_t *stop, const char *checkpoint,
+                    double checkpoint_every, int *accepted, tr_error *err);
 void tr_engine_destroy(tr_engine *e);
 
 /* Tightens (through the refinement levels) until a stop condition. */

@@ -56,8 +56,8 @@ struct tr_engine {
      * fails as it would have (the backend holds the half-settled curve) */
     int refine_unsettled;
     size_t refine_unsettled_n;
-    /* where the second-order solver writes its checkpoints (newton_first:
-     * the params; the level loop: its limits) */
+    /* where the second-order solver writes its checkpoints (tr_engine_solve:
+     * its arguments; the level loop: its limits) */
     const char *ckpt_path;
     double ckpt_every;
     /* checkpoints that could not be written (the run went on) and why the

@@ -1,6 +1,6 @@
 /* This file contains splitmix64, the seeded random stream of the curve
  * perturbations (curve/perturb.c) and the crankshaft shuffle
- * (engine/shuffle.c): the same seed gives the same numbers on every
+ * (tighten/shuffle.c): the same seed gives the same numbers on every
  * machine, where libc's rand() does not. */
 #ifndef TR_SPLITMIX64_H
 #define TR_SPLITMIX64_H

@@ -47,7 +47,7 @@ grep -q 'shortest scout (road 2, N 96) resampled to 80 vertices' "$work/p.err" |
   fail "past N: the inflated scout was not past N or not resampled: $(cat "$work/p.err")"
 got=$("$tr" measure "$work/p.vect" | awk '$1 == "curve" { print $2 }')
 [ "$got" = 80 ] || fail "past N: wrote $got vertices, not 80: $(cat "$work/p.err")"
-# --shuffles S: the last S roads start from the start shuffled (engine/shuffle.h), the same
+# --shuffles S: the last S roads start from the start shuffled (tighten/shuffle.h), the same
 # with the same seed
 for run in s1 s2; do
   "$tr" tighten "$work/s.vect" -o "$work/$run.vect" --n 80 --refine-to 160 --steps 300 --tries 2 --shuffles 1 --seed 5 \

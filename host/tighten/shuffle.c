@@ -1,6 +1,6 @@
 /* This file contains the crankshaft shuffle of a start curve, the shuffled
  * roads of tighten --shuffles (shuffle.h). */
-#include "engine/shuffle.h"
+#include "tighten/shuffle.h"
 
 #include <math.h>
 #include <stdlib.h>

@@ -1,4 +1,4 @@
-/* The crankshaft shuffle (engine/shuffle.h), the start of tighten's
+/* The crankshaft shuffle (tighten/shuffle.h), the start of tighten's
  * shuffled roads. Checked against the physics, not against its own output:
  * every kept move, replayed one at a time, moves no vertex by as much as
  * the thickness the oracle measures before it (so no two strands can meet
@@ -16,7 +16,7 @@
 #include <string.h>
 
 #include "curve/generate.h"
-#include "engine/shuffle.h"
+#include "tighten/shuffle.h"
 #include "oracle/thickness.h"
 #include "testlib.h"
 #include "util/vec3.h"

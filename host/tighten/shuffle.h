@@ -1,5 +1,5 @@
 /* This file declares the crankshaft shuffle of a start curve: the start of
- * a shuffled road of tighten --shuffles (cli/cli_tighten.c), another
+ * a shuffled road of tighten --shuffles (tighten/roads.c), another
  * conformation of the same knot. */
 #ifndef TR_SHUFFLE_H
 #define TR_SHUFFLE_H

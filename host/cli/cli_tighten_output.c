@@ -1,0 +1,120 @@
+/* What a tighten leaves (cli_tighten.h): the output file with its
+ * certificate and the command line in comments, and the summary on stdout
+ * (lines, or JSON with --json). */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "cli/cli_tighten.h"
+#include "curve/curve_io.h"
+#include "util/json.h"
+#include "util/text_file.h"
+
+static void json_num(const char *key, double v, int comma)
+{
+    if (isfinite(v))
+        printf("  \"%s\": %.17g%s\n", key, v, comma ? "," : "");
+    else
+        printf("  \"%s\": null%s\n", key, comma ? "," : "");
+}
+
+static void json_str(const char *key, const char *v, int comma)
+{
+    printf("  \"%s\": ", key);
+    tr_json_fputs(stdout, v);
+    printf("%s\n", comma ? "," : "");
+}
+
+/* Writes r's curve to OUT with its certificate and the command line in
+ * comments. */
+int tr_cli_tighten_write(const tr_cli_tighten *t, const tr_tighten_result *r, int argc, char **argv, tr_error *err)
+{
+    const tr_engine_progress *p = &r->progress;
+    const tr_thickness *th = &r->th;
+    const tr_kkt *kr = &r->kkt;
+    tr_text cm = {0};
+    tr_text_printf(&cm, "tightened by tightrope %s on %s\n", TIGHTROPE_VERSION, r->device);
+    tr_text_printf(&cm, "command:");
+    for (int i = 0; i < argc; i++)
+        tr_text_printf(&cm, " %s", argv[i]);
+    tr_text_printf(&cm, "\nN %zu\nlength %.17g\nMinRad %.17g\ndcsd %.17g\nthickness %.17g\nropelength %.17g\n",
+            th->vertices, th->length, th->minrad, th->dcsd, th->thickness, th->ropelength);
+    if (isfinite(r->residual))
+        tr_text_printf(&cm, "residual %.6g\n", r->residual);
+    else
+        tr_text_printf(&cm, "residual not computed (no step taken)\n");
+    tr_text_printf(&cm, "steps %ld\nstop %s\n%s", r->steps, tr_stop_reason_name(r->stop),
+            r->rescaled ? "rescaled to thickness 1\n" : "");
+    if (r->certified)
+        tr_text_printf(&cm, "kkt_residual %.6e (band %g: %zu/%zu struts, %zu/%zu MinRad rows hold%s)\n", kr->residual,
+                       TR_KKT_DEFAULT_BAND, kr->strut_active, kr->strut_rows, kr->minrad_active, kr->minrad_rows,
+                       kr->converged ? "" : "; an upper bound");
+    else
+        tr_text_printf(&cm, "kkt_residual not computed (%s)\n", r->stop == TR_STOP_SIGNAL ? "interrupted"
+                       : t->opt.kkt == 0 ? "--no-kkt" : "N above the default limit; --kkt");
+    if (p->polished && !p->newton_ran)
+        tr_text_printf(&cm, "polish %s: ropelength %.9f -> %.9f in %.2f s%s%s%s\n", p->polished > 0 ? "accepted" : "rejected",
+                p->polish_before, p->polish_after, p->polish_seconds, p->polish_why ? " (" : "",
+                p->polish_why ? p->polish_why : "", p->polish_why ? ")" : "");
+    if (p->newton_ran)
+        tr_text_printf(&cm, "newton %s: ropelength %.9f -> %.9f in %.2f s, %d steps\n",
+                       p->newton_ran > 0 ? "accepted" : "rejected", p->newton_before, p->newton_after,
+                       p->newton_seconds, p->newton_iters);
+    if (r->tries > 1)
+        tr_text_printf(&cm, "tries %d, seed %ld: the shortest was road %d\n", r->tries, r->seed, r->road);
+    if (r->shift[0] != 0 || r->shift[1] != 0 || r->shift[2] != 0)
+        tr_text_printf(&cm, "centred: the start was moved by (%.17g, %.17g, %.17g) to be tightened about the "
+                            "origin\n", 0.0 - r->shift[0], 0.0 - r->shift[1], 0.0 - r->shift[2]);
+    char *comments = tr_text_take(&cm, NULL);
+    if (!comments)
+        return tr_fail(err, TR_ENOMEM, "out of memory");
+    int rc = tr_curve_write(t->out, TR_FORMAT_AUTO, &r->curve, comments, err);
+    free(comments);
+    return rc;
+}
+
+/* Prints the summary of the run on stdout: JSON with --json, else lines. */
+void tr_cli_tighten_summary(const tr_cli_tighten *t, const tr_tighten_result *r)
+{
+    const tr_engine_progress *p = &r->progress;
+    const tr_thickness *th = &r->th;
+    const tr_kkt *kr = &r->kkt;
+    if (t->json) {
+        printf("{\n");
+        json_str("output", t->out, 1);
+        json_str("device", r->device, 1);
+        json_str("stop", tr_stop_reason_name(r->stop), 1);
+        printf("  \"N\": %zu,\n  \"steps\": %ld,\n  \"rejected\": %ld,\n", th->vertices, r->steps, r->rejected);
+        json_num("length", th->length, 1);
+        json_num("minrad", th->minrad, 1);
+        json_num("dcsd", th->dcsd, 1);
+        json_num("thickness", th->thickness, 1);
+        json_num("ropelength", th->ropelength, 1);
+        json_num("residual", r->residual, 1);
+        json_num("kkt_residual", r->kkt_residual, 1);
+        if (r->certified)
+            printf("  \"kkt_converged\": %s,\n", kr->converged ? "true" : "false");
+        json_num("elapsed_s", r->elapsed, 1);
+        json_num("steps_per_s", r->steps_per_s, 0);
+        printf("}\n");
+        return;
+    }
+    printf("%s: N %zu  ropelength %.6f  (length %.6f, thickness %.9f, MinRad %.9f, dcsd %.9f)\n", t->out,
+           th->vertices, th->ropelength, th->length, th->thickness, th->minrad, th->dcsd);
+    char res[32] = "not computed";
+    if (isfinite(r->residual))
+        snprintf(res, sizeof res, "%.2e", r->residual);
+    printf("  %ld steps in %.1f s, residual %s, stopped: %s\n", r->steps, r->elapsed, res,
+           tr_stop_reason_name(r->stop));
+    if (r->certified)
+        printf("  KKT residual %.2e (%zu/%zu struts and %zu/%zu MinRad rows hold the tension%s)\n", kr->residual,
+               kr->strut_active, kr->strut_rows, kr->minrad_active, kr->minrad_rows,
+               kr->converged ? "" : "; an upper bound");
+    if (p->polished && !p->newton_ran)
+        printf("  polish %s: ropelength %.6f -> %.6f in %.1f s%s%s%s\n", p->polished > 0 ? "accepted" : "rejected",
+               p->polish_before, p->polish_after, p->polish_seconds, p->polish_why ? " (" : "",
+               p->polish_why ? p->polish_why : "", p->polish_why ? ")" : "");
+    if (p->newton_ran)
+        printf("  newton %s: ropelength %.9f -> %.9f in %.1f s, %d steps\n", p->newton_ran > 0 ? "accepted" : "rejected",
+               p->newton_before, p->newton_after, p->newton_seconds, p->newton_iters);
+}

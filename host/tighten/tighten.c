@@ -1,0 +1,539 @@
+/* tr_tighten (tighten.h): the roads one after the other, each opened,
+ * run and certified on its own engine, and the best kept. --time-limit is
+ * a bound on the whole call (every road, shuffle, settle and solve looks
+ * at it), not only on the engine's steps. */
+#include "tighten/tighten.h"
+
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "curve/curve_io.h"
+#include "tighten/tighten_internal.h"
+#include "util/clock.h"
+#include "util/text_file.h"
+
+void tr_tighten_options_default(tr_tighten_options *opt)
+{
+    *opt = (tr_tighten_options){.name = "the start",
+                                .device_from = -1,
+                                .residual = 1e-4,
+                                .checkpoint_every = 300,
+                                .polish = 1,
+                                .tries = 1,
+                                .seed = 1,
+                                .kkt = -1,
+                                .auto_route = 1,
+                                .centre = 1,
+                                .progress_every = 0.25};
+}
+
+void tt_note(const tt_opts *o, int kind, const char *fmt, ...)
+{
+    if (!o->call->note)
+        return;
+    char msg[1024];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(msg, sizeof msg, fmt, ap);
+    va_end(ap);
+    o->call->note(kind, msg, o->call->user);
+}
+
+tr_deadline tt_bound(const tt_opts *o) { return (tr_deadline){.at = o->bound_at, .stop = o->call->cancel}; }
+
+int tt_cancelled(const tt_opts *o) { return o->call->cancel && *o->call->cancel; }
+
+void tt_scale_curve(tr_curve *c, double f)
+{
+    for (size_t i = 0; i < 3 * c->nv; i++)
+        c->x[i] *= f;
+    for (int q = 0; q < c->ncst; q++) {
+        for (int a = 0; a < 3; a++)
+            c->cst[q].p[a] *= f;
+        c->cst[q].d *= f;
+    }
+}
+
+/* What the bound keeps back of the time limit T for the run to end in: the
+ * step, settle pass or solver iteration under way when the bound passes
+ * (each looks at the clock only between its own iterations: up to a second
+ * at N = 9600 on a loaded machine), the certificate and the write. Beside
+ * two busy loops, `--refine-to 9600 --time-limit 40` ended 0.1 to 2 s past
+ * its limit without it. */
+static double finish_reserve(double t) { return fmin(0.05 * t, 2.0); }
+
+/* What the run needs of its start and its outputs, checked before it
+ * starts: refine_to refines, it never coarsens (any component above it
+ * is an error), and the output's format and both paths. */
+static int check_outputs(const tt_opts *o, tr_engine *e, tr_error *err)
+{
+    tr_curve c = {0};
+    size_t refine_to = (size_t)o->refine_to;
+    int rc = tr_engine_get_curve(e, &c, err);
+    for (int k = 0; rc == TR_OK && refine_to > 0 && k < c.ncomp; k++)
+        if (tr_comp_nv(&c, k) > refine_to)
+            rc = tr_fail(err, TR_EINVAL, "--refine-to %zu is below the %zu vertices of component %d of the start; "
+                         "it refines, it does not coarsen (--n resamples a start)", refine_to, tr_comp_nv(&c, k), k);
+    if (rc == TR_OK && o->out)
+        rc = tr_curve_check_output(o->out, TR_FORMAT_AUTO, &c, err);
+    tr_curve_free(&c);
+    if (rc == TR_OK && o->ckpt)
+        rc = tr_check_writable(o->ckpt, err);
+    return rc;
+}
+
+/* resume: what the run was asked for and the options do not say again is
+ * taken from the checkpoint (tr_engine_goals), and said in a note. */
+static int resume_goals(tt_opts *o, double *elapsed, tr_error *err)
+{
+    tr_engine_goals g;
+    int found;
+    int rc = tr_engine_checkpoint_goals(o->resume, &g, &found, elapsed, err);
+    if (rc || !found)
+        return rc;
+    tr_text said = {0};
+    if (o->refine_to <= 0 && g.refine_to > 0) {
+        o->refine_to = g.refine_to;
+        o->refine_given = g.refine_given;
+        tr_text_printf(&said, " --refine-to %ld", g.refine_to);
+    }
+    if (o->target <= 0 && g.target > 0) {
+        o->target = g.target;
+        tr_text_printf(&said, " --target %.17g", g.target);
+    }
+    if (!o->residual_given && g.residual_given) {
+        o->residual = g.residual;
+        o->residual_given = 1;
+        tr_text_printf(&said, " --residual %.17g", g.residual);
+    }
+    if (o->steps <= 0 && g.steps > 0) {
+        o->steps = g.steps;
+        tr_text_printf(&said, " --steps %ld", g.steps);
+    }
+    if (o->time_limit <= 0 && g.time_limit > 0) {
+        o->time_limit = g.time_limit;
+        tr_text_printf(&said, " --time-limit %.17g", g.time_limit);
+    }
+    char *line = tr_text_take(&said, NULL);
+    if (line && line[0])
+        tt_note(o, TR_TIGHTEN_INFO, "resuming with the checkpoint's goals:%s", line);
+    free(line);
+    return TR_OK;
+}
+
+/* What one road came to: the engine's progress, the result and its
+ * certificate. */
+typedef struct road_result {
+    tr_stop_reason why;
+    tr_engine_progress p;
+    tr_curve fin;
+    tr_thickness th;
+    int rescaled;  /* fin was scaled to thickness 1 */
+    tr_kkt kr;
+    int certified; /* kr holds the KKT certificate of fin */
+    int ckpt_failures; /* checkpoints the run could not write */
+    const char *ckpt_why;
+    int tries, best_try; /* roads run, the one kept (0-based) */
+} road_result;
+
+/* Opens the engine on the road's start (the call's start or the
+ * checkpoint to resume) and checks the outputs before the run. *stage says
+ * where a failure came. */
+static int open_start(const tt_opts *o, tr_engine **e, tr_tighten_stage *stage, tr_error *err)
+{
+    tr_engine_params prm;
+    tr_engine_params_default(&prm);
+    prm.polish = !o->no_polish;
+    prm.newton = o->newton;
+    prm.newton_tight = !o->no_newton;
+    if (o->device_from >= 0)
+        prm.device_min_n = (size_t)o->device_from;
+    prm.bound = tt_bound(o);
+    prm.goals = (tr_engine_goals){.refine_to = o->refine_to > 0 ? o->refine_to : 0,
+                                  .refine_given = o->refine_given,
+                                  .target = o->target,
+                                  .residual = o->residual_given ? o->residual : 0.0,
+                                  .residual_given = o->residual_given,
+                                  .steps = o->steps,
+                                  .time_limit = o->time_limit};
+    *e = NULL;
+    *stage = TR_TIGHTEN_AT_START;
+    int rc;
+    if (o->resume) {
+        rc = tr_engine_resume(e, o->resume, o->device, &prm, err);
+    } else {
+        tr_curve c;
+        rc = tt_read_start(o, &c, err);
+        double t_open = tr_clock_seconds();
+        if (rc == TR_OK) {
+            rc = tr_engine_open(e, &c, o->device, &prm, err);
+            /* the start is the finest level: a tight one goes to the
+             * second-order solver before the engine settles it
+             * (engine.h, tr_engine_solve), for the road's time */
+            int solve_first = !o->no_newton && (o->refine_to <= 0 || c.nv / (size_t)c.ncomp >= (size_t)o->refine_to);
+            tr_curve_free(&c);
+            int accepted;
+            double seconds = o->time_limit > 0 ? fmax(o->time_limit - (tr_clock_seconds() - t_open), 1e-3) : 0.0;
+            if (rc == TR_OK && solve_first)
+                rc = tr_engine_solve(*e, seconds, o->call->cancel, o->ckpt, o->ckpt ? o->ckpt_every : 0, &accepted,
+                                     err);
+            if (rc == TR_OK)
+                rc = tr_engine_settle_start(*e, err);
+            if (rc) {
+                tr_engine_destroy(*e);
+                *e = NULL;
+            }
+        }
+    }
+    if (rc)
+        return rc;
+    /* A run of hours must not end in "cannot write": the output's format
+     * and both paths are checked before it starts. */
+    *stage = TR_TIGHTEN_AT_CHECK;
+    if ((rc = check_outputs(o, *e, err))) {
+        tr_engine_destroy(*e);
+        *e = NULL;
+        return rc;
+    }
+    if (tr_engine_warning(*e)[0])
+        tt_note(o, TR_TIGHTEN_WARNING, "warning: %s", tr_engine_warning(*e));
+    if (o->resume) {
+        /* both limits count the runs before the checkpoint: say so when
+         * they leave this run nothing to do */
+        tr_engine_progress p0;
+        tr_engine_get_progress(*e, &p0);
+        if (o->steps > 0 && p0.steps >= o->steps)
+            tt_note(o, TR_TIGHTEN_WARNING, "warning: the checkpoint has %ld steps already; --steps %ld "
+                    "counts them, so no step is taken", p0.steps, o->steps);
+        if (o->time_limit > 0 && p0.elapsed >= o->time_limit)
+            tt_note(o, TR_TIGHTEN_WARNING, "warning: the checkpoint has used %.1f s already; "
+                    "--time-limit %g counts them, so no step is taken", p0.elapsed, o->time_limit);
+    }
+    return TR_OK;
+}
+
+/* The engine's progress, as the call's (tighten.h). */
+static void on_progress(const tr_engine_progress *p, void *user)
+{
+    const tt_opts *o = user;
+    tr_tighten_progress tp = {.n = p->n,
+                              .steps = p->steps,
+                              .ropelength = p->ropelength,
+                              .residual = p->residual,
+                              .elapsed = p->elapsed,
+                              .steps_per_s = p->steps_per_s,
+                              .road = o->try_index + 1,
+                              .roads = o->roads};
+    o->call->progress(&tp, o->call->user);
+}
+
+/* Runs the engine to its limits, stopping when the cancel flag is raised. */
+static int run(const tt_opts *o, tr_engine *e, tr_stop_reason *why, tr_error *err)
+{
+    tr_engine_limits lim = {.refine_to = (size_t)o->refine_to,
+                            .residual = o->residual,
+                            .target = o->target,
+                            .max_steps = o->steps,
+                            .time_limit = o->time_limit,
+                            .coarse_residual = 1e-3,
+                            .checkpoint_every = o->ckpt ? o->ckpt_every : 0,
+                            .checkpoint_path = o->ckpt,
+                            .stop = o->call->cancel,
+                            .progress_every = o->call->progress_every > 0 ? o->call->progress_every : 0.25,
+                            .progress = o->call->progress ? on_progress : NULL,
+                            .user = (void *)o};
+    return tr_engine_run(e, &lim, why, err);
+}
+
+/* Takes the engine's curve into r->fin, rescaled to thickness 1 where no
+ * vertex is constrained, and measures and (as kkt says) certifies it. */
+static int certify(const tt_opts *o, tr_engine *e, road_result *r, tr_error *err)
+{
+    tr_engine_get_progress(e, &r->p);
+    r->ckpt_failures = tr_engine_checkpoint_failures(e, &r->ckpt_why);
+    /* no step ever taken (a target the start already meets): the engine
+     * has no residual to report, and 0 would read as converged */
+    if (r->p.steps == 0)
+        r->p.residual = NAN;
+    int rc = tr_engine_get_curve(e, &r->fin, err);
+    if (rc == TR_OK)
+        rc = tr_thickness_measure(&r->fin, NULL, &r->th, NULL, err);
+    if (rc == TR_OK && r->fin.ncst == 0 && isfinite(r->th.thickness) && r->th.thickness > 0) {
+        /* certificate at thickness exactly 1: ropelength = length */
+        tt_scale_curve(&r->fin, 1.0 / r->th.thickness);
+        rc = tr_thickness_measure(&r->fin, NULL, &r->th, NULL, err);
+        r->rescaled = 1;
+    }
+    /* the certificate of what is kept, computed on it alone */
+    if (rc == TR_OK && r->why != TR_STOP_SIGNAL &&
+        (o->kkt == 1 || (o->kkt < 0 && r->fin.nv <= TR_TIGHTEN_KKT_AUTO_MAX_N))) {
+        rc = tr_kkt_certify(&r->fin, NULL, &r->kr, err);
+        r->certified = rc == TR_OK;
+    }
+    return rc;
+}
+
+/* One road of the run: opens the start (perturbed for try_index > 0),
+ * runs and certifies it. Returns TR_OK with *e and *r filled, else the
+ * error, *stage where it came. */
+static int one_road(const tt_opts *o, tr_engine **e, road_result *r, tr_tighten_stage *stage, tr_error *err)
+{
+    int rc = open_start(o, e, stage, err);
+    if (rc)
+        return rc;
+    *r = (road_result){0};
+    *stage = TR_TIGHTEN_AT_RUN;
+    if ((rc = run(o, *e, &r->why, err))) {
+        tr_engine_destroy(*e);
+        return rc;
+    }
+    *stage = TR_TIGHTEN_AT_CERTIFY;
+    if ((rc = certify(o, *e, r, err))) {
+        tr_curve_free(&r->fin);
+        tr_engine_destroy(*e);
+        return rc;
+    }
+    return TR_OK;
+}
+
+/* The effective options of the call from the caller's. */
+static tt_opts call_options(const tr_curve *start, const tr_tighten_options *opt)
+{
+    return (tt_opts){.call = opt,
+                     .in = opt->name ? opt->name : "the start",
+                     .start = opt->resume ? NULL : start,
+                     .out = opt->output_check,
+                     .ckpt = opt->checkpoint,
+                     .resume = opt->resume,
+                     .device = opt->device,
+                     .n = opt->n,
+                     .refine_to = opt->refine_to,
+                     .steps = opt->steps,
+                     .device_from = opt->device_from,
+                     .tries = opt->tries > 0 ? opt->tries : 1,
+                     .seed = opt->seed,
+                     .shuffles = opt->shuffles,
+                     .inflate = 1.0,
+                     .roads = 1,
+                     .target = opt->target,
+                     .residual = opt->residual,
+                     .time_limit = opt->time_limit,
+                     .ckpt_every = opt->checkpoint_every > 0 ? opt->checkpoint_every : 300,
+                     .residual_given = opt->residual_given,
+                     .refine_given = opt->refine_given,
+                     .no_polish = !opt->polish,
+                     .newton = opt->newton > 0,
+                     .no_newton = opt->newton < 0,
+                     .scale = opt->scale,
+                     .kkt = opt->kkt,
+                     .auto_route = opt->auto_route,
+                     .centre = opt->centre};
+}
+
+/* The call's result from the kept road's. */
+static void fill_result(const tt_opts *o, tr_engine *e, road_result *r, tr_tighten_result *res)
+{
+    res->curve = r->fin;
+    r->fin = (tr_curve){0};
+    res->n = r->th.vertices;
+    res->ropelength = r->th.ropelength;
+    res->thickness = r->th.thickness;
+    res->minrad = r->th.minrad;
+    res->dcsd = r->th.dcsd;
+    res->length = r->th.length;
+    res->residual = r->p.residual;
+    res->kkt_residual = r->certified ? r->kr.residual : NAN;
+    res->stop = r->why;
+    res->interrupted = r->why == TR_STOP_SIGNAL;
+    res->elapsed = r->p.elapsed;
+    res->steps = r->p.steps;
+    res->rejected = r->p.rejected;
+    res->steps_per_s = r->p.steps_per_s;
+    res->tries = r->tries > 0 ? r->tries : 1;
+    /* a resumed run continues one road of a run whose seed it does not know */
+    res->seed = o->resume ? -1 : o->seed;
+    res->road = o->resume ? 0 : r->tries > 0 ? r->best_try + 1 : 1;
+    res->th = r->th;
+    res->kkt = r->kr;
+    res->certified = r->certified;
+    res->rescaled = r->rescaled;
+    res->progress = r->p;
+    snprintf(res->device, sizeof res->device, "%s", tr_engine_device(e));
+    memcpy(res->shift, o->shift, sizeof res->shift);
+    res->checkpoint_failures = r->ckpt_failures;
+    snprintf(res->checkpoint_why, sizeof res->checkpoint_why, "%s", r->ckpt_why ? r->ckpt_why : "");
+    res->refine_to = o->refine_to;
+    /* a requested ropelength or residual that was not reached is a run that
+     * did not reach its goal; so is a refine_to whose N the time did not
+     * reach (the best state is kept either way) */
+    int refined = 1;
+    for (int k = 0; k < res->curve.ncomp; k++)
+        refined = refined && (long)tr_comp_nv(&res->curve, k) >= o->refine_to;
+    res->refine_short = o->refine_given && !refined && !res->interrupted;
+    int goal = o->target > 0 || o->residual_given;
+    /* the residual is met by the engine's own force balance or, once the
+     * run has stopped for another reason (jammed, steps), by the
+     * certificate of the result, which is the stricter measure (kkt.h) */
+    int reached = r->why == TR_STOP_TARGET || r->why == TR_STOP_RESIDUAL ||
+                  (o->target <= 0 && o->residual_given && r->certified && r->kr.residual <= o->residual);
+    res->goal_missed = goal && !reached && !res->interrupted;
+    res->goal_target = o->target > 0;
+}
+
+int tr_tighten(const tr_curve *start, const tr_tighten_options *opt, tr_tighten_result *res, tr_error *err)
+{
+    *res = (tr_tighten_result){.kkt_residual = NAN, .residual = NAN, .seed = -1};
+    if (!opt->resume && !start) {
+        res->failed_at = TR_TIGHTEN_AT_START;
+        return tr_fail(err, TR_EINVAL, "no start curve and no checkpoint to resume");
+    }
+    tt_opts o = call_options(start, opt);
+    double elapsed_before = 0.0; /* a resumed run's seconds before its checkpoint */
+    int rc;
+    if (o.resume && (rc = resume_goals(&o, &elapsed_before, err))) {
+        res->failed_at = TR_TIGHTEN_AT_RESUME;
+        return rc;
+    }
+    tt_choose_route(&o);
+    tt_start_shift(&o);
+    /* the bound counts from here: shuffling and settling the start are the
+     * call's time too; a resumed run's limit counts the time before its
+     * checkpoint (as the engine's steps do) */
+    if (o.time_limit > 0)
+        o.bound_at = tr_clock_seconds() + fmax(o.time_limit - elapsed_before - finish_reserve(o.time_limit), 0.0);
+    /* tries: the roads one after the other, each with an equal share of the
+     * time left; of the certified ones the finest, then the shortest, is
+     * kept. A road that fails after the first is skipped (said in a note);
+     * the cancel flag ends the series. On a route of levels the roads are
+     * scouts: each tightens its coarse level only, in TT_SCOUT_SHARE of the
+     * time, and the shortest of them alone is refined to refine_to with
+     * the rest (scouting). */
+    tr_engine *e = NULL;
+    road_result r = {0};
+    int have = 0, scouting = o.tries > 1 && tt_multi_level(&o);
+    o.roads = (int)o.tries + scouting;
+    double t0 = tr_clock_seconds();
+    const double budget = scouting ? TT_SCOUT_SHARE * o.time_limit : o.time_limit; /* the scouts' */
+    tr_deadline bound = tt_bound(&o);
+    /* once a road has a result, no road starts past the bound: each has at
+     * least its share's floor, and a thousand roads of a second's floor
+     * were once a minute past a three-second limit */
+    for (long t = 0; t < o.tries + scouting && !(have && tr_deadline_passed(&bound)); t++) {
+        tt_opts ot = o;
+        ot.try_index = (int)t;
+        tr_curve scout_at_n = {0};
+        int resampled = 0;
+        int refining = scouting && t == o.tries;
+        /* the last shuffles roads (never the first: shuffles < tries) */
+        int shuffled_road = !refining && t >= o.tries - o.shuffles;
+        ot.shuffle_index = shuffled_road ? (int)(t - (o.tries - o.shuffles)) : 0;
+        if (refining) {
+            /* the shortest scout, refined as it is (tt_read_start takes
+             * road_from before n and scale) */
+            ot.road_from = &r.fin;
+            ot.road_as_is = 1;
+            if ((resampled = tt_scout_at_refine_n(&o, &r.fin, &scout_at_n)))
+                ot.road_from = &scout_at_n;
+        } else if (scouting) {
+            ot.refine_to = 0;
+            if (shuffled_road) {
+                /* a shuffled road, at the first road's coarse count */
+                ot.shuffled = 1;
+                ot.n = tt_road_coarse_n(&o, 1);
+            } else if (t > 0) {
+                ot.n = tt_road_coarse_n(&o, (int)t);
+                ot.inflate = tt_road_inflate((int)t);
+            }
+        } else if (shuffled_road)
+            ot.shuffled = 1;
+        else
+            ot.road_from = have ? &r.fin : NULL;
+        /* a road that jams early leaves its time to the roads after it */
+        if (o.time_limit > 0)
+            ot.time_limit = refining ? fmax(o.time_limit - (tr_clock_seconds() - t0), 0.05 * o.time_limit)
+                                     : fmax(budget - (tr_clock_seconds() - t0), 0.05 * budget) / (double)(o.tries - t);
+        if (refining)
+            tt_note(&o, TR_TIGHTEN_INFO, "the shortest scout (road %d, N %zu) %s to %ld vertices", r.best_try + 1,
+                    r.fin.nv, resampled ? "resampled" : "refined", o.refine_to);
+        else if (o.tries > 1 && t > 0)
+            tt_note(&o, TR_TIGHTEN_INFO, "road %ld of %ld: %s", t + 1, o.tries,
+                    ot.road_from ? "the shortest result so far, moved"
+                    : ot.shuffled ? "the start shuffled (crankshaft moves of the thin rope, then compacted)"
+                    : ot.inflate != 1.0 ? "the start again, inflated 1.5 times, from another coarse count"
+                                        : "the start again, from another coarse count");
+        tr_engine *et;
+        road_result rt;
+        tr_tighten_stage stage;
+        tr_error road_err;
+        rc = one_road(&ot, &et, &rt, &stage, have ? &road_err : err);
+        if (resampled)
+            tr_curve_free(&scout_at_n);
+        if (rc) {
+            if (!have) {
+                res->failed_at = stage;
+                return rc;
+            }
+            /* a later road that the bound stopped before its start was
+             * settled leaves the roads before it to be kept: the lines
+             * below say so */
+            if (!(rc == TR_EINTERRUPTED && stage == TR_TIGHTEN_AT_START))
+                tt_note(&o, TR_TIGHTEN_WARNING, "%s", road_err.msg);
+            if (tr_deadline_passed(&bound))
+                tt_note(&o, TR_TIGHTEN_INFO, "road %ld of %ld %s; the shortest so far is written", t + 1,
+                        o.tries + scouting,
+                        tr_deadline_passed(&bound) == 2 ? "stopped by a signal" : "stopped by the time limit");
+            else if (refining)
+                tt_note(&o, TR_TIGHTEN_WARNING, "the refinement failed; the shortest scout is written");
+            else
+                tt_note(&o, TR_TIGHTEN_WARNING, "road %ld of %ld skipped", t + 1, o.tries);
+            continue;
+        }
+        if (o.tries > 1) {
+            if (refining)
+                tt_note(&o, TR_TIGHTEN_INFO, "refined: N %zu, ropelength %.9f", rt.fin.nv, rt.th.ropelength);
+            else
+                tt_note(&o, TR_TIGHTEN_INFO, "road %ld of %ld: ropelength %.9f", t + 1, o.tries, rt.th.ropelength);
+        }
+        /* a road that ran out of time on a coarse level has not reached
+         * the N asked for: the finest road wins, then the shortest; among
+         * scouts (each at its own coarse count) the shortest */
+        /* ... but a road at exactly the N asked for wins over one the
+         * engine took past it */
+        int shorter = rt.th.ropelength < r.th.ropelength, at_n = tt_at_refine_n(&o, &rt.fin),
+            same_n = at_n == tt_at_refine_n(&o, &r.fin), finer = same_n ? rt.fin.nv > r.fin.nv : at_n;
+        int better = !have || (scouting && !refining ? shorter : finer || (same_n && rt.fin.nv == r.fin.nv && shorter));
+        if (better) {
+            /* the refined scout keeps the scout's number */
+            int best_try = refining ? r.best_try : (int)t;
+            if (have) {
+                tr_curve_free(&r.fin);
+                tr_engine_destroy(e);
+            }
+            e = et;
+            r = rt;
+            r.best_try = best_try;
+            have = 1;
+        } else {
+            tr_curve_free(&rt.fin);
+            tr_engine_destroy(et);
+        }
+        r.tries = (int)(t < o.tries ? t + 1 : o.tries);
+    }
+    /* an interrupted series is an interrupted run, whichever road is kept */
+    if (tt_cancelled(&o))
+        r.why = TR_STOP_SIGNAL;
+    fill_result(&o, e, &r, res);
+    tr_engine_destroy(e);
+    return TR_OK;
+}
+
+void tr_tighten_result_free(tr_tighten_result *res)
+{
+    if (!res)
+        return;
+    tr_curve_free(&res->curve);
+    res->curve = (tr_curve){0};
+}
