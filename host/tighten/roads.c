@@ -82,7 +82,8 @@ static const struct {
  * level costs a few seconds where the route to the finest count costs
  * minutes, so with --tries on a route of levels every road stops at its
  * coarse level, in this share of the time, and only the shortest of them is
- * refined. Measured on the KnotPlot starts (bench/RESULTS.md): 6_2 at N =
+ * refined. Measured on the KnotPlot starts
+ * (bench/notes/2026-11-25-batch-8-crossings-scouts.md): 6_2 at N =
  * 407, ten scouts in 101 s, the shortest (152 vertices, 57.22 where the
  * others ended at 57.6 to 58.3) refined in 104 s to 57.0440, against 57.8283
  * for three full roads in 200 s; 7_4 at 459: 64.2908 against 65.1461. */
@@ -162,7 +163,7 @@ double tt_road_inflate(int t) { return ROADS[(t - 1) % ROAD_COUNT].inflated ? RO
  * `ratchet` times the largest reached (a ratchet: the walk compacts the
  * knot again, to ropelength about 110-120 for 8_4, where the engine takes
  * over in seconds). The same --seed and road number, the same start.
- * Measured (bench/RESULTS.md, 2026-11-27): 8_4 from KnotPlot, four such
+ * Measured (bench/notes/2026-11-27-shuffled-roads.md): 8_4 from KnotPlot, four such
  * starts (made by hand, seeds 1-4) tightened at --n 128 for 25 s: 71.67
  * (N 280), 77.13, 77.02, 76.90; the first refined to N = 514: 71.5865,
  * writhe 1.635. --scale --refine-to N --time-limit 240 --tries 10
@@ -181,7 +182,7 @@ typedef struct shuffle_recipe {
 /* The shuffled roads take these in turn. The second walks a thinner rope
  * (inflated 6 times) and compacts it twice as long with a tighter ratchet
  * (0.995): a more compact start, which reached other basins. Measured
- * (bench/RESULTS.md, "Shuffle recipes"): 8_1 and 8_2 ended above the table
+ * (bench/notes/2026-11-27-shuffle-recipes.md): 8_1 and 8_2 ended above the table
  * from every road of the first recipe over five seeds (+0.045 % and
  * +0.164 %, the same conformations each time); with the second,
  * --tries 8 --shuffles 7 --seed 11, 8_1 71.0372 (road 3) and 8_2 71.4304

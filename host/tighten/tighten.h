@@ -29,7 +29,8 @@
 #include "util/error.h"
 
 /* The certificate costs ~0.05 s at N = 400, ~1.2 s at 1600 and ~12 s at
- * 2400 on a 2-core machine (bench/RESULTS.md), growing faster than N^2:
+ * 2400 on a 2-core machine (bench/notes/2026-11-23-kkt-certificate.md),
+ * growing faster than N^2:
  * above this it runs only when asked for (kkt = 1). */
 #define TR_TIGHTEN_KKT_AUTO_MAX_N 2400
 
