@@ -9,6 +9,7 @@
 
 #include "cli/cli.h"
 #include "cli/cli_args.h"
+#include "cli/cli_make_knot.h"
 #include "curve/curve_io.h"
 #include "curve/generate.h"
 #include "engine/engine.h"
@@ -20,6 +21,8 @@ static void usage(FILE *out)
             "       tightrope make circle [--radius R] [--n N] -o OUT\n"
             "       tightrope make hopf [--n N] -o OUT\n"
             "       tightrope make clasp [--n N] [--height H] -o OUT\n"
+            "       tightrope make knot NAME | --braid WORD | --pd CODE [--n N] -o OUT\n"
+            "       tightrope make link NAME | --braid WORD [--n N] -o OUT\n"
             "\n"
             "Writes a start curve for a rope of radius 1, embedded with room to tighten.\n"
             "  torus P Q   torus knot T(P,Q) (P, Q coprime, |P|,|Q| >= 2), equilateral,\n"
@@ -30,18 +33,32 @@ static void usage(FILE *out)
             "  clasp       two open ropes hooked in perpendicular planes, the ends of one on\n"
             "              the plane z = +H, of the other on z = -H (plane constraints);\n"
             "              N per rope, default 100; default H 5 (at least 1.5)\n"
+            "  knot NAME   a prime knot of KnotInfo's table: 0_1, 3_1 ... 10_165, 11a_1 ... 12n_888\n"
+            "              (3.1, 11a1 read too), the closure of its braid word; its type is checked\n"
+            "              (Alexander polynomial, determinant, signature up to the mirror image, all\n"
+            "              of the made curve) before it is written\n"
+            "  link NAME   a prime link of LinkInfo's table to 9 crossings: L2a1{0} ... L9n27{1,1}\n"
+            "              (L2a1 its first orientation, Rolfsen's 2^2_1 too); components and linking\n"
+            "              numbers checked\n"
+            "  --braid WORD  the closure of a braid word: \"1,1,-2,...\" (sigma_i as i, its inverse -i)\n"
+            "  --pd CODE   a knot's PD code, \"[[1,5,2,4],[3,1,4,6],[5,3,6,2]]\" (KnotInfo's, KnotTheory's),\n"
+            "              drawn in the plane and lifted at its crossings (a loose start: a name or\n"
+            "              a braid gives a tighter one); checked against the code's own invariants\n"
+            "  Knots and links are equilateral per component, scaled to thickness 1.25; default\n"
+            "  N: edges of about 0.22 (tighten starts such a loose curve from N / 4). See\n"
+            "  docs/knots.md.\n"
             "\n"
             "  -o, --output OUT  output file; its extension picks the format: .vect (VECT with\n"
             "                    plCurve constraints), .tsv (closed components), .txt (one closed\n"
             "                    component)\n"
             "  --n N             number of vertices\n"
-            "Exit status: 0 written, 2 bad arguments or the file could not be written\n"
-            "(nothing is left behind then).\n");
+            "Exit status: 0 written, 2 bad arguments or notation, an unknown name or the file could\n"
+            "not be written, 1 a made curve not of the type asked for (nothing is left behind then).\n");
 }
 
 int tr_cmd_make(int argc, char **argv)
 {
-    const char *kind = NULL, *outpath = NULL;
+    const char *kind = NULL, *outpath = NULL, *braid = NULL, *pd = NULL;
     const char *pos[2] = {NULL, NULL};
     int npos = 0;
     size_t n = 0;
@@ -55,7 +72,8 @@ int tr_cmd_make(int argc, char **argv)
             return 0;
         }
         int takes = !strcmp(a, "-o") || !strcmp(a, "--output") || !strcmp(a, "--n") || !strcmp(a, "-n") ||
-                    !strcmp(a, "--radius") || !strcmp(a, "--height");
+                    !strcmp(a, "--radius") || !strcmp(a, "--height") || !strcmp(a, "--braid") ||
+                    !strcmp(a, "--pd");
         if (takes) {
             if (i + 1 >= argc) {
                 fprintf(stderr, "tightrope make: %s needs a value\n", a);
@@ -64,6 +82,10 @@ int tr_cmd_make(int argc, char **argv)
             const char *v = argv[++i];
             if (!strcmp(a, "-o") || !strcmp(a, "--output")) {
                 outpath = v;
+            } else if (!strcmp(a, "--braid")) {
+                braid = v;
+            } else if (!strcmp(a, "--pd")) {
+                pd = v;
             } else if (!strcmp(a, "--n") || !strcmp(a, "-n")) {
                 if (tr_arg_size(v, 3, (size_t)1 << 40, &n)) {
                     fprintf(stderr, "tightrope make: bad --n '%s' (a vertex count, an integer from 3 to 2^40)\n", v);
@@ -99,7 +121,8 @@ int tr_cmd_make(int argc, char **argv)
         }
     }
     if (!kind) {
-        fprintf(stderr, "tightrope make: which curve? torus, circle, hopf or clasp (see tightrope make --help)\n");
+        fprintf(stderr, "tightrope make: which curve? torus, circle, hopf, clasp, knot or link (see tightrope make "
+                        "--help)\n");
         return 2;
     }
     if (!outpath) {
@@ -110,10 +133,39 @@ int tr_cmd_make(int argc, char **argv)
         fprintf(stderr, "tightrope make: cannot tell the format of '%s' (use .vect, .tsv or .txt)\n", outpath);
         return 2;
     }
+    if (!strcmp(kind, "knot") || !strcmp(kind, "link")) {
+        int is_link = kind[0] == 'l';
+        int given = (npos > 0) + (braid != NULL) + (pd != NULL);
+        if (npos > 1) {
+            fprintf(stderr, "tightrope make: %s takes one NAME, got '%s' and '%s'\n", kind, pos[0], pos[1]);
+            return 2;
+        }
+        if (given != 1) {
+            fprintf(stderr,
+                    given == 0 ? "tightrope make: which %s? a NAME, --braid WORD%s (see tightrope make --help)\n"
+                               : "tightrope make: %s takes one of NAME, --braid WORD%s\n",
+                    kind, is_link ? "" : " or --pd CODE");
+            return 2;
+        }
+        if (is_link && pd) {
+            fprintf(stderr, "tightrope make: --pd makes knots only (a link: its NAME or --braid)\n");
+            return 2;
+        }
+        if (have_radius || have_height) {
+            fprintf(stderr, "tightrope make: %s is not an option of %s\n", have_radius ? "--radius" : "--height", kind);
+            return 2;
+        }
+        return tr_make_knot_command(is_link, npos ? pos[0] : NULL, braid, pd, have_n ? n : 0, outpath,
+                                    TIGHTROPE_VERSION);
+    }
+    if (braid || pd) {
+        fprintf(stderr, "tightrope make: %s is an option of make knot and make link\n", braid ? "--braid" : "--pd");
+        return 2;
+    }
     int is_torus = !strcmp(kind, "torus"), is_circle = !strcmp(kind, "circle"), is_hopf = !strcmp(kind, "hopf"),
         is_clasp = !strcmp(kind, "clasp");
     if (!is_torus && !is_circle && !is_hopf && !is_clasp) {
-        fprintf(stderr, "tightrope make: unknown curve '%s' (torus, circle, hopf or clasp)\n", kind);
+        fprintf(stderr, "tightrope make: unknown curve '%s' (torus, circle, hopf, clasp, knot or link)\n", kind);
         return 2;
     }
     if (npos != (is_torus ? 2 : 0)) {

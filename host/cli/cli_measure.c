@@ -15,6 +15,7 @@
 
 #include "cli/cli.h"
 #include "cli/cli_args.h"
+#include "cli/measure_identify.h"
 #include "cli/measure_invariants.h"
 #include "cli/measure_vertex.h"
 #include "curve/curve_io.h"
@@ -48,7 +49,12 @@ static void usage(FILE *out)
             "                  SP-FEM's vertex model (vertices at least 2R apart that are\n"
             "                  K = ceil(pi R / e) or more apart along the rope); not with --kkt\n"
             "  --invariants    also the knot type: Alexander polynomial (t^-h .. t^h, Delta(1) = 1),\n"
-            "                  determinant and crossings of a generic projection (one closed component)\n",
+            "                  determinant and crossings of a generic projection (one closed component)\n"
+            "  --identify [NAME]  only the type: whether the curve's invariants (a knot's Alexander\n"
+            "                  polynomial, determinant and signature up to sign, a link's components\n"
+            "                  and linking numbers) are NAME's (exit 0, else 1), and the table's knots\n"
+            "                  or links with the same invariants (without NAME: exit 1 when there are\n"
+            "                  none); one FILE; --identify=NAME where a file is called NAME\n",
             DEFAULT_STRUT_TOL, TR_KKT_DEFAULT_BAND);
 }
 
@@ -162,7 +168,8 @@ static int write_struts(const char *path, const tr_curve *c, const tr_thickness 
 
 int tr_cmd_measure(int argc, char **argv)
 {
-    int json = 0, per_comp = 0, kkt = 0, vertex_contacts = 0, invariants = 0;
+    int json = 0, per_comp = 0, kkt = 0, vertex_contacts = 0, invariants = 0, identify = 0;
+    const char *identify_name = NULL;
     tr_kkt_params kp;
     tr_kkt_params_default(&kp);
     const char *struts_path = NULL, *forces_path = NULL;
@@ -205,6 +212,20 @@ int tr_cmd_measure(int argc, char **argv)
             }
         } else if (!strcmp(a, "--invariants")) {
             invariants = 1;
+        } else if (!strcmp(a, "--identify") || !strncmp(a, "--identify=", 11)) {
+            /* NAME is the next argument unless that is an option or an
+             * existing file (measure FILE --identify, measure --identify
+             * FILE); --identify=NAME says it outright */
+            identify = 1;
+            if (a[10] == '=') {
+                identify_name = a + 11;
+            } else if (i + 1 < argc && argv[i + 1][0] != '-') {
+                FILE *probe = fopen(argv[i + 1], "rb");
+                if (probe)
+                    fclose(probe);
+                else
+                    identify_name = argv[++i];
+            }
         } else if (!strcmp(a, "--contacts") && i + 1 < argc) {
             const char *m = argv[++i];
             if (strcmp(m, "segment") && strcmp(m, "vertex")) {
@@ -235,6 +256,27 @@ int tr_cmd_measure(int argc, char **argv)
         usage(stderr);
         free(files);
         return 2;
+    }
+
+    if (identify) {
+        if (nfiles != 1 || json || per_comp || kkt || vertex_contacts || invariants || struts_path) {
+            fprintf(stderr, nfiles != 1 ? "tightrope measure: --identify takes exactly one FILE\n"
+                                        : "tightrope measure: --identify goes alone (no other option)\n");
+            free(files);
+            return 2;
+        }
+        tr_error rerr;
+        tr_curve c;
+        int rc = tr_curve_read(files[0], TR_FORMAT_AUTO, &c, &rerr);
+        if (rc) {
+            fprintf(stderr, "tightrope measure: %s\n", rerr.msg);
+            free(files);
+            return rc == TR_ENOMEM ? 1 : 2;
+        }
+        int st = tr_measure_identify(files[0], &c, identify_name);
+        tr_curve_free(&c);
+        free(files);
+        return st;
     }
 
     /* An output over an input (by identity: ./k.vect, a hard or a symbolic

@@ -22,6 +22,7 @@
 #include <string.h>
 
 #include "topology/knot_diagram.h"
+#include "topology/signature.h"
 
 typedef unsigned __int128 u128;
 typedef __int128 i128;
@@ -310,6 +311,8 @@ int tr_knot_invariants_of(const tr_curve *c, tr_knot_invariants *inv, tr_error *
                      d.ncross, TR_ALEXANDER_MAX_CROSSINGS);
     if (rc == 0)
         rc = tr_alexander_from_pd((const int(*)[4])d.pd, d.ncross, &inv->alexander, err);
+    if (rc == 0)
+        rc = tr_signature_from_pd((const int(*)[4])d.pd, d.ncross, &inv->signature, err);
     if (rc == 0) {
         inv->crossings = d.ncross;
         inv->projected_crossings = d.projected_crossings;

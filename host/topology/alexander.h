@@ -45,17 +45,19 @@ int tr_alexander_from_pd(const int (*pd)[4], int n, tr_alexander *a, tr_error *e
  * positive-leading-coefficient normalisation). */
 int tr_alexander_equal(const tr_alexander *a, const tr_alexander *b);
 
-/* What a curve's knot type is checked by: the diagram's crossing counts
- * and the Alexander polynomial. */
+/* What a curve's knot type is checked by: the diagram's crossing counts,
+ * the Alexander polynomial and the signature. */
 typedef struct tr_knot_invariants {
     int crossings;           /* the diagram's, after removing kinks */
     int projected_crossings; /* the projection's, kinks included */
     double direction[3];     /* the projection's (topology/knot_diagram.h) */
     tr_alexander alexander;
+    int signature;           /* topology/signature.h: KnotInfo's convention */
 } tr_knot_invariants;
 
 /* The invariants of curve c (one closed component): tr_knot_diagram_of,
- * then tr_alexander_from_pd; the errors are theirs. */
+ * then tr_alexander_from_pd and tr_signature_from_pd; the errors are
+ * theirs. */
 int tr_knot_invariants_of(const tr_curve *c, tr_knot_invariants *inv, tr_error *err);
 
 #endif

@@ -1,0 +1,235 @@
+/* Starts from braid words, and the type check (knot_start.h). */
+#include "cli/knot_start.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "curve/braid_closure.h"
+#include "curve/generate.h"
+#include "oracle/thickness.h"
+#include "topology/linking.h"
+
+/* Vertices per slot and strand of the dense closure the start is resampled
+ * from: its polygon's corners turn by a few degrees, so its thickness is
+ * the smooth curve's to a percent, and the equal chords taken along it
+ * keep that smoothness at the start's coarser edges. */
+#define DENSE_SAMPLES 48
+#define MIN_PER_COMPONENT 8
+
+static void scale_curve(tr_curve *c, double f)
+{
+    for (size_t i = 0; i < 3 * c->nv; i++)
+        c->x[i] *= f;
+}
+
+int tr_knot_start_from_braid(const tr_braid *b, size_t n, tr_curve *out, double *thickness, tr_error *err)
+{
+    memset(out, 0, sizeof *out);
+    tr_curve dense;
+    int rc = tr_make_braid_closure(&dense, b->strands, b->word, b->len, DENSE_SAMPLES, err);
+    if (rc)
+        return rc;
+    rc = tr_knot_start_from_curve(&dense, n, out, thickness, err);
+    tr_curve_free(&dense);
+    return rc;
+}
+
+/* One try at n vertices (0: the default); *need gets the count that would
+ * make the edges <= 1 when these n do not. */
+static int start_once(const tr_curve *dense, size_t n, tr_curve *out, double *thickness, size_t *need, tr_error *err)
+{
+    memset(out, 0, sizeof *out);
+    *need = 0;
+    tr_thickness m;
+    tr_thickness_opts opts = {0};
+    int rc = tr_thickness_measure(dense, &opts, &m, NULL, err);
+    if (rc == 0 && !(m.thickness > 0))
+        rc = tr_fail(err, TR_EGEOMETRY, "the curve to start from has thickness 0 (it touches itself)");
+    if (rc)
+        return rc;
+    /* the scaled length sets the default count; shared by length */
+    double total = m.length * TR_KNOT_START_THICKNESS / m.thickness;
+    if (n == 0)
+        n = (size_t)ceil(total / TR_KNOT_START_EDGE);
+    if (!(total / TR_KNOT_START_EDGE < 1e6))
+        return tr_fail(err, TR_EGEOMETRY, "the start would need %.3g vertices (its thickness is %.3g of its length): "
+                       "too crowded a layout", total / TR_KNOT_START_EDGE, m.thickness / m.length);
+    int nc = dense->ncomp;
+    if (n < (size_t)nc * MIN_PER_COMPONENT) {
+        return tr_fail(err, TR_EINVAL, "%zu vertices are too few for %d component%s (at least %d each)", n, nc,
+                       nc == 1 ? "" : "s", MIN_PER_COMPONENT);
+    }
+    size_t *per = malloc((size_t)nc * sizeof *per);
+    if (!per) {
+        return tr_fail(err, TR_ENOMEM, "out of memory");
+    }
+    size_t given = 0;
+    for (int k = 0; k < nc; k++) {
+        per[k] = (size_t)floor((double)n * tr_comp_length(dense, k) / m.length);
+        if (per[k] < MIN_PER_COMPONENT)
+            per[k] = MIN_PER_COMPONENT;
+        given += per[k];
+    }
+    /* the rest one each in turn (or the excess taken back), so the total
+     * is n */
+    for (int k = 0; given < n; k = (k + 1) % nc, given++)
+        per[k]++;
+    for (int k = 0; given > n && k < nc; k++)
+        while (given > n && per[k] > MIN_PER_COMPONENT) {
+            per[k]--;
+            given--;
+        }
+    rc = tr_resample(dense, per, out, err);
+    free(per);
+    if (rc)
+        return rc;
+    /* scale the polygon itself (its corners count in MinRad) */
+    rc = tr_thickness_measure(out, &opts, &m, NULL, err);
+    if (rc == 0 && !(m.thickness > 0))
+        rc = tr_fail(err, TR_EINVAL, "%zu vertices are too few for this braid: the polygon has thickness 0", n);
+    if (rc == 0) {
+        scale_curve(out, TR_KNOT_START_THICKNESS / m.thickness);
+        rc = tr_thickness_measure(out, &opts, &m, NULL, err);
+    }
+    if (rc == 0 && !(m.thickness >= 1.0))
+        rc = tr_fail(err, TR_EGEOMETRY, "the scaled start has thickness %.6g, below 1 (internal)", m.thickness);
+    double longest = 0;
+    for (int k = 0; rc == 0 && k < out->ncomp; k++) {
+        size_t s = out->start[k], nv = tr_comp_nv(out, k);
+        for (size_t i = 0; i < nv; i++) {
+            const double *a = out->x + 3 * (s + i), *q = out->x + 3 * (s + (i + 1) % nv);
+            longest = fmax(longest, sqrt((a[0] - q[0]) * (a[0] - q[0]) + (a[1] - q[1]) * (a[1] - q[1]) +
+                                         (a[2] - q[2]) * (a[2] - q[2])));
+        }
+    }
+    if (rc == 0 && longest > 1.0) {
+        *need = (size_t)ceil((double)n * longest);
+        rc = tr_fail(err, TR_EINVAL, "%zu vertices make edges %.3g long at thickness %.3g; at least %zu are needed "
+                     "(edges <= 1)", n, longest, m.thickness, *need);
+    }
+    if (rc) {
+        tr_curve_free(out);
+        return rc;
+    }
+    *thickness = m.thickness;
+    return 0;
+}
+
+int tr_knot_start_from_curve(const tr_curve *dense, size_t n, tr_curve *out, double *thickness, tr_error *err)
+{
+    size_t need = 0;
+    int rc = start_once(dense, n, out, thickness, &need, err);
+    /* the default count comes from the dense curve's thickness; where the
+     * coarser polygon's corners cost more than that foresaw, more vertices */
+    for (int tries = 0; n == 0 && rc == TR_EINVAL && need > 0 && tries < 3; tries++)
+        rc = start_once(dense, need + need / 8, out, thickness, &need, err);
+    return rc;
+}
+
+int tr_type_check_of(const tr_curve *c, tr_type_check *tc, tr_error *err)
+{
+    memset(tc, 0, sizeof *tc);
+    tc->components = c->ncomp;
+    if (c->ncomp == 1)
+        return tr_knot_invariants_of(c, &tc->inv, err);
+    if (c->ncomp > 5)
+        return tr_fail(err, TR_EUNSUPPORTED, "%d components: the link tables hold at most 4", c->ncomp);
+    int lk[25];
+    int rc = tr_linking_numbers(c, lk, err);
+    if (rc)
+        return rc;
+    for (int i = 0; i < c->ncomp; i++)
+        for (int j = i + 1; j < c->ncomp; j++)
+            tc->linking[tc->npairs++] = lk[i * c->ncomp + j];
+    return 0;
+}
+
+static int cmp_int(const void *a, const void *b)
+{
+    int x = *(const int *)a, y = *(const int *)b;
+    return (x > y) - (x < y);
+}
+
+static void sorted_abs(const int *v, int n, int *out)
+{
+    for (int k = 0; k < n; k++)
+        out[k] = abs(v[k]);
+    qsort(out, (size_t)n, sizeof *out, cmp_int);
+}
+
+static void alexander_text(const tr_alexander *a, char *buf, size_t size)
+{
+    size_t used = 0;
+    buf[0] = 0;
+    for (int k = 0; k <= a->span && used < size; k++)
+        used += (size_t)snprintf(buf + used, size - used, "%s%lld", k ? " " : "", a->coef[k]);
+}
+
+int tr_type_matches(const tr_type_check *tc, const tr_table_entry *e, char *why, size_t whysize)
+{
+    why[0] = 0;
+    if (tc->components != e->components) {
+        snprintf(why, whysize, "%d component%s, %s has %d", tc->components, tc->components == 1 ? "" : "s", e->name,
+                 e->components);
+        return 0;
+    }
+    if (!e->is_link) {
+        char got[512], want[512];
+        alexander_text(&tc->inv.alexander, got, sizeof got);
+        alexander_text(&e->alexander, want, sizeof want);
+        if (!tr_alexander_equal(&tc->inv.alexander, &e->alexander)) {
+            snprintf(why, whysize, "Alexander polynomial %s, %s's is %s", got, e->name, want);
+            return 0;
+        }
+        if (tc->inv.alexander.determinant != e->determinant) {
+            snprintf(why, whysize, "determinant %lld, %s's is %lld", tc->inv.alexander.determinant, e->name,
+                     e->determinant);
+            return 0;
+        }
+        /* a name stands for the knot and its mirror image (Rolfsen's and
+         * KnotInfo's tables list one of the two), whose signature is the
+         * opposite */
+        if (e->has_signature && abs(tc->inv.signature) != abs(e->signature)) {
+            snprintf(why, whysize, "signature %d, %s's is %d (or %d, its mirror image's)", tc->inv.signature,
+                     e->name, e->signature, -e->signature);
+            return 0;
+        }
+        return 1;
+    }
+    int a[TR_TABLE_MAX_PAIRS], b[TR_TABLE_MAX_PAIRS];
+    sorted_abs(tc->linking, tc->npairs, a);
+    sorted_abs(e->linking, e->npairs, b);
+    if (tc->npairs != e->npairs || memcmp(a, b, (size_t)tc->npairs * sizeof *a)) {
+        char got[128], want[128];
+        size_t u = 0, w = 0;
+        got[0] = want[0] = 0;
+        for (int k = 0; k < tc->npairs; k++)
+            u += (size_t)snprintf(got + u, sizeof got - u, "%s%d", k ? " " : "", a[k]);
+        for (int k = 0; k < e->npairs; k++)
+            w += (size_t)snprintf(want + w, sizeof want - w, "%s%d", k ? " " : "", b[k]);
+        snprintf(why, whysize, "|linking numbers| %s, %s's are %s", got, e->name, want);
+        return 0;
+    }
+    return 1;
+}
+
+int tr_type_is_mirror(const tr_type_check *tc, const tr_table_entry *e)
+{
+    return !e->is_link && e->has_signature && e->signature != 0 && tc->inv.signature == -e->signature;
+}
+
+void tr_type_describe(const tr_type_check *tc, char *buf, size_t bufsize)
+{
+    if (tc->components == 1) {
+        char a[512];
+        alexander_text(&tc->inv.alexander, a, sizeof a);
+        snprintf(buf, bufsize, "Alexander polynomial %s, determinant %lld, signature %d", a,
+                 tc->inv.alexander.determinant, tc->inv.signature);
+        return;
+    }
+    size_t u = (size_t)snprintf(buf, bufsize, "%d components, linking numbers", tc->components);
+    for (int k = 0; k < tc->npairs && u < bufsize; k++)
+        u += (size_t)snprintf(buf + u, bufsize - u, " %d", tc->linking[k]);
+}
