@@ -4,10 +4,10 @@
 # --no-kkt leaves a line saying it was not computed.
 set(_pol_dir ${CMAKE_CURRENT_BINARY_DIR}/cli_polish)
 tr_engine_test(tighten_polish 0 DIR ${_pol_dir}/on ONLY "s.vect;t.vect" OUT ${_pol_dir}/on/t.vect
-  MATCH "\n# stop [a-z-]+\n# rescaled to thickness 1\n# kkt_residual [0-9]\\.[0-9]+e[-+][0-9]+ [^\n]*\n# polish accepted: ropelength [0-9.]+ -> [0-9.]+ in [0-9.]+ s\n1 72 0"
+  MATCH "\n# stop [a-z-]+\n# rescaled to thickness 1\n# knot type kept: Alexander polynomial 1 -1 1, determinant 3, [^\n]*\n# kkt_residual [0-9]\\.[0-9]+e[-+][0-9]+ [^\n]*\n# polish accepted: ropelength [0-9.]+ -> [0-9.]+ in [0-9.]+ s\n1 72 0"
   CMD sh -c "'${_tr}' make torus 2 3 --n 72 -o '${_pol_dir}/on/s.vect' && exec '${_tr}' tighten '${_pol_dir}/on/s.vect' -o '${_pol_dir}/on/t.vect' --time-limit 2 --quiet --device reference")
 tr_engine_test(tighten_no_polish 0 DIR ${_pol_dir}/off ONLY "s.vect;t.vect" OUT ${_pol_dir}/off/t.vect
-  MATCH "\n# stop [a-z-]+\n# rescaled to thickness 1\n# kkt_residual not computed [(]--no-kkt[)]\n1 72 0"
+  MATCH "\n# stop [a-z-]+\n# rescaled to thickness 1\n# knot type kept: Alexander polynomial 1 -1 1, determinant 3, [^\n]*\n# kkt_residual not computed [(]--no-kkt[)]\n1 72 0"
   CMD sh -c "'${_tr}' make torus 2 3 --n 72 -o '${_pol_dir}/off/s.vect' && exec '${_tr}' tighten '${_pol_dir}/off/s.vect' -o '${_pol_dir}/off/t.vect' --time-limit 1 --no-polish --no-kkt --quiet --device reference")
 # --newton: the second-order solver takes the polish's place at the finest
 # level (its own line in the certificate, no polish line) and leaves a curve

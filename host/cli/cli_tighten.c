@@ -299,6 +299,8 @@ static int failure_status(tr_tighten_stage at, int rc)
         return rc == TR_ENOMEM ? 1 : 2;
     case TR_TIGHTEN_AT_RUN:
         return rc == TR_EIO || rc == TR_EINVAL || rc == TR_EPARSE ? 2 : 1;
+    case TR_TIGHTEN_AT_TYPE:
+        return 1; /* the run changed the knot: the engine's failure, not the input's */
     default:
         return 2;
     }

@@ -45,6 +45,7 @@ int tr_cli_tighten_write(const tr_cli_tighten *t, const tr_tighten_result *r, in
         tr_text_printf(&cm, "residual not computed (no step taken)\n");
     tr_text_printf(&cm, "steps %ld\nstop %s\n%s", r->steps, tr_stop_reason_name(r->stop),
             r->rescaled ? "rescaled to thickness 1\n" : "");
+    tr_text_printf(&cm, "%s\n", r->type_line);
     if (r->certified)
         tr_text_printf(&cm, "kkt_residual %.6e (band %g: %zu/%zu struts, %zu/%zu MinRad rows hold%s)\n", kr->residual,
                        TR_KKT_DEFAULT_BAND, kr->strut_active, kr->strut_rows, kr->minrad_active, kr->minrad_rows,
@@ -94,6 +95,7 @@ void tr_cli_tighten_summary(const tr_cli_tighten *t, const tr_tighten_result *r)
         json_num("kkt_residual", r->kkt_residual, 1);
         if (r->certified)
             printf("  \"kkt_converged\": %s,\n", kr->converged ? "true" : "false");
+        printf("  \"type_checked\": %s,\n", r->type_checked ? "true" : "false");
         json_num("elapsed_s", r->elapsed, 1);
         json_num("steps_per_s", r->steps_per_s, 0);
         printf("}\n");
@@ -110,6 +112,7 @@ void tr_cli_tighten_summary(const tr_cli_tighten *t, const tr_tighten_result *r)
         printf("  KKT residual %.2e (%zu/%zu struts and %zu/%zu MinRad rows hold the tension%s)\n", kr->residual,
                kr->strut_active, kr->strut_rows, kr->minrad_active, kr->minrad_rows,
                kr->converged ? "" : "; an upper bound");
+    printf("  %s\n", r->type_line);
     if (p->polished && !p->newton_ran)
         printf("  polish %s: ropelength %.6f -> %.6f in %.1f s%s%s%s\n", p->polished > 0 ? "accepted" : "rejected",
                p->polish_before, p->polish_after, p->polish_seconds, p->polish_why ? " (" : "",

@@ -11,6 +11,7 @@
 #include <string.h>
 
 #include "curve/curve_io.h"
+#include "tighten/knot_type.h"
 #include "tighten/tighten_internal.h"
 #include "util/clock.h"
 #include "util/text_file.h"
@@ -383,6 +384,51 @@ static void fill_result(const tt_opts *o, tr_engine *e, road_result *r, tr_tight
     res->goal_target = o->target > 0;
 }
 
+/* The result is the start's knot type, or no result (knot_type.h). The
+ * start is the call's curve, or the checkpoint a resumed run began from. */
+static int check_type(const tr_curve *start, const tt_opts *o, tr_tighten_result *res, tr_error *err)
+{
+    tr_curve ck = {0};
+    tr_error rerr = {0};
+    if (!start && o->resume && tr_curve_read(o->resume, TR_FORMAT_AUTO, &ck, &rerr) == TR_OK)
+        start = &ck;
+    tt_knot_type *before = malloc(sizeof *before), *after = malloc(sizeof *after);
+    if (!before || !after) {
+        free(before);
+        free(after);
+        tr_curve_free(&ck);
+        snprintf(res->type_line, sizeof res->type_line, "knot type not checked (out of memory)");
+        return TR_OK;
+    }
+    if (start)
+        tt_knot_type_of(start, before);
+    else
+        *before = (tt_knot_type){.why = "the checkpoint could not be read again"};
+    tr_curve_free(&ck);
+    tt_knot_type_of(&res->curve, after);
+    int rc = TR_OK;
+    if (before->kind == 0 || after->kind == 0) {
+        snprintf(res->type_line, sizeof res->type_line, "knot type not checked (%s: %.250s)",
+                 before->kind == 0 ? "the start" : "the result", before->kind == 0 ? before->why : after->why);
+    } else if (tt_knot_type_same(before, after)) {
+        res->type_checked = 1;
+        char now[256];
+        tt_knot_type_line(after, now, sizeof now);
+        snprintf(res->type_line, sizeof res->type_line, "knot type kept: %s (the start's)", now);
+    } else {
+        char was[256], now[256];
+        tt_knot_type_line(before, was, sizeof was);
+        tt_knot_type_line(after, now, sizeof now);
+        rc = tr_fail(err, TR_EGEOMETRY, "the tightened curve is not the start's knot type (start: %s; result: %s): "
+                     "nothing written", was, now);
+        res->failed_at = TR_TIGHTEN_AT_TYPE;
+        tr_tighten_result_free(res);
+    }
+    free(before);
+    free(after);
+    return rc;
+}
+
 int tr_tighten(const tr_curve *start, const tr_tighten_options *opt, tr_tighten_result *res, tr_error *err)
 {
     *res = (tr_tighten_result){.kkt_residual = NAN, .residual = NAN, .seed = -1};
@@ -527,7 +573,7 @@ int tr_tighten(const tr_curve *start, const tr_tighten_options *opt, tr_tighten_
         r.why = TR_STOP_SIGNAL;
     fill_result(&o, e, &r, res);
     tr_engine_destroy(e);
-    return TR_OK;
+    return check_type(start, &o, res, err);
 }
 
 void tr_tighten_result_free(tr_tighten_result *res)

@@ -107,7 +107,8 @@ typedef enum tr_tighten_stage {
     TR_TIGHTEN_AT_START,   /* reading, preparing or settling the start */
     TR_TIGHTEN_AT_CHECK,   /* the start against refine_to and output_check */
     TR_TIGHTEN_AT_RUN,     /* the engine's run */
-    TR_TIGHTEN_AT_CERTIFY  /* measuring and certifying the result */
+    TR_TIGHTEN_AT_CERTIFY, /* measuring and certifying the result */
+    TR_TIGHTEN_AT_TYPE     /* the result is not the start's knot type (knot_type.h): never a result */
 } tr_tighten_stage;
 
 typedef struct tr_tighten_result {
@@ -142,6 +143,11 @@ typedef struct tr_tighten_result {
     int checkpoint_failures;
     char checkpoint_why[256];
     tr_tighten_stage failed_at; /* when tr_tighten fails */
+    /* the knot type kept (knot_type.h: the result's invariants equal the
+     * start's): 1 checked, 0 not (an open rope, or a diagram the exact
+     * arithmetic does not take); type_line says which, in one line */
+    int type_checked;
+    char type_line[320];
 } tr_tighten_result;
 
 /* Tightens start (or opt->resume's checkpoint, start NULL) as opt says

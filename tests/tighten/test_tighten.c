@@ -91,6 +91,8 @@ static void timed_run(const tr_curve *start, double start_rl)
     CHECK(r.tries == 1 && r.road == 1 && r.seed == 1);
     /* the certificate, at N = 100 by default */
     CHECK(r.certified && isfinite(r.kkt_residual) && r.kkt_residual >= 0);
+    /* the (2,3) torus knot stays the trefoil (knot_type.h): determinant 3 */
+    CHECK(r.type_checked && strstr(r.type_line, "determinant 3") != NULL);
     printf("tr_tighten: trefoil N 100 in %.1f s: ropelength %.6f (start %.3f), %ld steps, stop %s, kkt %.2e, "
            "%d progress calls\n", took, r.ropelength, start_rl, r.steps, tr_stop_reason_name(r.stop), r.kkt_residual,
            w.calls);

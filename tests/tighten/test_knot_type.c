@@ -1,0 +1,94 @@
+/* Tests the tightening's knot-type check (tighten/knot_type.h) on curves
+ * whose types are known: the (2,3) torus knot is the trefoil (Alexander
+ * polynomial t^-1 - 1 + t, determinant 3), the closure of the braid
+ * sigma_1 sigma_2^-1 sigma_1 sigma_2^-1 the figure eight (-t^-1 + 3 - t,
+ * determinant 5), a curve and its mirror image (z -> -z) differ in the
+ * signature's sign, and the Hopf link's mirror image in its linking
+ * number's; a rigid motion and a scaling keep everything. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "curve/braid_closure.h"
+#include "curve/generate.h"
+#include "tighten/knot_type.h"
+#include "testlib.h"
+
+static void mirror(tr_curve *c)
+{
+    for (size_t i = 0; i < c->nv; i++)
+        c->x[3 * i + 2] = -c->x[3 * i + 2];
+}
+
+static void move(tr_curve *c)
+{
+    /* turned about z by 0.7, scaled by 3, shifted */
+    double cs = cos(0.7), sn = sin(0.7);
+    for (size_t i = 0; i < c->nv; i++) {
+        double *p = c->x + 3 * i, x = p[0], y = p[1];
+        p[0] = 3.0 * (cs * x - sn * y) + 5.0;
+        p[1] = 3.0 * (sn * x + cs * y) - 2.0;
+        p[2] = 3.0 * p[2] + 1.0;
+    }
+}
+
+static void test_types(void)
+{
+    tr_error err = {0};
+    tr_curve tref = {0}, tref2 = {0}, eight = {0}, hopf = {0};
+    REQUIRE_OK(tr_make_torus(&tref, 2, 3, 300, &err));
+    REQUIRE_OK(tr_curve_copy(&tref2, &tref, &err));
+    int w8[4] = {1, -2, 1, -2};
+    REQUIRE_OK(tr_make_braid_closure(&eight, 3, w8, 4, 40, &err));
+    REQUIRE_OK(tr_make_hopf(&hopf, 60, &err));
+    tt_knot_type *a = malloc(sizeof *a), *b = malloc(sizeof *b);
+    if (!a || !b) {
+        CHECK(a && b);
+        return;
+    }
+
+    tt_knot_type_of(&tref, a);
+    CHECK(a->kind == 1);
+    CHECK(a->inv.alexander.determinant == 3);
+    CHECK(abs(a->inv.signature) == 2);
+    move(&tref2);
+    tt_knot_type_of(&tref2, b);
+    CHECK(tt_knot_type_same(a, b));
+    mirror(&tref2);
+    tt_knot_type_of(&tref2, b);
+    CHECK(b->kind == 1 && b->inv.signature == -a->inv.signature);
+    CHECK(!tt_knot_type_same(a, b));
+    tt_knot_type_of(&eight, b);
+    CHECK(b->kind == 1 && b->inv.alexander.determinant == 5);
+    CHECK(!tt_knot_type_same(a, b));
+
+    tt_knot_type_of(&hopf, a);
+    CHECK(a->kind == 2 && a->ncomp == 2 && abs(a->lk[1]) == 1);
+    CHECK(tt_knot_type_same(a, a));
+    mirror(&hopf);
+    tt_knot_type_of(&hopf, b);
+    CHECK(b->kind == 2 && b->lk[1] == -a->lk[1]);
+    CHECK(!tt_knot_type_same(a, b));
+
+    /* an open rope has no type to keep */
+    tref.closed[0] = 0;
+    tt_knot_type_of(&tref, a);
+    CHECK(a->kind == 0 && strstr(a->why, "open"));
+
+    char line[256];
+    tt_knot_type_of(&eight, a);
+    tt_knot_type_line(a, line, sizeof line);
+    CHECK(strstr(line, "determinant 5") != NULL);
+    free(a);
+    free(b);
+    tr_curve_free(&tref);
+    tr_curve_free(&tref2);
+    tr_curve_free(&eight);
+    tr_curve_free(&hopf);
+}
+
+int main(void)
+{
+    test_types();
+    return tr_test_finish("test_knot_type");
+}
