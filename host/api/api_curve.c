@@ -11,6 +11,7 @@
 #include "api/api_internal.h"
 #include "curve/curve_io.h"
 #include "curve/generate.h"
+#include "tighten/knot_start.h"
 
 /* The public status codes are the internal ones (error.h), so a status
  * passes through unchanged. */
@@ -230,9 +231,16 @@ int tightrope_make(const char *spec, size_t n, tightrope_curve **out, tightrope_
             rc = tr_make_hopf(&c, n ? n : 64, &e);
         else
             rc = tr_make_clasp(&c, n ? n : 100, nw == 2 ? v : 5.0, &e);
+    } else if ((!strcmp(kind, "knot") || !strcmp(kind, "link")) && nw == 2) {
+        /* by name, from KnotInfo's and LinkInfo's tables, the type checked */
+        rc = tr_knot_start_named(w[1], !strcmp(kind, "link"), n, &c, &e);
+    } else if (nw == 1 && strcmp(kind, "knot") && strcmp(kind, "link")) {
+        /* a bare name: a knot's or a link's */
+        rc = tr_knot_start_named(kind, -1, n, &c, &e);
     } else {
-        return tr_api_fail(err, tr_fail(&e, TR_EINVAL, "unknown curve '%s' (torus P Q, trefoil, circle [R], hopf, "
-                                                        "clasp [H])", kind), &e);
+        return tr_api_fail(err, tr_fail(&e, TR_EINVAL, "unknown curve '%s' (knot NAME, link NAME, a name such as "
+                                                        "7_4, torus P Q, trefoil, circle [R], hopf, clasp [H])", spec),
+                           &e);
     }
     return rc ? tr_api_fail(err, rc, &e) : tr_api_wrap(&c, out, err);
 }

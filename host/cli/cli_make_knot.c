@@ -6,7 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "cli/knot_start.h"
+#include "tighten/knot_start.h"
 #include "curve/curve_io.h"
 #include "curve/generate.h"
 #include "curve/pd_layout.h"

@@ -4,7 +4,7 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "cli/knot_start.h"
+#include "tighten/knot_start.h"
 #include "topology/knot_table.h"
 
 int tr_measure_identify(const char *file, const tr_curve *c, const char *name)

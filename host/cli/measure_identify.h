@@ -5,7 +5,7 @@
 
 #include "curve/curve.h"
 
-/* Computes c's invariants (cli/knot_start.h tr_type_check_of) and prints to
+/* Computes c's invariants (tighten/knot_start.h tr_type_check_of) and prints to
  * stdout, for NAME, whether they are NAME's, and in every case the table's
  * knots or links with the same invariants (candidates: the invariants do
  * not tell every two knots apart, nor a knot from its mirror image).

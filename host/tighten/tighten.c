@@ -407,18 +407,18 @@ static int check_type(const tr_curve *start, const tt_opts *o, tr_tighten_result
     tr_curve_free(&ck);
     tt_knot_type_of(&res->curve, after);
     int rc = TR_OK;
-    if (before->kind == 0 || after->kind == 0) {
+    if (!before->known || !after->known) {
         snprintf(res->type_line, sizeof res->type_line, "knot type not checked (%s: %.250s)",
-                 before->kind == 0 ? "the start" : "the result", before->kind == 0 ? before->why : after->why);
+                 !before->known ? "the start" : "the result", !before->known ? before->why : after->why);
     } else if (tt_knot_type_same(before, after)) {
         res->type_checked = 1;
         char now[256];
-        tt_knot_type_line(after, now, sizeof now);
+        tr_type_describe(&after->tc, now, sizeof now);
         snprintf(res->type_line, sizeof res->type_line, "knot type kept: %s (the start's)", now);
     } else {
         char was[256], now[256];
-        tt_knot_type_line(before, was, sizeof was);
-        tt_knot_type_line(after, now, sizeof now);
+        tr_type_describe(&before->tc, was, sizeof was);
+        tr_type_describe(&after->tc, now, sizeof now);
         rc = tr_fail(err, TR_EGEOMETRY, "the tightened curve is not the start's knot type (start: %s; result: %s): "
                      "nothing written", was, now);
         res->failed_at = TR_TIGHTEN_AT_TYPE;

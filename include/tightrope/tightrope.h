@@ -94,8 +94,14 @@ TIGHTROPE_API const double *tightrope_curve_xyz(const tightrope_curve *c);
  *   "hopf"        two circles through each other's centre, n per circle, default 64
  *   "clasp [H]"   two open ropes hooked, ends on the planes z = +-H (default 5), n per rope,
  *                 default 100
- * n: vertices (per component for links); 0: the default. Unknown names
- * are TIGHTROPE_EINVAL; knots by name (3_1, 4_1, ...) are to come here. */
+ *   "knot NAME"   a prime knot to 12 crossings by its KnotInfo name (3_1 ... 10_165,
+ *                 11a_1 ... 12n_888): the closure of its braid at thickness 1.25,
+ *                 its type checked (docs/knots.md); n in all, default from edges ~0.22
+ *   "link NAME"   a prime link to 9 crossings by its LinkInfo name (L2a1, L6a4{1}, ...)
+ *   "NAME"        either, by name
+ * n: vertices (per component for the generated links); 0: the default.
+ * Unknown names are TIGHTROPE_EINVAL (the message names the nearest); a
+ * curve made that is not of its name's type, TIGHTROPE_EGEOMETRY. */
 TIGHTROPE_API int tightrope_make(const char *spec, size_t n, tightrope_curve **out, tightrope_error *err);
 
 /* ------------------------------------------------------------ files */

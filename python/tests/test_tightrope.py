@@ -41,8 +41,22 @@ def test_make_knot_and_link() -> None:
     assert len(hopf) == 2 and all(c.shape == (32, 3) for c in hopf)
     clasp = tightrope.Curve.make("clasp", 40)
     assert clasp.closed == [False, False] and clasp.constraints == 4
-    with pytest.raises(tightrope.Error, match="unknown curve"):
+    with pytest.raises(tightrope.Error, match="no knot or link named"):
         tightrope.make_knot("no-such-knot")
+
+
+def test_make_by_name() -> None:
+    # KnotInfo's 7_4 as the closure of its braid, at thickness 1.25 (the
+    # oracle's), its type checked in C against the table's invariants
+    k = tightrope.make_knot("7_4")
+    assert k.ndim == 2 and k.shape[1] == 3
+    assert tightrope.measure(k)["thickness"] >= 1.0
+    borromean = tightrope.make_link("L6a4")
+    assert len(borromean) == 3
+    with pytest.raises(tightrope.Error, match="nearest: 7_4"):
+        tightrope.make_knot("7_44")
+    with pytest.raises(tightrope.Error, match="make_link"):
+        tightrope.make_knot("L6a4")
     with pytest.raises(tightrope.Error, match="make_link"):
         tightrope.make_knot("hopf")
 

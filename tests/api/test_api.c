@@ -138,7 +138,14 @@ static void test_errors(void)
     sq[9] = 1.0; /* vertex 3 = vertex 2 */
     CHECK(tightrope_curve_new(1, off4, NULL, sq, &c, &err) == TIGHTROPE_EINVAL);
     CHECK(strstr(err.message, "coincides") != NULL);
-    CHECK(tightrope_make("figure-eight", 0, &c, &err) == TIGHTROPE_EINVAL && strstr(err.message, "unknown curve"));
+    CHECK(tightrope_make("figure-eight", 0, &c, &err) == TIGHTROPE_EINVAL &&
+          strstr(err.message, "no knot or link named 'figure-eight'"));
+    CHECK(tightrope_make("knot L6a4", 0, &c, &err) == TIGHTROPE_EINVAL && strstr(err.message, "is a link, not a knot"));
+    /* by name: the figure eight (KnotInfo's 4_1), its type checked as it is made */
+    CHECK(tightrope_make("knot 4_1", 0, &c, &err) == TIGHTROPE_OK);
+    CHECK(c && tightrope_curve_components(c) == 1 && tightrope_curve_vertices(c) > 20);
+    tightrope_curve_free(c);
+    c = NULL;
     CHECK(tightrope_make("torus 2 4", 0, &c, &err) == TIGHTROPE_EINVAL);
     CHECK(tightrope_make("torus 2", 0, &c, &err) == TIGHTROPE_EINVAL);
     const char *bad = "VECT\n1 3 0\n3\n0\n0 0 0\n1 0\n";

@@ -1,4 +1,4 @@
-/* Starts by name (cli/knot_start.h, issue 47): every prime knot to 10
+/* Starts by name (tighten/knot_start.h, issue 47): every prime knot to 10
  * crossings (0_1 and Rolfsen's 249) and every prime link to 9 crossings in
  * every orientation LinkInfo lists (354) is made from its braid word, in
  * this process, and held against facts independent of the construction:
@@ -23,7 +23,7 @@
 #include <string.h>
 #include <time.h>
 
-#include "cli/knot_start.h"
+#include "tighten/knot_start.h"
 #include "curve/pd_layout.h"
 #include "oracle/thickness.h"
 #include "testlib.h"

@@ -183,8 +183,10 @@ def _out(c: Curve) -> Union[Array, List[Array]]:
 
 
 def make_knot(name: str, n: Optional[int] = None) -> Array:
-    """A knot's start curve as an (n, 3) array: "trefoil", "torus P Q"
-    (default n 200), "circle [R]" (64)."""
+    """A knot's start curve as an (n, 3) array: any knot to 12 crossings by
+    its KnotInfo name ("7_4", "10_165", "11a_1"; the closure of its braid,
+    its type checked), "trefoil", "torus P Q" (default n 200), "circle [R]"
+    (64)."""
     comps = Curve.make(name, n).components
     if len(comps) != 1:
         raise Error(-3, f"'{name}' has {len(comps)} components: make_link makes links")
@@ -192,7 +194,8 @@ def make_knot(name: str, n: Optional[int] = None) -> Array:
 
 
 def make_link(name: str, n: Optional[int] = None) -> List[Array]:
-    """A link's start curve, one (n, 3) array per component: "hopf", "clasp [H]"
+    """A link's start curve, one (n, 3) array per component: any prime link to
+    9 crossings by its LinkInfo name ("L6a4", "L2a1{1}"), "hopf", "clasp [H]"
     (two open ropes; their end planes are kept only by Curve.make("clasp"))."""
     return Curve.make(name, n).components
 

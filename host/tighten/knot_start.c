@@ -1,5 +1,5 @@
 /* Starts from braid words, and the type check (knot_start.h). */
-#include "cli/knot_start.h"
+#include "tighten/knot_start.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -232,4 +232,43 @@ void tr_type_describe(const tr_type_check *tc, char *buf, size_t bufsize)
     size_t u = (size_t)snprintf(buf, bufsize, "%d components, linking numbers", tc->components);
     for (int k = 0; k < tc->npairs && u < bufsize; k++)
         u += (size_t)snprintf(buf + u, bufsize - u, " %d", tc->linking[k]);
+}
+
+int tr_knot_start_named(const char *name, int want_link, size_t n, tr_curve *out, tr_error *err)
+{
+    tr_knot_table table = {0};
+    int rc = tr_knot_table_load(&table, err);
+    if (rc)
+        return rc;
+    const char *kind = want_link < 0 ? "knot or link" : want_link ? "link" : "knot";
+    const tr_table_entry *e = tr_knot_table_find(&table, name, want_link);
+    if (!e) {
+        const tr_table_entry *other = want_link < 0 ? NULL : tr_knot_table_find(&table, name, !want_link);
+        char near[256];
+        if (other)
+            rc = tr_fail(err, TR_EINVAL, "%s is a %s, not a %s", other->name, want_link ? "knot" : "link", kind);
+        else {
+            tr_knot_table_suggest(&table, name, want_link, near, sizeof near);
+            rc = tr_fail(err, TR_EINVAL, "no %s named '%s' in the table; nearest: %s", kind, name, near);
+        }
+        tr_knot_table_free(&table);
+        return rc;
+    }
+    double thickness;
+    if (e->braid.len == 0) {
+        /* the unknot: a round circle of radius 3 (edges below 1 from 19 vertices) */
+        size_t nv = n ? n : 32;
+        rc = nv < 19 ? tr_fail(err, TR_EINVAL, "%zu vertices make the unknot's edges longer than 1 (at least 19)", nv)
+                     : tr_make_circle(out, 3.0, nv, err);
+    } else
+        rc = tr_knot_start_from_braid(&e->braid, n, out, &thickness, err);
+    tr_type_check tc;
+    char why[512];
+    if (!rc && (rc = tr_type_check_of(out, &tc, err)) == TR_OK && !tr_type_matches(&tc, e, why, sizeof why))
+        rc = tr_fail(err, TR_EGEOMETRY, "the curve made for %s %s is not of its type: %s", e->is_link ? "link" : "knot",
+                     e->name, why);
+    if (rc)
+        tr_curve_free(out);
+    tr_knot_table_free(&table);
+    return rc;
 }
