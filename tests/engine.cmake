@@ -84,6 +84,11 @@ tr_engine_test(tighten_target_not_reached 1 DIR ${_eng_dir}/target ONLY "s.vect;
 tr_engine_test(tighten_json_resume 0 DIR ${_eng_dir}/resume ONLY "s.vect;t.vect;u.vect;ck.txt;json.txt" OUT ${_eng_dir}/resume/json.txt
   MATCH "^{\n  \"output\": [^\n]*\n  \"device\": \"serial reference[^\n]*\n  \"stop\": \"steps\",\n  \"N\": 72,\n  \"steps\": 16,\n"
   CMD sh -c "'${_tr}' make torus 2 3 --n 72 -o '${_eng_dir}/resume/s.vect' && '${_tr}' tighten '${_eng_dir}/resume/s.vect' -o '${_eng_dir}/resume/t.vect' --steps 8 --checkpoint '${_eng_dir}/resume/ck.txt' --quiet --device reference > /dev/null && exec '${_tr}' tighten --resume '${_eng_dir}/resume/ck.txt' -o '${_eng_dir}/resume/u.vect' --steps 16 --json --device reference > '${_eng_dir}/resume/json.txt'")
+# a resumed run checks its result's knot type against the checkpoint's state
+# (the (2,3) torus knot: the trefoil's Alexander polynomial and determinant)
+tr_engine_test(tighten_resume_type 0 DIR ${_eng_dir}/resumetype ONLY "s.vect;t.vect;u.vect;ck.txt" OUT ${_eng_dir}/resumetype/u.vect
+  MATCH "\n# knot type kept: Alexander polynomial 1 -1 1, determinant 3, signature -?2 [(]the start's[)]\n"
+  CMD sh -c "'${_tr}' make torus 2 3 --n 72 -o '${_eng_dir}/resumetype/s.vect' && '${_tr}' tighten '${_eng_dir}/resumetype/s.vect' -o '${_eng_dir}/resumetype/t.vect' --steps 8 --checkpoint '${_eng_dir}/resumetype/ck.txt' --quiet --device reference && exec '${_tr}' tighten --resume '${_eng_dir}/resumetype/ck.txt' -o '${_eng_dir}/resumetype/u.vect' --steps 16 --quiet --device reference")
 # --residual is met by the certificate of the output when the engine jams:
 # the 2 x 40 clasp jams with the engine's own residual near 0.3 and a KKT
 # residual near 1e-4 after polish; asked for 1e-3 it exits 0 and says so.

@@ -3,7 +3,7 @@
 # it checked, measure --identify holds a curve against a name; bad notation
 # and unknown names are refused with one line, exit 2, nothing written. The
 # in-process loop over every name to 10 crossings (and links to 9) is
-# tests/cli/test_knot_starts.c; the tables themselves tests/topology/test_knot_table.c.
+# tests/tighten/test_knot_starts.c; the tables themselves tests/topology/test_knot_table.c.
 set(_kn_check ${CMAKE_CURRENT_SOURCE_DIR}/scripts/check_cli.cmake)
 set(_kn_dir ${CMAKE_CURRENT_BINARY_DIR}/cli_knots)
 set(_tr $<TARGET_FILE:tightrope>)

@@ -208,7 +208,7 @@ int tightrope_make(const char *spec, size_t n, tightrope_curve **out, tightrope_
                            &e);
     if (n && n < 3)
         return tr_api_fail(err, tr_fail(&e, TR_EINVAL, "%zu vertices: a curve needs at least 3", n), &e);
-    tr_curve c;
+    tr_curve c = {0};
     int rc;
     const char *kind = w[0];
     double v = 0.0;

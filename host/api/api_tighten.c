@@ -88,6 +88,9 @@ int tightrope_tighten(const tightrope_curve *start, const tightrope_tighten_opti
     t.n = o->n;
     t.refine_to = o->refine_to;
     t.refine_given = o->refine_to > 0;
+    /* the default residual is a stopping rule; another is a goal, as
+     * tighten's --residual is (met, or said missed in the result) */
+    t.residual_given = o->residual != t.residual;
     t.residual = o->residual;
     t.target = o->target;
     t.steps = o->steps;

@@ -252,6 +252,19 @@ static int solver_init(solver *s, const tr_curve *cv, double scale, tr_error *er
         s->l0min = fmin(s->l0min, s->l0[k]);
         s->gap[k] = tr_exclusion_gap(1.0, s->l0[k]);
     }
+    /* the vertex model's K is the vertex oracle's (vertex_thickness.h): one
+     * for all components, from the mean edge of the whole curve, so that the
+     * rows the solver holds are the pairs the oracle judges */
+    if (s->p->vertex_contacts) {
+        double len = 0.0;
+        size_t edges = 0;
+        for (int k = 0; k < nc; k++) {
+            len += s->l0[k] * (double)s->ne[k];
+            edges += s->ne[k];
+        }
+        for (int k = 0; k < nc; k++)
+            s->gap[k] = tr_exclusion_gap(1.0, edges ? len / (double)edges : s->l0[k]);
+    }
     for (size_t i = 0; i < nv; i++)
         s->ncv += tr_newton_i_vertex_cst(s, i) != NULL;
     s->cv = malloc((s->ncv ? s->ncv : 1) * sizeof *s->cv);
@@ -902,8 +915,12 @@ int tr_newton_restore(tr_curve *cv, const tr_newton_params *prm, double *before,
         tr_newton_params_default(&p);
     /* the rows as they stand: no multipliers to start with */
     p.warm_start = 0;
-    if (p.vertex_contacts)
+    if (p.vertex_contacts) {
         p.backend = NULL; /* a backend's strut rows are segment rows */
+        for (int k = 0; k < cv->ncomp; k++)
+            if (!cv->closed[k])
+                return tr_fail(err, TR_EINVAL, "restore: the vertex contact model takes closed components only");
+    }
     *before = *after = NAN;
     if (has_constrained_vertex(cv))
         return tr_fail(err, TR_EINVAL, "restore: a curve with constrained vertices keeps its planes (not restored)");

@@ -135,7 +135,7 @@ int tr_type_check_of(const tr_curve *c, tr_type_check *tc, tr_error *err)
     if (c->ncomp == 1)
         return tr_knot_invariants_of(c, &tc->inv, err);
     if (c->ncomp > 5)
-        return tr_fail(err, TR_EUNSUPPORTED, "%d components: the link tables hold at most 4", c->ncomp);
+        return tr_fail(err, TR_EUNSUPPORTED, "%d components: the check takes at most 5", c->ncomp);
     int lk[25];
     int rc = tr_linking_numbers(c, lk, err);
     if (rc)
@@ -236,6 +236,7 @@ void tr_type_describe(const tr_type_check *tc, char *buf, size_t bufsize)
 
 int tr_knot_start_named(const char *name, int want_link, size_t n, tr_curve *out, tr_error *err)
 {
+    memset(out, 0, sizeof *out);
     tr_knot_table table = {0};
     int rc = tr_knot_table_load(&table, err);
     if (rc)

@@ -14,11 +14,12 @@
 #include "curve/curve.h"
 #include "tighten/knot_start.h"
 
-typedef struct tt_knot_type {
+struct tt_knot_type {
     int known;          /* 1: tc holds the type; 0: not computed, why says why */
     tr_type_check tc;
     char why[1024];
-} tt_knot_type;
+};
+typedef struct tt_knot_type tt_knot_type;
 
 /* c's type; never fails: what cannot be computed (an open component, a
  * diagram beyond the exact arithmetic, more components than the check

@@ -165,6 +165,16 @@ static int open_start(const tt_opts *o, tr_engine **e, tr_tighten_stage *stage, 
     int rc;
     if (o->resume) {
         rc = tr_engine_resume(e, o->resume, o->device, &prm, err);
+        tr_curve at = {0};
+        tr_error terr = {0};
+        if (rc == TR_OK && o->resume_type) {
+            /* the state the run resumes from, for the result's type check */
+            if (tr_engine_get_curve(*e, &at, &terr) == TR_OK)
+                tt_knot_type_of(&at, o->resume_type);
+            else
+                snprintf(o->resume_type->why, sizeof o->resume_type->why, "%.1000s", terr.msg);
+            tr_curve_free(&at);
+        }
     } else {
         tr_curve c;
         rc = tt_read_start(o, &c, err);
@@ -388,23 +398,19 @@ static void fill_result(const tt_opts *o, tr_engine *e, road_result *r, tr_tight
  * start is the call's curve, or the checkpoint a resumed run began from. */
 static int check_type(const tr_curve *start, const tt_opts *o, tr_tighten_result *res, tr_error *err)
 {
-    tr_curve ck = {0};
-    tr_error rerr = {0};
-    if (!start && o->resume && tr_curve_read(o->resume, TR_FORMAT_AUTO, &ck, &rerr) == TR_OK)
-        start = &ck;
     tt_knot_type *before = malloc(sizeof *before), *after = malloc(sizeof *after);
     if (!before || !after) {
         free(before);
         free(after);
-        tr_curve_free(&ck);
         snprintf(res->type_line, sizeof res->type_line, "knot type not checked (out of memory)");
         return TR_OK;
     }
     if (start)
         tt_knot_type_of(start, before);
+    else if (o->resume_type)
+        *before = *o->resume_type;
     else
-        *before = (tt_knot_type){.why = "the checkpoint could not be read again"};
-    tr_curve_free(&ck);
+        *before = (tt_knot_type){.why = "no start at hand"};
     tt_knot_type_of(&res->curve, after);
     int rc = TR_OK;
     if (!before->known || !after->known) {
@@ -437,6 +443,10 @@ int tr_tighten(const tr_curve *start, const tr_tighten_options *opt, tr_tighten_
         return tr_fail(err, TR_EINVAL, "no start curve and no checkpoint to resume");
     }
     tt_opts o = call_options(start, opt);
+    /* a resumed run's type is its checkpoint's, taken as the engine opens it */
+    tt_knot_type resume_type = {.known = 0, .why = "the checkpoint's state was not opened"};
+    if (o.resume)
+        o.resume_type = &resume_type;
     double elapsed_before = 0.0; /* a resumed run's seconds before its checkpoint */
     int rc;
     if (o.resume && (rc = resume_goals(&o, &elapsed_before, err))) {

@@ -35,6 +35,9 @@ typedef struct tt_opts {
     double shift[3];
     int no_polish, newton, no_newton, scale, kkt; /* kkt -1: up to TR_TIGHTEN_KKT_AUTO_MAX_N */
     int auto_route, centre;
+    /* a resumed run: the checkpoint's knot type, taken as the engine opens
+     * it (knot_type.h), for the result's check; NULL otherwise */
+    struct tt_knot_type *resume_type;
 } tt_opts;
 
 /* A note to the caller (tighten.h, note), printf-style. */

@@ -232,7 +232,11 @@ typedef struct tightrope_tighten_result {
 /* Tightens start as o says (NULL: defaults) into *out (the tight curve,
  * scaled to thickness 1 when no vertex is constrained) and *result. A run
  * stopped by the cancel flag, the time limit or a goal returns
- * TIGHTROPE_OK with its best state (result->interrupted says). */
+ * TIGHTROPE_OK with its best state (result->interrupted says), except
+ * that a cancel before the start is settled has no state yet:
+ * TIGHTROPE_EINTERRUPTED. A result that is not the start's knot type
+ * (Alexander polynomial, determinant, signature; a link's linking numbers;
+ * docs/knots.md) is never returned: TIGHTROPE_EGEOMETRY. */
 TIGHTROPE_API int tightrope_tighten(const tightrope_curve *start, const tightrope_tighten_options *o,
                                     tightrope_curve **out, tightrope_tighten_result *result,
                                     tightrope_error *err);

@@ -141,6 +141,8 @@ static void test_errors(void)
     CHECK(tightrope_make("figure-eight", 0, &c, &err) == TIGHTROPE_EINVAL &&
           strstr(err.message, "no knot or link named 'figure-eight'"));
     CHECK(tightrope_make("knot L6a4", 0, &c, &err) == TIGHTROPE_EINVAL && strstr(err.message, "is a link, not a knot"));
+    /* the unknot by name with too few vertices for edges below 1: refused, nothing to free */
+    CHECK(tightrope_make("0_1", 10, &c, &err) == TIGHTROPE_EINVAL && strstr(err.message, "at least 19"));
     /* by name: the figure eight (KnotInfo's 4_1), its type checked as it is made */
     CHECK(tightrope_make("knot 4_1", 0, &c, &err) == TIGHTROPE_OK);
     CHECK(c && tightrope_curve_components(c) == 1 && tightrope_curve_vertices(c) > 20);

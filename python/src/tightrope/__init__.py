@@ -387,6 +387,14 @@ def tighten(curve: CurveLike, time_limit: Optional[float] = None, progress: Opti
                 cancel.value = 1
     else:
         run()
+    if status[0] != 0:
+        # a progress callback's exception, or Ctrl-C before the start was
+        # settled (no state yet: TIGHTROPE_EINTERRUPTED), is what the caller
+        # sees, not the status it caused
+        if failure:
+            raise failure[0]
+        if interrupted and status[0] == -8:
+            raise Interrupted(None)
     _check(status[0], err)
     tight = Curve._take(h)
     out = TightenResult(
