@@ -198,6 +198,15 @@ int tightrope_make(const char *spec, size_t n, tightrope_curve **out, tightrope_
 {
     tr_error e = {{0}};
     char buf[256], *w[4];
+    /* notation, any length: "braid 1,-2,1,-2" or "pd [[1,5,2,4],...]" */
+    const char *rest = spec ? spec + strspn(spec, " \t") : NULL;
+    if (out && rest && (!strncmp(rest, "braid ", 6) || !strncmp(rest, "pd ", 3))) {
+        *out = NULL;
+        tr_curve nc;
+        int braid = rest[0] == 'b';
+        int nrc = braid ? tr_knot_start_braid_text(rest + 6, n, &nc, &e) : tr_knot_start_pd_text(rest + 3, n, &nc, &e);
+        return nrc ? tr_api_fail(err, nrc, &e) : tr_api_wrap(&nc, out, err);
+    }
     if (!spec || !out || strlen(spec) >= sizeof buf)
         return tr_api_fail(err, tr_fail(&e, TR_EINVAL, "no curve named (torus P Q, trefoil, circle, hopf, clasp)"),
                            &e);

@@ -138,19 +138,13 @@ int tr_make_knot_command(int is_link, const char *name, const char *braid_text, 
         snprintf(check, sizeof check, "type checked: %s, as %s's%s", got, entry->name,
                  tr_type_is_mirror(&tc, entry) ? " mirror image's" : "");
     } else if (pd_text) {
-        tr_alexander want;
-        if ((rc = tr_alexander_from_pd((const int(*)[4])pd.x, pd.n, &want, &err))) {
+        int m = tr_pd_type_matches(&tc, &pd, &err);
+        if (m < 0) {
             fprintf(stderr, "tightrope make: --pd: %s\n", err.msg);
             status = 2;
             goto done;
         }
-        int want_sig = 0;
-        if ((rc = tr_signature_from_pd((const int(*)[4])pd.x, pd.n, &want_sig, &err))) {
-            fprintf(stderr, "tightrope make: --pd: %s\n", err.msg);
-            status = 2;
-            goto done;
-        }
-        if (!tr_alexander_equal(&want, &tc.inv.alexander) || want_sig != tc.inv.signature) {
+        if (!m) {
             fprintf(stderr, "tightrope make: %s: the laid-out curve's %s is not the PD code's (its layout went "
                             "wrong; nothing written)\n", what, got);
             status = 1;

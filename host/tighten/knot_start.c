@@ -8,8 +8,10 @@
 
 #include "curve/braid_closure.h"
 #include "curve/generate.h"
+#include "curve/pd_layout.h"
 #include "oracle/thickness.h"
 #include "topology/linking.h"
+#include "topology/signature.h"
 
 /* Vertices per slot and strand of the dense closure the start is resampled
  * from: its polygon's corners turn by a few degrees, so its thickness is
@@ -271,5 +273,52 @@ int tr_knot_start_named(const char *name, int want_link, size_t n, tr_curve *out
     if (rc)
         tr_curve_free(out);
     tr_knot_table_free(&table);
+    return rc;
+}
+
+int tr_pd_type_matches(const tr_type_check *tc, const tr_pd *pd, tr_error *err)
+{
+    tr_alexander want;
+    int want_sig = 0;
+    if (tr_alexander_from_pd((const int(*)[4])pd->x, pd->n, &want, err) ||
+        tr_signature_from_pd((const int(*)[4])pd->x, pd->n, &want_sig, err))
+        return -1;
+    return tc->components == 1 && tr_alexander_equal(&want, &tc->inv.alexander) && want_sig == tc->inv.signature;
+}
+
+int tr_knot_start_braid_text(const char *text, size_t n, tr_curve *out, tr_error *err)
+{
+    memset(out, 0, sizeof *out);
+    tr_braid b;
+    int rc = tr_braid_parse(text, &b, err);
+    double thickness;
+    if (!rc)
+        rc = tr_knot_start_from_braid(&b, n, out, &thickness, err);
+    tr_braid_free(&b);
+    return rc;
+}
+
+int tr_knot_start_pd_text(const char *text, size_t n, tr_curve *out, tr_error *err)
+{
+    memset(out, 0, sizeof *out);
+    tr_pd pd;
+    int rc = tr_pd_parse(text, &pd, err);
+    if (rc)
+        return rc;
+    tr_curve dense;
+    double thickness;
+    /* as make knot --pd lays it out (cli_make_knot.c) */
+    rc = tr_make_pd_layout(&dense, (const int(*)[4])pd.x, pd.n, (size_t)pd.n * 2000, err);
+    if (!rc) {
+        rc = tr_knot_start_from_curve(&dense, n, out, &thickness, err);
+        tr_curve_free(&dense);
+    }
+    tr_type_check tc;
+    int m;
+    if (!rc && !(rc = tr_type_check_of(out, &tc, err)) && (m = tr_pd_type_matches(&tc, &pd, err)) != 1)
+        rc = m < 0 ? TR_EINVAL : tr_fail(err, TR_EGEOMETRY, "the PD code's layout is not of the code's type");
+    if (rc)
+        tr_curve_free(out);
+    tr_pd_free(&pd);
     return rc;
 }

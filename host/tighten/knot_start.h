@@ -42,6 +42,15 @@ int tr_knot_start_from_curve(const tr_curve *dense, size_t n, tr_curve *out, dou
  * (the mirror image, the invariants) from the same pieces. */
 int tr_knot_start_named(const char *name, int want_link, size_t n, tr_curve *out, tr_error *err);
 
+/* The starts of a braid word (text as tr_braid_parse reads it; a knot or
+ * a link) and of a knot's PD code (tr_pd_parse; its planar layout,
+ * curve/pd_layout.h), as `make knot --braid / --pd` makes them, for the
+ * library; a PD start is checked against the code's own invariants
+ * (tr_pd_type_matches). TR_EINVAL for bad notation, TR_EGEOMETRY for a
+ * layout not of the code's type. */
+int tr_knot_start_braid_text(const char *text, size_t n, tr_curve *out, tr_error *err);
+int tr_knot_start_pd_text(const char *text, size_t n, tr_curve *out, tr_error *err);
+
 /* What a curve's type came to, and whether it matches an entry's. */
 typedef struct tr_type_check {
     int components;
@@ -64,6 +73,11 @@ int tr_type_check_of(const tr_curve *c, tr_type_check *tc, tr_error *err);
  * orientation (their absolute values as a multiset, the table's orientation
  * being one of several). On a mismatch why gets what differs. */
 int tr_type_matches(const tr_type_check *tc, const tr_table_entry *e, char *why, size_t whysize);
+
+/* 1 when tc (a knot's) has PD code pd's Alexander polynomial and its
+ * signature, sign included; 0 not; -1 with err when the code's invariants
+ * cannot be computed */
+int tr_pd_type_matches(const tr_type_check *tc, const tr_pd *pd, tr_error *err);
 
 /* 1 when tc has the opposite, nonzero signature of knot e's: the mirror
  * image of the knot KnotInfo draws. */

@@ -99,6 +99,10 @@ TIGHTROPE_API const double *tightrope_curve_xyz(const tightrope_curve *c);
  *                 its type checked (docs/knots.md); n in all, default from edges ~0.22
  *   "link NAME"   a prime link to 9 crossings by its LinkInfo name (L2a1, L6a4{1}, ...)
  *   "NAME"        either, by name
+ *   "braid WORD"  the closure of a braid word, "braid 1,-2,1,-2" (a knot or a link)
+ *   "pd CODE"     a knot's PD code, "pd [[1,5,2,4],[3,1,4,6],[5,3,6,2]]", laid out in the
+ *                 plane and lifted at its crossings (a loose start), checked against the
+ *                 code's own invariants
  * n: vertices (per component for the generated links); 0: the default.
  * Unknown names are TIGHTROPE_EINVAL (the message names the nearest); a
  * curve made that is not of its name's type, TIGHTROPE_EGEOMETRY. */

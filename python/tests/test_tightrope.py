@@ -57,6 +57,28 @@ def test_make_by_name() -> None:
         tightrope.make_knot("7_44")
     with pytest.raises(tightrope.Error, match="make_link"):
         tightrope.make_knot("L6a4")
+
+
+def test_make_from_notation() -> None:
+    # the trefoil's PD code (KnotTheory's convention; the library checks the
+    # laid-out curve against the code's own Alexander polynomial and
+    # signature) and the figure eight's braid word give ropes at thickness
+    # >= 1; a braid of two cycles gives two components; a PD code that is not
+    # a diagram is refused with the library's message
+    pd = [(1, 5, 2, 4), (3, 1, 4, 6), (5, 3, 6, 2)]
+    trefoil = tightrope.make_knot(pd)
+    assert trefoil.ndim == 2 and tightrope.measure(trefoil)["thickness"] >= 1.0
+    eight = tightrope.make_knot("braid 1,-2,1,-2")
+    assert tightrope.measure(eight)["thickness"] >= 1.0
+    assert len(tightrope.make_link("braid 1,1")) == 2
+    with pytest.raises(tightrope.Error, match="appears 3 times"):
+        tightrope.make_knot([(1, 5, 2, 4), (3, 1, 4, 6), (5, 3, 5, 2)])
+
+    class FakeLink:  # what spherogram.Link offers
+        def braid_word(self) -> List[int]:
+            return [1, 1, 1]
+
+    assert tightrope.make_knot(FakeLink()).shape[1] == 3
     with pytest.raises(tightrope.Error, match="make_link"):
         tightrope.make_knot("hopf")
 

@@ -141,6 +141,17 @@ static void test_errors(void)
     CHECK(tightrope_make("figure-eight", 0, &c, &err) == TIGHTROPE_EINVAL &&
           strstr(err.message, "no knot or link named 'figure-eight'"));
     CHECK(tightrope_make("knot L6a4", 0, &c, &err) == TIGHTROPE_EINVAL && strstr(err.message, "is a link, not a knot"));
+    /* notation: the trefoil's PD code (checked against the code's own
+     * invariants as it is made), a braid closing into two components */
+    CHECK(tightrope_make("pd [[1,5,2,4],[3,1,4,6],[5,3,6,2]]", 0, &c, &err) == TIGHTROPE_OK);
+    CHECK(c && tightrope_curve_components(c) == 1);
+    tightrope_curve_free(c);
+    c = NULL;
+    CHECK(tightrope_make("braid 1,1", 0, &c, &err) == TIGHTROPE_OK);
+    CHECK(c && tightrope_curve_components(c) == 2);
+    tightrope_curve_free(c);
+    c = NULL;
+    CHECK(tightrope_make("braid 1,0", 0, &c, &err) == TIGHTROPE_EINVAL && strstr(err.message, "is 0"));
     /* the unknot by name with too few vertices for edges below 1: refused, nothing to free */
     CHECK(tightrope_make("0_1", 10, &c, &err) == TIGHTROPE_EINVAL && strstr(err.message, "at least 19"));
     /* by name: the figure eight (KnotInfo's 4_1), its type checked as it is made */

@@ -182,22 +182,36 @@ def _out(c: Curve) -> Union[Array, List[Array]]:
     return comps[0] if len(comps) == 1 else comps
 
 
-def make_knot(name: str, n: Optional[int] = None) -> Array:
+def _notation(knot: Any) -> str:
+    """The make spec of a knot given as a name, a PD code (a list of
+    4-tuples) or a spherogram/SnapPy Link (by its braid word)."""
+    if isinstance(knot, str):
+        return knot
+    if hasattr(knot, "braid_word"):  # spherogram.Link, snappy.Link
+        return "braid " + ",".join(str(int(g)) for g in knot.braid_word())
+    if isinstance(knot, (list, tuple)) and all(isinstance(x, (list, tuple)) and len(x) == 4 for x in knot):
+        return "pd [" + ",".join("[" + ",".join(str(int(v)) for v in x) + "]" for x in knot) + "]"
+    raise Error(-3, f"not a knot's name, PD code or Link: {type(knot).__name__}")
+
+
+def make_knot(name: Any, n: Optional[int] = None) -> Array:
     """A knot's start curve as an (n, 3) array: any knot to 12 crossings by
     its KnotInfo name ("7_4", "10_165", "11a_1"; the closure of its braid,
-    its type checked), "trefoil", "torus P Q" (default n 200), "circle [R]"
-    (64)."""
-    comps = Curve.make(name, n).components
+    its type checked), "braid 1,-2,1,-2", "pd [[...]]", "trefoil",
+    "torus P Q" (default n 200), "circle [R]" (64); or a PD code as a list
+    of 4-tuples, or a spherogram/SnapPy Link (its braid word)."""
+    comps = Curve.make(_notation(name), n).components
     if len(comps) != 1:
         raise Error(-3, f"'{name}' has {len(comps)} components: make_link makes links")
     return comps[0]
 
 
-def make_link(name: str, n: Optional[int] = None) -> List[Array]:
+def make_link(name: Any, n: Optional[int] = None) -> List[Array]:
     """A link's start curve, one (n, 3) array per component: any prime link to
-    9 crossings by its LinkInfo name ("L6a4", "L2a1{1}"), "hopf", "clasp [H]"
-    (two open ropes; their end planes are kept only by Curve.make("clasp"))."""
-    return Curve.make(name, n).components
+    9 crossings by its LinkInfo name ("L6a4", "L2a1{1}"), "braid WORD", a
+    spherogram/SnapPy Link, "hopf", "clasp [H]" (two open ropes; their end
+    planes are kept only by Curve.make("clasp"))."""
+    return Curve.make(_notation(name), n).components
 
 
 def read(path: Union[str, "os.PathLike[str]"]) -> Curve:
