@@ -6,29 +6,15 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "util/vec3.h"
+
 #define TR_PI 3.14159265358979323846
-
-static void sub3(const double *a, const double *b, double *o)
-{
-    o[0] = a[0] - b[0];
-    o[1] = a[1] - b[1];
-    o[2] = a[2] - b[2];
-}
-
-static void cross3(const double *a, const double *b, double *o)
-{
-    o[0] = a[1] * b[2] - a[2] * b[1];
-    o[1] = a[2] * b[0] - a[0] * b[2];
-    o[2] = a[0] * b[1] - a[1] * b[0];
-}
-
-static double dot3(const double *a, const double *b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
 /* unit normal of a x b, or 0 when they are parallel */
 static int unit_cross(const double *a, const double *b, double *o)
 {
-    cross3(a, b, o);
-    double l = sqrt(dot3(o, o));
+    v3_cross(o, a, b);
+    double l = sqrt(v3_dot(o, o));
     if (!(l > 0))
         return 0;
     o[0] /= l;
@@ -44,19 +30,19 @@ static double clamp1(double x) { return x > 1 ? 1 : (x < -1 ? -1 : x); }
 static double pair_term(const double *r1, const double *r2, const double *r3, const double *r4)
 {
     double r13[3], r14[3], r23[3], r24[3], r12[3], r34[3], n[4][3], c[3];
-    sub3(r3, r1, r13);
-    sub3(r4, r1, r14);
-    sub3(r3, r2, r23);
-    sub3(r4, r2, r24);
-    sub3(r2, r1, r12);
-    sub3(r4, r3, r34);
+    v3_sub(r13, r3, r1);
+    v3_sub(r14, r4, r1);
+    v3_sub(r23, r3, r2);
+    v3_sub(r24, r4, r2);
+    v3_sub(r12, r2, r1);
+    v3_sub(r34, r4, r3);
     if (!unit_cross(r13, r14, n[0]) || !unit_cross(r14, r24, n[1]) || !unit_cross(r24, r23, n[2]) ||
         !unit_cross(r23, r13, n[3]))
         return 0; /* coplanar edges: no solid angle */
-    double omega = asin(clamp1(dot3(n[0], n[1]))) + asin(clamp1(dot3(n[1], n[2]))) +
-                   asin(clamp1(dot3(n[2], n[3]))) + asin(clamp1(dot3(n[3], n[0])));
-    cross3(r34, r12, c);
-    double s = dot3(c, r13);
+    double omega = asin(clamp1(v3_dot(n[0], n[1]))) + asin(clamp1(v3_dot(n[1], n[2]))) +
+                   asin(clamp1(v3_dot(n[2], n[3]))) + asin(clamp1(v3_dot(n[3], n[0])));
+    v3_cross(c, r34, r12);
+    double s = v3_dot(c, r13);
     return s > 0 ? omega : (s < 0 ? -omega : 0);
 }
 
@@ -91,7 +77,7 @@ static int linking_by_projection(const tr_curve *c, const double *d, int *lk, tr
     a[k] = 1;
     if (!unit_cross(d, a, u))
         return 1;
-    cross3(d, u, v);
+    v3_cross(v, d, u);
     size_t ne = c->nv;
     pedge *e = malloc(ne * sizeof *e);
     double *p = malloc(3 * c->nv * sizeof *p);
@@ -105,9 +91,9 @@ static int linking_by_projection(const tr_curve *c, const double *d, int *lk, tr
     double scale = 0;
     for (size_t i = 0; i < c->nv; i++) {
         const double *x = c->x + 3 * i;
-        p[3 * i] = dot3(x, u);
-        p[3 * i + 1] = dot3(x, v);
-        p[3 * i + 2] = dot3(x, d);
+        p[3 * i] = v3_dot(x, u);
+        p[3 * i + 1] = v3_dot(x, v);
+        p[3 * i + 2] = v3_dot(x, d);
         scale = fmax(scale, fmax(fabs(p[3 * i]), fmax(fabs(p[3 * i + 1]), fabs(p[3 * i + 2]))));
     }
     double tol = 1e-9 * (scale > 0 ? scale : 1);
