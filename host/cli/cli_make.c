@@ -56,6 +56,16 @@ static void usage(FILE *out)
             "not be written, 1 a made curve not of the type asked for (nothing is left behind then).\n");
 }
 
+int tr_make_start_check(const tr_curve *c, tr_error *err)
+{
+    tr_engine_params prm;
+    tr_engine_params_default(&prm);
+    tr_engine *e = NULL;
+    int rc = tr_engine_create(&e, c, "reference", &prm, err);
+    tr_engine_destroy(e);
+    return rc;
+}
+
 int tr_cmd_make(int argc, char **argv)
 {
     const char *kind = NULL, *outpath = NULL, *braid = NULL, *pd = NULL;
@@ -215,14 +225,7 @@ int tr_cmd_make(int argc, char **argv)
         fprintf(stderr, "tightrope make: %s\n", err.msg);
         return 2;
     }
-    /* A start that tighten would refuse is not written: the engine's own
-     * checks (edges short enough, no overlap, MinRad) on the reference. */
-    tr_engine_params prm;
-    tr_engine_params_default(&prm);
-    tr_engine *e = NULL;
-    rc = tr_engine_create(&e, &c, "reference", &prm, &err);
-    tr_engine_destroy(e);
-    if (rc) {
+    if ((rc = tr_make_start_check(&c, &err))) {
         tr_curve_free(&c);
         fprintf(stderr, "tightrope make: %s: tighten would refuse it: %s\n", comment, err.msg);
         return rc == TR_ENOMEM ? 1 : 2;

@@ -10,7 +10,6 @@
 #include "curve/curve_io.h"
 #include "curve/generate.h"
 #include "curve/pd_layout.h"
-#include "engine/engine.h"
 #include "topology/knot_table.h"
 #include "topology/signature.h"
 
@@ -155,13 +154,7 @@ int tr_make_knot_command(int is_link, const char *name, const char *braid_text, 
         snprintf(check, sizeof check, "invariants: %s", got);
     }
 
-    /* A start that tighten would refuse is not written (as make does). */
-    tr_engine_params prm;
-    tr_engine_params_default(&prm);
-    tr_engine *e = NULL;
-    rc = tr_engine_create(&e, &c, "reference", &prm, &err);
-    tr_engine_destroy(e);
-    if (rc) {
+    if ((rc = tr_make_start_check(&c, &err))) {
         fprintf(stderr, "tightrope make: %s: tighten would refuse it: %s\n", what, err.msg);
         status = rc == TR_ENOMEM ? 1 : 2;
         goto done;

@@ -5,6 +5,14 @@
 
 #include <stddef.h>
 
+#include "curve/curve.h"
+#include "util/error.h"
+
+/* A start that tighten would refuse is not written by any make: the
+ * engine's own checks (edges short enough, no overlap, MinRad) on the
+ * reference. Returns the engine's error (TR_OK: tighten accepts c). */
+int tr_make_start_check(const tr_curve *c, tr_error *err);
+
 /* What make was asked: exactly one of name, braid, pd (pd: knots only);
  * n = 0 for the default vertex count. Prints its line or its error and
  * returns make's exit status: 0 written; 2 bad notation, an unknown name
