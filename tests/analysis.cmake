@@ -3,7 +3,7 @@
 foreach(_case trefoil no_gnuplot plots plots_coarse plots_origin plots_atomic tube cycles usage options nodir)
   add_test(NAME analyze_cli_${_case}
     COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/scripts/analyze_cli.sh ${_case} $<TARGET_FILE:tightrope>
-            ${TIGHTROPE_SHARED_DIR} ${CMAKE_CURRENT_BINARY_DIR}/analyze_${_case}
+            ${CMAKE_CURRENT_SOURCE_DIR}/data ${CMAKE_CURRENT_BINARY_DIR}/analyze_${_case}
             ${CMAKE_SOURCE_DIR}/bench/data/trefoil_1600.vect)
   set_tests_properties(analyze_cli_${_case} PROPERTIES SKIP_RETURN_CODE 77 ENVIRONMENT "${TR_TEST_ENV}")
 endforeach()

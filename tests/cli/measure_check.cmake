@@ -1,12 +1,13 @@
 # Command-line checks of 'tightrope measure', run as cmake -P with
-#   -DTR=<tightrope> -DMODE=<json|array|struts|dir|bad> -DSHARED=<../shared> -DWORK=<scratch dir> [-DFILE=<bad file>]
-# Expected numbers come from the octrope peer table (tightknot_ropelength.tsv),
+#   -DTR=<tightrope> -DMODE=<json|array|struts|dir|bad> -DDATA=<tests/data> -DWORK=<scratch dir> [-DFILE=<bad file>]
+# Expected numbers come from the octrope peer table (tightknot_ropelength.tsv in
+# ../shared/data) for the two TightKnot curves kept in tests/data/tightknot,
 # never from our own output.
 cmake_minimum_required(VERSION 3.19)
 file(REMOVE_RECURSE ${WORK})
 file(MAKE_DIRECTORY ${WORK})
-set(trefoil ${SHARED}/data/tightknot/3_1.vect)
-set(k41 ${SHARED}/data/tightknot/4_1.vect)
+set(trefoil ${DATA}/tightknot/3_1.vect)
+set(k41 ${DATA}/tightknot/4_1.vect)
 
 function(fail msg)
   message(FATAL_ERROR "${msg}")

@@ -194,8 +194,8 @@ analyze_stale)
   # analyze into a folder holding an earlier run: the tight trefoil has
   # contacts (sigma.csv, fixed_points.csv), a circle has none; after the
   # circle those files are gone, and a file of the user's stays.
-  knot=$here/../../../shared/data/tightknot/3_1.vect
-  [ -f "$knot" ] || { echo "skipped, no reference data: $knot"; exit 77; }
+  knot=$here/../data/tightknot/3_1.vect
+  [ -f "$knot" ] || fail "no $knot"
   run "$tr" analyze "$knot" --out a
   [ "$rc" = 0 ] && [ -s a/sigma.csv ] && [ -s a/fixed_points.csv ] || fail "trefoil: exit $rc, $(ls a)"
   echo mine >a/notes.txt
