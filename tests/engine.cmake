@@ -115,3 +115,7 @@ set_tests_properties(tighten_solver_checkpoint PROPERTIES ENVIRONMENT "${TR_TEST
 add_test(NAME tighten_tries
   COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/scripts/tries_cli.sh $<TARGET_FILE:tightrope> ${_eng_dir}/tries)
 set_tests_properties(tighten_tries PROPERTIES ENVIRONMENT "${TR_TEST_ENV}" LABELS cli)
+# The automatic roads of a plain tighten with a time limit (tests/scripts/auto_roads_cli.sh)
+add_test(NAME tighten_auto_roads
+  COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/scripts/auto_roads_cli.sh $<TARGET_FILE:tightrope> ${_eng_dir}/auto_roads)
+set_tests_properties(tighten_auto_roads PROPERTIES ENVIRONMENT "${TR_TEST_ENV}" LABELS cli)

@@ -79,9 +79,10 @@ int tightrope_tighten(const tightrope_curve *start, const tightrope_tighten_opti
         o = &po;
     }
     if (o->time_limit < 0 || isnan(o->time_limit) || o->n < 0 || o->refine_to < 0 || o->steps < 0 ||
-        o->tries < 1 || o->shuffles < 0 || (o->shuffles > 0 && o->shuffles >= o->tries) || !(o->residual >= 0))
+        o->tries < 0 || o->shuffles < 0 || (o->shuffles > 0 && o->shuffles >= o->tries) || !(o->residual >= 0))
         return tr_api_fail(err, tr_fail(&e, TR_EINVAL, "bad tighten options (time_limit, n, refine_to, steps >= 0; "
-                                                        "tries >= 1; 0 <= shuffles < tries; residual >= 0)"), &e);
+                                                        "tries >= 0, 0 automatic; 0 <= shuffles < tries; "
+                                                        "residual >= 0)"), &e);
     tr_tighten_options t;
     tr_tighten_options_default(&t);
     t.time_limit = o->time_limit;

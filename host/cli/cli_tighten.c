@@ -209,7 +209,12 @@ int tr_cli_tighten_parse(int argc, char **argv, tr_cli_tighten *t)
         fprintf(stderr, "tightrope tighten: --resume continues one road; --tries starts several\n");
         return 2;
     }
-    if (o->shuffles >= o->tries) {
+    if (o->shuffles > 0 && o->tries == 0) {
+        fprintf(stderr, "tightrope tighten: --shuffles %ld needs --tries K (K > %ld): which roads are shuffled "
+                        "is counted from the last of K\n", o->shuffles, o->shuffles);
+        return 2;
+    }
+    if (o->tries > 0 && o->shuffles >= o->tries) {
         fprintf(stderr, "tightrope tighten: --shuffles %ld: at most --tries - 1 (%ld) of the roads are shuffled; "
                         "the first is the start as given\n", o->shuffles, o->tries - 1);
         return 2;

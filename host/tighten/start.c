@@ -57,8 +57,10 @@ static int densify_coarse(const tt_opts *o, tr_curve *c, tr_error *err)
             return tr_fail(err, TR_EGEOMETRY, "%s: resampled along a spline, it has thickness %g", o->in,
                            t.thickness);
         tt_scale_curve(c, 1.0 / t.thickness);
-        tt_note(o, TR_TIGHTEN_WARNING, "%s: too coarse for thickness 1; resampled along a spline to %zu vertices",
-                o->in, c->nv);
+        /* a shuffled road's rope is ours, coarse by design: no warning */
+        if (!o->shuffled)
+            tt_note(o, TR_TIGHTEN_WARNING, "%s: too coarse for thickness 1; resampled along a spline to %zu vertices",
+                    o->in, c->nv);
     }
     return TR_OK;
 }
@@ -274,6 +276,58 @@ int tt_read_start(const tt_opts *o, tr_curve *c, tr_error *err)
  * whole semicircle at the shortest distance from the other's tip, so the
  * strut count says nothing). */
 #define CLASP_COARSE_N 100
+/* The automatic roads (issue 47: one plain command finds the good basin).
+ * A loose start on the route above, given a time limit T and no --tries or
+ * --shuffles, is scouted by one road per AUTO_ROAD_SECONDS of T (at most
+ * AUTO_ROADS_MAX; under two, T goes to one road as before), all but the
+ * first shuffled (the scouts stop at half of T: tighten.c), and the
+ * shortest scout is refined to AUTO_N_PER_LENGTH vertices per unit of its
+ * ropelength instead of the start's count. Why: a start made from notation
+ * (`make knot`, a braid closure, 3.5 times longer than tight) slides into
+ * the basin its diagram lies in; the shuffled roads leave it. 5_2 made by
+ * name (848 vertices), T = 200 s at load 5: the three unshuffled roads ended
+ * at 58.36, 59.88, 58.37, the shuffled ones at 49.53, 49.54, 54.85, and
+ * the shortest refined to 2400 at 49.4658, below KnotInfo's 49.4701; the
+ * plain route of before ended at 56.17 in 45 s. The fine count: the
+ * polygon's excess over its limit goes as c L^2 / N^2 with c ~ 0.85 (the
+ * trefoil's 914 / N^2 over L = 32.74), so N = 48 L leaves ~4e-4, below
+ * the 4 decimals KnotInfo gives (the trefoil at 32.7433 against its
+ * 32.7436). */
+#define AUTO_ROAD_SECONDS 25.0
+#define AUTO_ROADS_MAX 16
+#define AUTO_N_PER_LENGTH 48.0
+long tt_auto_refine_n(const tt_opts *o, double scout_ropelength)
+{
+    long n = isfinite(scout_ropelength) ? lround(AUTO_N_PER_LENGTH * scout_ropelength) : o->refine_to;
+    /* never below the provisional count, and a refinement (twice the coarse) */
+    if (n < o->refine_to)
+        n = o->refine_to;
+    return n < 2 * o->n ? 2 * o->n : n;
+}
+
+static void choose_roads(tt_opts *o)
+{
+    if (!o->auto_roads || !(o->time_limit > 0) || o->start->ncst > 0)
+        return;
+    /* under 2 AUTO_ROAD_SECONDS, one road has the whole time */
+    long k = lround(floor(o->time_limit / AUTO_ROAD_SECONDS));
+    if (k < 2)
+        return;
+    if (k > AUTO_ROADS_MAX)
+        k = AUTO_ROADS_MAX;
+    o->tries = k;
+    o->shuffles = k - 1; /* one road from the start as it is */
+    o->refine_auto = 1;
+    /* the second-order solver in the polish's place at every road's finest
+     * level and on every level from SOLVER_LEVEL_MIN_N of the refinement
+     * (--newton): the spline's overshoot at the refined levels, rescaled
+     * to thickness 1, left 9_40 (made by name, T = 300 at load 7) at 90.3
+     * for the last level and 81.9019 at 3930 vertices; with it 81.6367
+     * (KnotInfo: 81.6474) */
+    if (!o->no_newton)
+        o->newton = 1;
+}
+
 void tt_choose_route(tt_opts *o)
 {
     if (o->resume || o->n > 0 || o->refine_to > 0 || !o->start || !o->auto_route)
@@ -294,7 +348,19 @@ void tt_choose_route(tt_opts *o)
         ((double)sl.n < 0.1 * (double)c.nv || (clasp && th.thickness > 1.0 + 1e-3))) {
         o->n = clasp ? CLASP_COARSE_N : (long)(nper / 4 > 64 ? nper / 4 : 64);
         o->refine_to = (long)nper;
-        tt_note(o, TR_TIGHTEN_INFO,
+        if (!clasp)
+            choose_roads(o);
+        if (o->refine_auto) {
+            tt_note(o, TR_TIGHTEN_INFO, "%s is loose (%zu struts within 1e-3 of the shortest, %zu vertices)",
+                    o->in, sl.n, c.nv);
+            tt_note(o, TR_TIGHTEN_INFO,
+                    "the automatic roads for a time limit of %g s: up to %ld scouts in half of it (the start at "
+                    "%ld vertices, then %ld shuffled), the shortest refined to %.0f vertices per unit of its "
+                    "ropelength%s (--tries or --shuffles choose the roads yourself)",
+                    o->time_limit, o->tries, o->n, o->shuffles, AUTO_N_PER_LENGTH,
+                    o->newton ? " with the second-order solver" : "");
+        } else
+            tt_note(o, TR_TIGHTEN_INFO,
                     "%s is loose (%zu struts within 1e-3 of the shortest, %zu vertices): "
                     "tightening from %ld vertices and refining to %zu (--n %zu keeps them all)",
                     o->in, sl.n, c.nv, o->n, nper, nper);

@@ -23,7 +23,6 @@ void tr_tighten_options_default(tr_tighten_options *opt)
                                 .residual = 1e-4,
                                 .checkpoint_every = 300,
                                 .polish = 1,
-                                .tries = 1,
                                 .seed = 1,
                                 .kkt = -1,
                                 .auto_route = 1,
@@ -209,7 +208,8 @@ static int open_start(const tt_opts *o, tr_engine **e, tr_tighten_stage *stage, 
         *e = NULL;
         return rc;
     }
-    if (tr_engine_warning(*e)[0])
+    /* said once, not once a road */
+    if (tr_engine_warning(*e)[0] && o->try_index == 0)
         tt_note(o, TR_TIGHTEN_WARNING, "warning: %s", tr_engine_warning(*e));
     if (o->resume) {
         /* both limits count the runs before the checkpoint: say so when
@@ -341,6 +341,7 @@ static tt_opts call_options(const tr_curve *start, const tr_tighten_options *opt
                      .scale = opt->scale,
                      .kkt = opt->kkt,
                      .auto_route = opt->auto_route,
+                     .auto_roads = opt->tries <= 0 && opt->shuffles <= 0,
                      .centre = opt->centre};
 }
 
@@ -474,10 +475,23 @@ int tr_tighten(const tr_curve *start, const tr_tighten_options *opt, tr_tighten_
     double t0 = tr_clock_seconds();
     const double budget = scouting ? TT_SCOUT_SHARE * o.time_limit : o.time_limit; /* the scouts' */
     tr_deadline bound = tt_bound(&o);
+    long scouts_ran = o.tries; /* fewer when the scouts' share ran out */
     /* once a road has a result, no road starts past the bound: each has at
      * least its share's floor, and a thousand roads of a second's floor
      * were once a minute past a three-second limit */
     for (long t = 0; t < o.tries + scouting && !(have && tr_deadline_passed(&bound)); t++) {
+        /* the scouts' share is a bound too: a road's setup (a shuffle, a
+         * settle) is not in its engine's time, and under load the scouts
+         * once took all of T, leaving the refinement none (9_40 made by
+         * name, T = 300 at load 7: road 9 of 10 stopped by the limit) */
+        if (scouting && t > 0 && t < o.tries && have && tr_clock_seconds() - t0 >= budget) {
+            tt_note(&o, TR_TIGHTEN_INFO, "the scouts' share of the time is spent after %ld of %ld roads", t, o.tries);
+            scouts_ran = t;
+            t = o.tries;
+        }
+        /* the automatic roads refine to a count from the shortest scout */
+        if (scouting && t == o.tries && o.refine_auto && have)
+            o.refine_to = tt_auto_refine_n(&o, r.th.ropelength);
         tt_opts ot = o;
         ot.try_index = (int)t;
         tr_curve scout_at_n = {0};
@@ -496,9 +510,14 @@ int tr_tighten(const tr_curve *start, const tr_tighten_options *opt, tr_tighten_
         } else if (scouting) {
             ot.refine_to = 0;
             if (shuffled_road) {
-                /* a shuffled road, at the first road's coarse count */
+                /* a shuffled road, at the first road's coarse count; on
+                 * the automatic roads at the count its compacted rope
+                 * takes (edges of 0.5: start.c, densify_coarse), which
+                 * is far fewer than a quarter of a loose start's (9_40
+                 * made by name: 1693 vertices, shuffled to ropelength
+                 * ~110, 220 vertices where N / 4 is 423) */
                 ot.shuffled = 1;
-                ot.n = tt_road_coarse_n(&o, 1);
+                ot.n = o.refine_auto ? 0 : tt_road_coarse_n(&o, 1);
             } else if (t > 0) {
                 ot.n = tt_road_coarse_n(&o, (int)t);
                 ot.inflate = tt_road_inflate((int)t);
@@ -576,7 +595,7 @@ int tr_tighten(const tr_curve *start, const tr_tighten_options *opt, tr_tighten_
             tr_curve_free(&rt.fin);
             tr_engine_destroy(et);
         }
-        r.tries = (int)(t < o.tries ? t + 1 : o.tries);
+        r.tries = (int)(t < o.tries ? t + 1 : scouts_ran);
     }
     /* an interrupted series is an interrupted run, whichever road is kept */
     if (tt_cancelled(&o))

@@ -76,7 +76,11 @@ typedef struct tr_tighten_options {
     int newton;     /* the second-order solver: 1 also in the polish's place at the finest
                        level, 0 (default) only on a tight finest level, -1 never */
     int scale;      /* scale the start to thickness 1 first (default 0) */
-    long tries;     /* roads (default 1) */
+    /* roads (0, default: chosen here: for a loose start taking the automatic
+     * route with a time limit, and no shuffles given, the automatic roads of
+     * start.c, tt_choose_route: scouts, most of them shuffled, the shortest
+     * refined to a count from its length; else 1) */
+    long tries;
     long shuffles;  /* the last this many roads start shuffled (default 0; < tries) */
     long seed;      /* the roads' seed (default 1) */
     int kkt;        /* certify: 1 always, 0 never, -1 (default) up to TR_TIGHTEN_KKT_AUTO_MAX_N */

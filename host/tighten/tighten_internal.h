@@ -35,6 +35,12 @@ typedef struct tt_opts {
     double shift[3];
     int no_polish, newton, no_newton, scale, kkt; /* kkt -1: up to TR_TIGHTEN_KKT_AUTO_MAX_N */
     int auto_route, centre;
+    /* no tries or shuffles given: a loose start on the automatic route with
+     * a time limit takes the automatic roads (tt_choose_route) */
+    int auto_roads;
+    /* the automatic roads: refine_to is provisional until the scouts are
+     * done, then chosen from the shortest scout's length (tt_auto_refine_n) */
+    int refine_auto;
     /* a resumed run: the checkpoint's knot type, taken as the engine opens
      * it (knot_type.h), for the result's check; NULL otherwise */
     struct tt_knot_type *resume_type;
@@ -61,6 +67,10 @@ void tt_scale_curve(tr_curve *c, double f);
 void tt_choose_route(tt_opts *o);
 void tt_start_shift(tt_opts *o);
 int tt_read_start(const tt_opts *o, tr_curve *c, tr_error *err);
+
+/* start.c: the automatic roads' finest count, from the shortest scout's
+ * ropelength (refine_auto). */
+long tt_auto_refine_n(const tt_opts *o, double scout_ropelength);
 
 /* roads.c: the roads of tries and shuffles. */
 int tt_multi_level(const tt_opts *o);

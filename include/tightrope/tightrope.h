@@ -198,7 +198,7 @@ typedef struct tightrope_tighten_options {
                               start (default), -1 never */
     int polish;            /* the polish stage (default 1) */
     int scale;             /* scale the start to thickness 1 first (default 0) */
-    long tries, shuffles, seed; /* roads (default 1), shuffled roads (0), their seed (1) */
+    long tries, shuffles, seed; /* roads (default 0: chosen, as the command line does without --tries), shuffled roads (0), their seed (1) */
     int kkt;               /* certify: 1 always, 0 never, -1 (default) up to N = 2400 */
     const char *checkpoint; /* a checkpoint file to write (NULL: none) */
     tightrope_progress_fn progress; /* NULL: none */

@@ -330,7 +330,8 @@ def tighten(curve: CurveLike, time_limit: Optional[float] = None, progress: Opti
     the whole call; progress(Progress) called every progress_every seconds (0.25)
     from the run's thread; options as tighten's: n, refine_to, residual,
     target, steps, device ("reference", "auto", a spec), newton (True, False
-    only on a tight start, None never), polish, scale, tries, shuffles, seed,
+    only on a tight start, None never), polish, scale, tries (0, default: chosen
+    as the command line chooses without --tries), shuffles, seed,
     kkt (True, False, None: up to N = 2400), checkpoint (a path).
 
     Ctrl-C stops the run within a step and raises tightrope.Interrupted (a

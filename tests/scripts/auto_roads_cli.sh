@@ -1,0 +1,39 @@
+#!/usr/bin/env bash
+# The automatic roads (issue 47 item 3): a loose start with --time-limit T >= 50 and no road
+# flags is scouted (the start, then shuffled roads) in half of T, and the shortest scout is
+# refined to 48 vertices per unit of its ropelength. Checked: the roads chosen and said on
+# stderr, the written N against the shortest scout's ropelength, and the written trefoil
+# below 32.7487, the shortest any polygon of the plain route's N = 400 reaches (the N = 400
+# ladder's converged value; a polygon's minimum falls with N as 914 / N^2, so 32.745 needs
+# more than ~500 vertices, settled). With --tries (or a T under 50 s) one road, as before.
+# Usage: auto_roads_cli.sh TIGHTROPE WORK_DIR. Exit 0 pass, 1 fail.
+set -u
+tr=$1 work=$2
+rm -rf "$work" && mkdir -p "$work"
+fail() { echo "FAIL: $*"; exit 1; }
+"$tr" make torus 2 3 --n 400 -o "$work/s.vect" >/dev/null || fail "make"
+"$tr" tighten "$work/s.vect" -o "$work/a.vect" --time-limit 50 --no-kkt --device reference \
+  >"$work/a.out" 2>"$work/a.err" || fail "tighten: $(cat "$work/a.err")"
+cat "$work/a.err"
+grep -q '^tightrope tighten: the automatic roads for a time limit of 50 s: up to 2 scouts' "$work/a.err" ||
+  fail "no automatic roads said"
+grep -q '^tightrope tighten: road 2 of 2: the start shuffled' "$work/a.err" || fail "road 2 is not shuffled"
+best=$(awk '/road [0-9]+ of 2: ropelength/ { if (m == "" || $NF < m) m = $NF } END { print m }' "$work/a.err")
+[ -n "$best" ] || fail "no scout finished"
+want=$(awk -v b="$best" 'BEGIN { printf "%d", b * 48 + 0.5 }')
+grep -q "^tightrope tighten: the shortest scout (road [12], N [0-9]*) refined to $want vertices$" "$work/a.err" ||
+  fail "not refined to 48 x $best = $want vertices"
+read -r n rl < <("$tr" measure "$work/a.vect" | awk '$1 == "curve" { print $2, $7 }')
+[ "$n" = "$want" ] || fail "wrote N $n, want $want"
+awk -v r="$rl" 'BEGIN { exit !(r < 32.745) }' || fail "ropelength $rl, not below 32.745"
+# a road flag, or a T under 50 s: one road
+"$tr" tighten "$work/s.vect" -o "$work/b.vect" --time-limit 50 --tries 1 --steps 300 --no-kkt --device reference \
+  >/dev/null 2>"$work/b.err" || fail "tighten --tries 1: $(cat "$work/b.err")"
+grep -q 'automatic roads' "$work/b.err" && fail "--tries 1 took the automatic roads"
+"$tr" tighten "$work/s.vect" -o "$work/c.vect" --time-limit 10 --no-kkt --device reference \
+  >/dev/null 2>"$work/c.err" || fail "tighten T = 10: $(cat "$work/c.err")"
+grep -q 'automatic roads' "$work/c.err" && fail "T = 10 took the automatic roads"
+# --shuffles alone is refused: which roads it names needs --tries
+"$tr" tighten "$work/s.vect" -o "$work/d.vect" --shuffles 2 2>"$work/d.err" && fail "--shuffles without --tries accepted"
+grep -q 'needs --tries' "$work/d.err" || fail "no message: $(cat "$work/d.err")"
+exit 0
