@@ -11,6 +11,17 @@
  * CKPT_S: every CKPT_S seconds the solver's best iterate goes to
  * OUT.ckpt (what a long run keeps, and what to measure when the oracle
  * rejects a result).
+ * --state: the solver's state (newton.h tr_newton_state: the iterate as the
+ * solver holds it, not rescaled, with its multipliers, penalty and loop
+ * counters) goes to OUT.state every CKPT_S seconds (300 without CKPT_S) and
+ * when the run stops unfinished (its time limit, or SIGINT, SIGTERM or
+ * SIGHUP, which stop it at the next step: then OUT is not written, so that
+ * a stopped rung is not taken for a finished one). --resume STATE: go on
+ * from that state instead of from IN's positions; IN and N must give the
+ * curve the state was taken on (its vertices per component; the start's
+ * ropelength is what a result must beat). STATE is read whole at the start
+ * and never written (a resumed run writes OUT.state, which must be another
+ * file).
  *   newton_run --restore IN.vect OUT.vect
  * the restoration alone (newton.h tr_newton_restore) on IN scaled so that
  * its closest strut is at 2: a checkpoint or result that the rescaling
@@ -18,6 +29,7 @@
  * (struts at 2, MinRad rows over), and OUT is it restored and rescaled to
  * thickness 1 where the oracle measures that shorter, else as scaled. */
 #include <math.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 
@@ -29,10 +41,47 @@
 #include "engine/refine_lowpass.h"
 #include "solver/newton.h"
 #include "oracle/thickness.h"
+#include "util/text_file.h"
+
+/* where the checkpoints and the states go (the callbacks' user) */
+typedef struct run_files {
+    char ckpt[4096], state[4096];
+} run_files;
+
+/* raised by SIGINT, SIGTERM, SIGHUP with --state: the solver stops at its
+ * next step and hands its state over */
+static volatile sig_atomic_t stop_asked = 0;
+
+static void on_stop(int sig)
+{
+    (void)sig;
+    stop_asked = 1;
+}
+
+static double l0_min(const tr_newton_state *s)
+{
+    double m = INFINITY;
+    for (int k = 0; k < s->ncomp; k++)
+        m = fmin(m, s->l0[k]);
+    return m;
+}
+
+static int write_state(void *user, const tr_newton_state *s, tr_error *err)
+{
+    const char *path = ((const run_files *)user)->state;
+    int rc = tr_newton_state_write(path, s, err);
+    if (rc)
+        fprintf(stderr, "newton_run: state not written: %s\n", err->msg);
+    else
+        printf("state at step %d (outer %d, mu %.1e, %ld steps and %.0f s in all) written to %s\n", s->iter, s->outer,
+               s->mu * l0_min(s), s->steps, s->seconds, path);
+    fflush(stdout);
+    return rc;
+}
 
 static int write_ckpt(void *user, const tr_curve *best, tr_error *err)
 {
-    return tr_curve_write((const char *)user, TR_FORMAT_VECT, best, "newton_run checkpoint", err);
+    return tr_curve_write(((const run_files *)user)->ckpt, TR_FORMAT_VECT, best, "newton_run checkpoint", err);
 }
 
 static void show(void *user, const tr_newton_progress *p)
@@ -78,11 +127,19 @@ int main(int argc, char **argv)
 {
     if (argc == 4 && !strcmp(argv[1], "--restore"))
         return restore_only(argv[2], argv[3]);
-    const char *device = NULL;
-    int vertex = 0;
+    const char *device = NULL, *resume = NULL;
+    int vertex = 0, keep_state = 0;
     for (;;) {
         if (argc > 2 && !strcmp(argv[1], "--device")) {
             device = argv[2];
+            argv += 2;
+            argc -= 2;
+        } else if (argc > 1 && !strcmp(argv[1], "--state")) {
+            keep_state = 1;
+            argv++;
+            argc--;
+        } else if (argc > 2 && !strcmp(argv[1], "--resume")) {
+            resume = argv[2];
             argv += 2;
             argc -= 2;
         } else if (argc > 1 && !strcmp(argv[1], "--vertex")) {
@@ -94,12 +151,27 @@ int main(int argc, char **argv)
             break;
     }
     if (argc < 3) {
-        fprintf(stderr, "usage: newton_run [--device SPEC] [--vertex] IN OUT [N | sN] [TIME_LIMIT_S] [CKPT_S]\n"
+        fprintf(stderr, "usage: newton_run [--device SPEC] [--vertex] [--state] [--resume STATE] IN OUT [N | sN] "
+                        "[TIME_LIMIT_S] [CKPT_S]\n"
                         "       newton_run --restore IN OUT\n");
         return 2;
     }
     tr_error err = {0};
     tr_curve c = {0}, r = {0};
+    run_files files;
+    snprintf(files.ckpt, sizeof files.ckpt, "%s.ckpt", argv[2]);
+    snprintf(files.state, sizeof files.state, "%s.state", argv[2]);
+    const char *state_path = files.state;
+    if (resume && (tr_same_file(resume, argv[2]) || (keep_state && tr_same_file(resume, state_path)))) {
+        fprintf(stderr, "newton_run: %s is the state to resume from: it is never written over (move it first)\n",
+                resume);
+        return 2;
+    }
+    tr_newton_state from = {0};
+    if (resume && tr_newton_state_read(resume, &from, &err)) {
+        fprintf(stderr, "newton_run: %s\n", err.msg);
+        return 2;
+    }
     if (tr_curve_read(argv[1], TR_FORMAT_AUTO, &c, &err)) {
         fprintf(stderr, "newton_run: %s\n", err.msg);
         return 1;
@@ -135,14 +207,38 @@ int main(int argc, char **argv)
         p.minrad_guard = atof(getenv("NEWTON_MINRAD_GUARD"));
     if (getenv("NEWTON_MAX_BEND"))
         p.max_bend = atof(getenv("NEWTON_MAX_BEND"));
+    /* loop iterations (Newton steps and multiplier updates) from the
+     * solve's start (a resumed run's count goes on from its state's): a
+     * stop at a given step, for measuring a resume */
+    if (getenv("NEWTON_MAX_ITER"))
+        p.max_iter = atoi(getenv("NEWTON_MAX_ITER"));
     if (getenv("NEWTON_INNER_DECREMENT"))
         p.inner_decrement = atof(getenv("NEWTON_INNER_DECREMENT"));
-    char ckpt[4096];
+    p.user = &files;
     if (argc > 5) {
-        snprintf(ckpt, sizeof ckpt, "%s.ckpt", argv[2]);
         p.checkpoint_every = atof(argv[5]);
         p.checkpoint = write_ckpt;
-        p.user = ckpt;
+    }
+    if (keep_state) {
+        p.state_every = argc > 5 ? atof(argv[5]) : 300.0;
+        p.state = write_state;
+        struct sigaction sa;
+        memset(&sa, 0, sizeof sa);
+        sa.sa_handler = on_stop;
+        sigemptyset(&sa.sa_mask);
+        sigaction(SIGINT, &sa, NULL);
+        sigaction(SIGTERM, &sa, NULL);
+        sigaction(SIGHUP, &sa, NULL);
+        p.stop = &stop_asked;
+    }
+    if (resume) {
+        /* the multipliers by the warm start instead of the state's, for
+         * measuring which resumes better */
+        p.resume_warm = getenv("NEWTON_RESUME_WARM") && atoi(getenv("NEWTON_RESUME_WARM"));
+        p.resume = &from;
+        printf("resuming from %s: step %d, outer %d, mu %.1e, %ld steps and %.0f s before%s\n", resume, from.iter,
+               from.outer, from.mu * l0_min(&from), from.steps, from.seconds,
+               p.resume_warm ? " (multipliers by the warm start)" : "");
     }
     tr_backend be = {0};
     if (device) {
@@ -171,6 +267,12 @@ int main(int argc, char **argv)
            "kept pattern), factor entries %zu (%.0f MB)\n",
            st.hess_triplets, 24e-6 * (double)st.hess_triplets, st.hess_entries, 20e-6 * (double)st.hess_entries,
            st.factor_entries, 8e-6 * (double)st.factor_entries);
+    tr_newton_state_free(&from);
+    if (stop_asked) {
+        fprintf(stderr, "newton_run: stopped by a signal; %s not written, the state is in %s (resume with --resume)\n",
+                argv[2], state_path);
+        return 1;
+    }
     if (st.accepted && tr_curve_write(argv[2], TR_FORMAT_AUTO, &c, "newton_run", &err)) {
         fprintf(stderr, "newton_run: %s\n", err.msg);
         return 1;

@@ -9,8 +9,13 @@
 # OUTDIR/curve.png plots it when gnuplot is there. Heavy
 # (bench/notes/2026-11-28-n102400-settles.md: 51 minutes to 102 400 on the 2-core VM):
 # run it alone, in the background.
-# Resumable: a rung whose OUTDIR/LN.vect exists is skipped; a rung with a checkpoint
-# (OUTDIR/LN.vect.ckpt, from a run that was stopped) restarts from it, not from the rung below.
+# Resumable: a rung whose OUTDIR/LN.vect exists is skipped. Every rung keeps the solver's state
+# (newton_run --state: OUTDIR/LN.vect.state, the iterate as the solver holds it with its
+# multipliers, penalty and loop counters, every CKPT seconds and when it is stopped); a rung with
+# a state goes on from it (newton_run --resume: the steps the stopped run had left), the state
+# moved aside first to OUTDIR/resumeN.state (an input is never written over). Without a state, a
+# rung with a checkpoint (OUTDIR/LN.vect.ckpt, the best iterate rescaled to thickness 1: most of
+# the progress lost, see bench/newton_run.c) restarts from it, not from the rung below.
 # The seconds in curve.txt count from this invocation's start (a resumed ladder's are its own).
 set -euo pipefail
 here=$(cd "$(dirname "$0")/.." && pwd)
@@ -40,14 +45,26 @@ for n in "${ns[@]}"; do
     [ "$n" -ge 100000 ] && ck=300
     from=$prev
     size=s$n
-    if [ -f "$out/L$n.vect.ckpt" ]; then
+    resume=()
+    if [ -f "$out/L$n.vect.state" ]; then
+        # the stopped run's state, of the curve this rung starts from (its shape is all that is
+        # taken from it): moved aside, as the resumed run writes LN.vect.state anew
+        mv -f "$out/L$n.vect.state" "$out/resume$n.state"
+        resume=(--resume "$out/resume$n.state")
+        echo "resuming N = $n from its state" >>"$out/L$n.log"
+    elif [ -f "$out/resume$n.state" ]; then
+        # a resumed run stopped before it wrote a state of its own
+        resume=(--resume "$out/resume$n.state")
+        echo "resuming N = $n from its state (again)" >>"$out/L$n.log"
+    elif [ -f "$out/L$n.vect.ckpt" ]; then
         # the stopped run's best iterate, already N vertices: no resampling
         cp "$out/L$n.vect.ckpt" "$out/resume$n.vect"
         from=$out/resume$n.vect
         size=0
         echo "resuming N = $n from its checkpoint" >>"$out/L$n.log"
     fi
-    "${timer[@]}" "$nr" "$from" "$out/L$n.vect" "$size" "$limit" "$ck" >>"$out/L$n.log" 2>>"$out/L$n.err" &
+    "${timer[@]}" "$nr" --state ${resume[@]+"${resume[@]}"} "$from" "$out/L$n.vect" "$size" "$limit" "$ck" \
+        >>"$out/L$n.log" 2>>"$out/L$n.err" &
     pid=$!
     last=""
     while kill -0 "$pid" 2>/dev/null; do
@@ -64,6 +81,8 @@ for n in "${ns[@]}"; do
     wait "$pid" || { echo "trefoil_ladder: N = $n failed: $(tail -1 "$out/L$n.err")" >&2; exit 1; }
     [ -f "$out/L$n.vect" ] || { echo "trefoil_ladder: N = $n wrote no result (see $out/L$n.log)" >&2; exit 1; }
     measure "$n" "$out/L$n.vect"
+    # the rung is done: its states are spent
+    rm -f "$out/L$n.vect.state" "$out/resume$n.state"
     prev=$out/L$n.vect
 done
 if command -v gnuplot >/dev/null; then

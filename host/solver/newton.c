@@ -203,9 +203,30 @@ static void solver_free(solver *s)
     free(s->restored);
     free(s->cv);
     tr_curve_free(&s->probe);
+    tr_newton_state_free(&s->out);
     tr_solver_rows_free(&s->rows);
     cholmod_l_free_factor(&s->L, &s->cm);
     cholmod_l_finish(&s->cm);
+}
+
+void tr_newton_i_set_gaps(solver *s)
+{
+    int nc = s->nc;
+    for (int k = 0; k < nc; k++)
+        s->gap[k] = tr_exclusion_gap(1.0, s->l0[k]);
+    /* the vertex model's K is the vertex oracle's (vertex_thickness.h): one
+     * for all components, from the mean edge of the whole curve, so that the
+     * rows the solver holds are the pairs the oracle judges */
+    if (s->p->vertex_contacts) {
+        double len = 0.0;
+        size_t edges = 0;
+        for (int k = 0; k < nc; k++) {
+            len += s->l0[k] * (double)s->ne[k];
+            edges += s->ne[k];
+        }
+        for (int k = 0; k < nc; k++)
+            s->gap[k] = tr_exclusion_gap(1.0, edges ? len / (double)edges : s->l0[k]);
+    }
 }
 
 static int solver_init(solver *s, const tr_curve *cv, double scale, tr_error *err)
@@ -250,21 +271,8 @@ static int solver_init(solver *s, const tr_curve *cv, double scale, tr_error *er
         s->l0[k] = tr_comp_length(&s->w, k) / (double)s->ne[k];
         s->scale_m[k] = MINRAD_ROW_SCALE_LOOSE * s->l0[k] * s->l0[k];
         s->l0min = fmin(s->l0min, s->l0[k]);
-        s->gap[k] = tr_exclusion_gap(1.0, s->l0[k]);
     }
-    /* the vertex model's K is the vertex oracle's (vertex_thickness.h): one
-     * for all components, from the mean edge of the whole curve, so that the
-     * rows the solver holds are the pairs the oracle judges */
-    if (s->p->vertex_contacts) {
-        double len = 0.0;
-        size_t edges = 0;
-        for (int k = 0; k < nc; k++) {
-            len += s->l0[k] * (double)s->ne[k];
-            edges += s->ne[k];
-        }
-        for (int k = 0; k < nc; k++)
-            s->gap[k] = tr_exclusion_gap(1.0, edges ? len / (double)edges : s->l0[k]);
-    }
+    tr_newton_i_set_gaps(s);
     for (size_t i = 0; i < nv; i++)
         s->ncv += tr_newton_i_vertex_cst(s, i) != NULL;
     s->cv = malloc((s->ncv ? s->ncv : 1) * sizeof *s->cv);
@@ -470,8 +478,23 @@ static double moved_since_build(const solver *s, const double *y)
     return sqrt(m);
 }
 
-/* The minimisation itself, on y (3 nv + ncomp). */
-static int minimise(solver *s, double *y, tr_newton_stats *st, double t0, tr_error *err)
+/* Hands the solver's state at y and the loop's variables lp to p->state
+ * (its error, or one filling it, does not stop the solve). */
+static void give_state(solver *s, const double *y, const tr_newton_loop *lp, const tr_newton_stats *st, double t0)
+{
+    const tr_newton_params *p = s->p;
+    s->t_state = tr_clock_seconds();
+    long steps = st->iters + (p->resume ? p->resume->steps : 0);
+    double seconds = s->t_state - t0 + (p->resume ? p->resume->seconds : 0.0);
+    tr_error se = {0};
+    if (tr_newton_i_state_fill(s, y, lp, steps, seconds, &se) == TR_OK)
+        p->state(p->user, &s->out, &se);
+}
+
+/* The minimisation itself, on y (3 nv + ncomp); resumed: the loop's
+ * variables go on from *resumed (s->mu and s->band set from the state). */
+static int minimise(solver *s, double *y, tr_newton_stats *st, double t0, const tr_newton_loop *resumed,
+                    tr_error *err)
 {
     const tr_newton_params *p = s->p;
     size_t n = s->n, nv = s->nv;
@@ -487,10 +510,12 @@ static int minimise(solver *s, double *y, tr_newton_stats *st, double t0, tr_err
     for (int k = 0; k < s->nfixed; k++)
         if (s->fixed[k] < 3 * nv)
             held[s->fixed[k] / 3] = 1;
-    s->mu = p->mu0 / s->l0min;
-    s->t_ckpt = t0;
+    if (!resumed) {
+        s->mu = p->mu0 / s->l0min;
+        s->band = 1.0;
+    }
+    s->t_ckpt = s->t_state = t0;
     double deadline = p->time_limit > 0 ? t0 + p->time_limit : INFINITY;
-    s->band = 1.0;
     /* A MinRad row's second difference w ~ l0^2 kappa is computed from
      * coordinates of size R, so its relative violation carries rounding of
      * ~eps R / l0^2 (1e-11 at N = 9600): asking for less only drives mu up
@@ -502,7 +527,31 @@ static int minimise(solver *s, double *y, tr_newton_stats *st, double t0, tr_err
     double viol_tol = fmax(p->viol_tol, 16.0 * DBL_EPSILON * reach / (s->l0min * s->l0min));
     double omega = 1e-2, prev_viol = INFINITY, lm = 0.0, prev_len = INFINITY;
     int inner = 0, settled = 0, last_full = 0, moved = 0, stuck = 0, inner_done = 0;
-    for (int it = 0; it < p->max_iter; it++) {
+    /* a resumed run's iterations go on counting from the stopped run's:
+     * max_iter bounds them together, as it would have bounded the run that
+     * did not stop */
+    int it = 0;
+    if (resumed) {
+        omega = resumed->omega;
+        prev_viol = resumed->prev_viol;
+        lm = resumed->lm;
+        prev_len = resumed->prev_len;
+        viol_tol = resumed->viol_tol;
+        inner = resumed->inner;
+        settled = resumed->settled;
+        last_full = resumed->last_full;
+        moved = resumed->moved;
+        stuck = resumed->stuck;
+        inner_done = resumed->inner_done;
+        st->outer = resumed->outer;
+        it = resumed->iter;
+    }
+/* the loop's variables, for a state */
+#define LOOP_NOW                                                                                                  \
+    ((tr_newton_loop){.omega = omega, .prev_viol = prev_viol, .lm = lm, .prev_len = prev_len, .viol_tol = viol_tol, \
+                      .iter = it, .outer = st->outer, .inner = inner, .settled = settled, .last_full = last_full,   \
+                      .moved = moved, .stuck = stuck, .inner_done = inner_done})
+    for (; it < p->max_iter; it++) {
         /* a time-limited run leaves the end's restorations (keep_best)
          * RESTORE_RESERVE mean steps of its time */
         double now = tr_clock_seconds();
@@ -510,6 +559,10 @@ static int minimise(solver *s, double *y, tr_newton_stats *st, double t0, tr_err
         if ((p->time_limit > 0 && now - t0 > p->time_limit - fmin(reserve, 0.1 * p->time_limit)) ||
             (p->stop && *p->stop))
             break;
+        /* a state between two steps: all a resumed run needs to take
+         * this one's next */
+        if (p->state && p->state_every > 0 && now - s->t_state >= p->state_every)
+            give_state(s, y, &LOOP_NOW, st, t0);
         double te = tr_clock_seconds();
         s->oom = 0;
         double f = tr_newton_i_al_eval(s, y, grad, 1);
@@ -681,6 +734,11 @@ static int minimise(solver *s, double *y, tr_newton_stats *st, double t0, tr_err
             st->t_rebuild += tr_clock_seconds() - tr;
         }
     }
+    /* stopped unfinished (the time limit, a stop, max_iter): where it
+     * stopped, before the end's restorations, which take the best */
+    if (p->state && !st->converged && !st->settled)
+        give_state(s, y, &LOOP_NOW, st, t0);
+#undef LOOP_NOW
 done:
     free(grad);
     free(held);
@@ -714,6 +772,124 @@ static int prepare(solver *s, const tr_curve *cv, double unit, double **y, tr_ne
         return TR_OK;
     if (s->p->warm_start && (rc = tr_newton_i_warm_multipliers(s, *y, err)))
         return rc;
+    return TR_OK;
+}
+
+/* The solver set up from p->resume's state on cv's topology
+ * (newton_state.c), the best iterate of the stopped run among them; *y the
+ * variables, *lp the loop's. */
+static int resume_from_state(solver *s, const tr_curve *cv, double **y, tr_newton_loop *lp, tr_error *err)
+{
+    const tr_newton_state *r = s->p->resume;
+    if (r->nv != cv->nv || r->ncomp != cv->ncomp)
+        return tr_fail(err, TR_EINVAL, "newton: the state is of %zu vertices in %d components, the curve has %zu in %d",
+                       r->nv, r->ncomp, cv->nv, cv->ncomp);
+    int rc = solver_init(s, cv, 1.0, err);
+    if (rc)
+        return rc;
+    *y = malloc(s->n * sizeof **y);
+    if (!*y)
+        return tr_fail(err, TR_ENOMEM, "out of memory (Newton solver)");
+    if ((rc = tr_newton_i_state_apply(s, r, s->p->resume_warm, *y, lp, err)))
+        return rc;
+    if (r->has_best) {
+        if ((rc = ensure_best(s, err)))
+            return rc;
+        memcpy(s->best_y, r->best_y, s->n * sizeof *s->best_y);
+        s->best_rl = r->best_rl;
+        s->best_viol_edge = r->best_viol_edge;
+        s->best_thickness = r->best_thickness;
+        s->best_restored = r->best_restored;
+    }
+    return TR_OK;
+}
+
+/* The solver set up from cv's positions (its unit, its strut list, the
+ * warm start's multipliers, the MinRad rows' scale and the bend cap); *y
+ * the variables. *loose: tight_only, and the start is not tight (st says
+ * why; nothing to solve). */
+static int start_from_curve(solver *s, const tr_curve *cv, const tr_thickness *th0, int constrained, double **y,
+                            tr_newton_stats *st, int *loose, tr_error *err)
+{
+    const tr_newton_params *prm = s->p;
+    int rc;
+    *loose = 0;
+    /* The solver's unit: thickness 1, except where MinRad alone holds the
+     * start below its struts by a little (a spline through a tight
+     * polygon overshoots its curvature where the curvature jumps: MinRad
+     * 0.93 at the N = 2400 trefoil spline-refined to 9600): scaling by
+     * MinRad would leave every contact 7 % apart, to be closed first order
+     * by Newton steps; at the struts' scale only those few MinRad rows
+     * start violated, which the augmented Lagrangian restores locally. That
+     * holds for a tight start only (the warm start says which): a loose one
+     * started violated just has further to go (the wobbled 32-gon: 208
+     * steps against 76). */
+    double unit = th0->thickness;
+    int overshoot = isfinite(th0->dcsd) && th0->minrad < (1.0 - 1e-4) * 0.5 * th0->dcsd &&
+                    th0->minrad >= MINRAD_SLACK * 0.5 * th0->dcsd;
+    if (overshoot)
+        unit = 0.5 * th0->dcsd;
+    /* a constrained curve stays at its scale: the overshooting MinRad rows
+     * start violated and are stiffened all the same (below) */
+    if (constrained)
+        unit = 1.0;
+    if ((rc = prepare(s, cv, unit, y, st, err)))
+        return rc;
+    if (overshoot && !constrained && !(s->warm_residual < TIGHT_RESIDUAL)) {
+        solver_free(s);
+        free(*y);
+        *y = NULL;
+        memset(s, 0, sizeof *s);
+        s->p = prm;
+        if ((rc = prepare(s, cv, th0->thickness, y, st, err)))
+            return rc;
+    }
+    st->warm_residual = s->warm_residual;
+    /* A constrained start pressed below thickness 1 (a tight clasp refined:
+     * the spline or the low-pass bulges where strands touch, and the
+     * planes forbid scaling it back) is not loose, whatever the warm start
+     * makes of its violated rows (a residual of 1 to 12 at 2 x 200): it has
+     * no room for first-order steps, which would only settle it longer. */
+    int pressed = constrained && th0->thickness < 1.0 - CONSTRAINED_OUT_TOL;
+    if (prm->tight_only && !pressed && !(prm->warm_start && s->warm_residual < TIGHT_RESIDUAL)) {
+        st->loose = *loose = 1;
+        st->why_rejected = "the start is not tight (its contacts do not hold the tension)";
+        return TR_OK;
+    }
+    /* A pressed constrained start whose MinRad is what is violated (the
+     * refinement overshoots where the curvature jumps, as a spline does;
+     * MinRad 0.986 at the 2 x 400 clasp refined to 2 x 800) is the case
+     * above, only not scaled: stiff MinRad rows, whatever the warm start
+     * made of its violated rows. At the loose scale the rows went 69 % over
+     * in the first passes there, mu reached its cap in eight passes and
+     * 4445 steps ended unconverged (KKT 0.57); stiff, it settles in 120
+     * steps, 1 s, 7e-5 shorter. Where MinRad is not violated (2 x 50
+     * refined to 2 x 100: MinRad 1.18, struts 1.999) the stiff rows stall
+     * the steps as from a loose start (4445 steps against 124). */
+    int minrad_pressed = pressed && th0->minrad < 1.0 - CONSTRAINED_OUT_TOL;
+    s->max_bend = INFINITY;
+    if ((overshoot && s->warm_residual < TIGHT_RESIDUAL) || minrad_pressed) {
+        /* a tight start's steps are small: where the multipliers it
+         * starts with hold less than a quarter of the tension, the
+         * curvature cap holds them to the model (bend.h); a loose
+         * start's steps may not be small */
+        if (s->start_residual > CAUTIOUS_RESIDUAL)
+            s->max_bend = prm->max_bend;
+        /* the guard goes with the bends taken back: both are for the
+         * inactive MinRad rows the model does not see (newton_rows.c) */
+        if (isfinite(s->max_bend) && !constrained)
+            s->guard = prm->minrad_guard;
+        /* a clasp keeps the cap on the whole step: without it a refined
+         * clasp's first steps folded a straight end through itself, and
+         * bends taken back one vertex at a time have not been tried there */
+        s->bend_cap = constrained;
+        /* the same rows, rescaled: the multipliers scale with them */
+        double f = MINRAD_ROW_SCALE_TIGHT / MINRAD_ROW_SCALE_LOOSE;
+        for (int k = 0; k < s->nc; k++)
+            s->scale_m[k] *= f;
+        for (size_t i = 0; i < s->nv; i++)
+            s->lam_m[i] *= f;
+    }
     return TR_OK;
 }
 
@@ -765,83 +941,17 @@ int tr_newton(tr_curve *cv, const tr_newton_params *prm, tr_newton_stats *st, tr
      * the time limit or a signal (strut_list.c) */
     s.first_bound = (tr_deadline){.at = prm->time_limit > 0 ? t0 + prm->time_limit : 0, .stop = prm->stop};
     double *y = NULL;
-    /* The solver's unit: thickness 1, except where MinRad alone holds the
-     * start below its struts by a little (a spline through a tight
-     * polygon overshoots its curvature where the curvature jumps: MinRad
-     * 0.93 at the N = 2400 trefoil spline-refined to 9600): scaling by
-     * MinRad would leave every contact 7 % apart, to be closed first order
-     * by Newton steps; at the struts' scale only those few MinRad rows
-     * start violated, which the augmented Lagrangian restores locally. That
-     * holds for a tight start only (the warm start says which): a loose one
-     * started violated just has further to go (the wobbled 32-gon: 208
-     * steps against 76). */
-    double unit = th0.thickness;
-    int overshoot = isfinite(th0.dcsd) && th0.minrad < (1.0 - 1e-4) * 0.5 * th0.dcsd &&
-                    th0.minrad >= MINRAD_SLACK * 0.5 * th0.dcsd;
-    if (overshoot)
-        unit = 0.5 * th0.dcsd;
-    /* a constrained curve stays at its scale: the overshooting MinRad rows
-     * start violated and are stiffened all the same (below) */
-    if (constrained)
-        unit = 1.0;
-    if ((rc = prepare(&s, cv, unit, &y, st, err)))
-        goto done;
-    if (overshoot && !constrained && !(s.warm_residual < TIGHT_RESIDUAL)) {
-        solver_free(&s);
-        free(y);
-        y = NULL;
-        memset(&s, 0, sizeof s);
-        s.p = prm;
-        if ((rc = prepare(&s, cv, th0.thickness, &y, st, err)))
+    tr_newton_loop resumed;
+    if (prm->resume) {
+        if ((rc = resume_from_state(&s, cv, &y, &resumed, err)))
+            goto done;
+        st->warm_residual = s.warm_residual;
+    } else {
+        int loose;
+        if ((rc = start_from_curve(&s, cv, &th0, constrained, &y, st, &loose, err)) || loose)
             goto done;
     }
-    st->warm_residual = s.warm_residual;
-    /* A constrained start pressed below thickness 1 (a tight clasp refined:
-     * the spline or the low-pass bulges where strands touch, and the
-     * planes forbid scaling it back) is not loose, whatever the warm start
-     * makes of its violated rows (a residual of 1 to 12 at 2 x 200): it has
-     * no room for first-order steps, which would only settle it longer. */
-    int pressed = constrained && th0.thickness < 1.0 - CONSTRAINED_OUT_TOL;
-    if (prm->tight_only && !pressed && !(prm->warm_start && s.warm_residual < TIGHT_RESIDUAL)) {
-        st->loose = 1;
-        st->why_rejected = "the start is not tight (its contacts do not hold the tension)";
-        goto done;
-    }
-    /* A pressed constrained start whose MinRad is what is violated (the
-     * refinement overshoots where the curvature jumps, as a spline does;
-     * MinRad 0.986 at the 2 x 400 clasp refined to 2 x 800) is the case
-     * above, only not scaled: stiff MinRad rows, whatever the warm start
-     * made of its violated rows. At the loose scale the rows went 69 % over
-     * in the first passes there, mu reached its cap in eight passes and
-     * 4445 steps ended unconverged (KKT 0.57); stiff, it settles in 120
-     * steps, 1 s, 7e-5 shorter. Where MinRad is not violated (2 x 50
-     * refined to 2 x 100: MinRad 1.18, struts 1.999) the stiff rows stall
-     * the steps as from a loose start (4445 steps against 124). */
-    int minrad_pressed = pressed && th0.minrad < 1.0 - CONSTRAINED_OUT_TOL;
-    s.max_bend = INFINITY;
-    if ((overshoot && s.warm_residual < TIGHT_RESIDUAL) || minrad_pressed) {
-        /* a tight start's steps are small: where the multipliers it
-         * starts with hold less than a quarter of the tension, the
-         * curvature cap holds them to the model (bend.h); a loose
-         * start's steps may not be small */
-        if (s.start_residual > CAUTIOUS_RESIDUAL)
-            s.max_bend = prm->max_bend;
-        /* the guard goes with the bends taken back: both are for the
-         * inactive MinRad rows the model does not see (newton_rows.c) */
-        if (isfinite(s.max_bend) && !constrained)
-            s.guard = prm->minrad_guard;
-        /* a clasp keeps the cap on the whole step: without it a refined
-         * clasp's first steps folded a straight end through itself, and
-         * bends taken back one vertex at a time have not been tried there */
-        s.bend_cap = constrained;
-        /* the same rows, rescaled: the multipliers scale with them */
-        double f = MINRAD_ROW_SCALE_TIGHT / MINRAD_ROW_SCALE_LOOSE;
-        for (int k = 0; k < s.nc; k++)
-            s.scale_m[k] *= f;
-        for (size_t i = 0; i < s.nv; i++)
-            s.lam_m[i] *= f;
-    }
-    if ((rc = minimise(&s, y, st, t0, err)))
+    if ((rc = minimise(&s, y, st, t0, prm->resume ? &resumed : NULL, err)))
         goto done;
     /* the last iterate, or the best one the passes met */
     tr_newton_i_al_eval(&s, y, NULL, 0);

@@ -93,7 +93,10 @@
  * the best iterate the passes met and the last one, each also restored
  * (restore.c: moved onto its rows by a small correction, since the
  * rescaling charges a violation of a few rows to the whole length); a
- * checkpoint is the best so far, restored likewise.
+ * checkpoint is the best so far, restored likewise. A state
+ * (tr_newton_state) is what a stopped run needs to go on: the iterate as
+ * the loop holds it, neither restored nor rescaled, with everything else
+ * the loop carries from one step to the next.
  *
  * Vertex constraints (clasp ends on planes, lines, fixed points) are
  * eliminated: each row's gradient and Hessian are taken on the motions the
@@ -129,6 +132,55 @@ typedef struct tr_newton_progress {
 } tr_newton_progress;
 
 struct tr_backend;
+
+/* The solver's state between two Newton steps: what a run that was
+ * stopped needs to go on where it was (newton_state.c reads and writes it).
+ * The variables as the solver holds them (not rescaled: a rescaled iterate
+ * charges its rows' violation to its whole length), the augmented
+ * Lagrangian's multipliers and penalty, the positions the strut list was
+ * built at (the list is rebuilt there, so it is the same list, and its
+ * multipliers are carried pair by pair), the scales the start fixed (the
+ * start edge l0, the MinRad rows' scale, the gauge, the bend cap) and the
+ * minimisation loop's counters. A run resumed from the state of a run that
+ * stopped at a step boundary takes the same steps as the run that did not
+ * stop (tests/solver/test_newton_state.c). */
+typedef struct tr_newton_state {
+    size_t nv;    /* vertices */
+    int ncomp;    /* components */
+    size_t *comp_nv; /* vertices per component (the curve's shape, checked on resume) */
+    double *y;    /* 3 nv positions, then one edge length per component: the iterate, in the solver's unit */
+    double *build;        /* 3 nv: the positions of the strut list's last build */
+    double *lam_e, *lam_m; /* nv each: edge (by first vertex) and MinRad multipliers */
+    size_t nstrut;        /* listed strut pairs with a nonzero multiplier */
+    size_t *strut_a, *strut_b;
+    double *strut_lam;
+    double *l0, *scale_m; /* per component: the start edge, the MinRad rows' scale S l0^2 */
+    size_t fixed[6];      /* the gauge's held coordinates */
+    int nfixed;
+    double mu, band, max_bend, guard, viol_tol, warm_residual;
+    int bend_cap;
+    /* the loop's: the inner tolerance, the violation at the last update,
+     * the Levenberg shift to try first, the length at the last update */
+    double omega, prev_viol, lm, prev_len;
+    int iter, outer, inner, settled, last_full, moved, stuck, inner_done;
+    /* the shortest iterate the oracle measured (has_best: there is one) */
+    int has_best, best_restored;
+    double *best_y; /* 3 nv + ncomp */
+    double best_rl, best_viol_edge, best_thickness;
+    /* the runs so far, together: Newton steps and seconds (for the log) */
+    long steps;
+    double seconds;
+} tr_newton_state;
+
+void tr_newton_state_free(tr_newton_state *s);
+/* Writes s to path atomically (a temporary file beside it, renamed over
+ * path: a reader sees the old state or the new, never half of one). */
+int tr_newton_state_write(const char *path, const tr_newton_state *s, tr_error *err);
+/* Reads a state tr_newton_state_write wrote into s (overwritten: free a
+ * state it held first; tr_newton_state_free frees this one); a file that
+ * is not one, or is cut short, is an error naming the file and the byte,
+ * and leaves s empty. */
+int tr_newton_state_read(const char *path, tr_newton_state *s, tr_error *err);
 
 typedef struct tr_newton_params {
     double time_limit; /* seconds (0: none) */
@@ -169,6 +221,24 @@ typedef struct tr_newton_params {
      * to weigh (it does not stop the solve). */
     double checkpoint_every;
     int (*checkpoint)(void *user, const tr_curve *best, tr_error *err);
+    /* Resumable runs: every state_every seconds (0: never), and when the
+     * loop stops unfinished (time limit, stop flag, max_iter), the solver's
+     * state, whatever its violation, goes to state (at a step boundary; the
+     * state is the solver's, valid during the call only); its error is the
+     * caller's to weigh (it does not stop the solve). */
+    double state_every;
+    int (*state)(void *user, const tr_newton_state *s, tr_error *err);
+    /* Not NULL: the solve goes on from this state (of a run on a curve of
+     * the same shape: vertices per component) instead of from the curve's
+     * positions; the curve gives the topology, its constraints and the
+     * ropelength a result must beat. max_iter bounds the loop's iterations
+     * from the first run's start (a resumed run's count goes on), as it
+     * bounds the run that did not stop; time_limit counts this run's
+     * seconds. */
+    const tr_newton_state *resume;
+    /* with resume: the multipliers from the warm start (warm_start.c) at the
+     * resumed iterate instead of the state's (measuring which works) */
+    int resume_warm;
 } tr_newton_params;
 
 void tr_newton_params_default(tr_newton_params *p);

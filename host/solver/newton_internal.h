@@ -48,6 +48,8 @@ typedef struct solver {
     int best_restored;                     /* the best is a restoration's result */
     double *restored; /* scratch: the iterate restored (restore.c) */
     double t_ckpt; /* when the last checkpoint went out (or the solve began) */
+    double t_state; /* when the last state went out (or the solve began) */
+    tr_newton_state out; /* the state handed to p->state (newton_state.c fills it) */
     double warm_residual; /* |t - J^T lambda| / |t| after the warm start; 1 without one */
     double start_residual; /* the same for the multipliers the solve starts with (1 without) */
     double *lam_e, *lam_m, *pi_e, *pi_m; /* per edge (by first vertex) / vertex */
@@ -169,6 +171,28 @@ int tr_newton_i_strut_derivs(const solver *s, const double *x, size_t a, size_t 
  * model's (vertex_thickness.h) */
 int tr_newton_i_model_thickness(const tr_newton_params *p, const tr_curve *c, const tr_thickness_opts *opts,
                                 tr_thickness *th, tr_error *err);
+
+/* ---- the resumable state (newton_state.c) ---- */
+
+/* the minimisation loop's own variables (newton.c minimise): with the
+ * solver's, what a resumed run needs */
+typedef struct tr_newton_loop {
+    double omega, prev_viol, lm, prev_len, viol_tol;
+    int iter, outer, inner, settled, last_full, moved, stuck, inner_done;
+} tr_newton_loop;
+
+/* s->out filled from the solver at iterate y and the loop's variables
+ * (steps, seconds: the runs' so far) */
+int tr_newton_i_state_fill(solver *s, const double *y, const tr_newton_loop *lp, long steps, double seconds,
+                           tr_error *err);
+/* The solver set up from state r (solver_init done on a curve of r's
+ * shape): the scales, the gauge, the strut list rebuilt where r's was and
+ * r's multipliers carried to it (with warm: the warm start's instead), the
+ * best iterate; y (s->n) the iterate, *lp the loop's variables */
+int tr_newton_i_state_apply(solver *s, const tr_newton_state *r, int warm, double *y, tr_newton_loop *lp,
+                            tr_error *err);
+/* the component's exclusion gaps from s->l0 (as solver_init sets them) */
+void tr_newton_i_set_gaps(solver *s);
 
 /* ---- the warm start (warm_start.c) ---- */
 
