@@ -1,13 +1,13 @@
 # tightrope batch (tests/scripts/batch_cli.sh): killed and restarted, SIGTERM, a second batch
 # over a knot the first is running, bad manifests, a folder with --compare, --job/--jobs, --merge, --retry, the
 # GNU parallel route (skipped where parallel is not installed) and scripts/slurm_batch.sh run
-# as its array tasks would run it; the knot and link table manifests of bench/.
+# as its array tasks would run it; manifests by name (bench/names_manifest.sh, --compare knotinfo).
 foreach(_case kill_resume sigterm lock manifest_errors folder_compare jobs merge retry parallel slurm manifests)
   add_test(NAME cli_batch_${_case}
     COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/scripts/batch_cli.sh ${_case} $<TARGET_FILE:tightrope>
             ${CMAKE_SOURCE_DIR} ${CMAKE_CURRENT_BINARY_DIR}/batch_${_case})
   set_tests_properties(cli_batch_${_case} PROPERTIES SKIP_RETURN_CODE 77
-    ENVIRONMENT "${TR_TEST_ENV};TIGHTROPE_SHARED_DIR=${TIGHTROPE_SHARED_DIR}" LABELS cli)
+    ENVIRONMENT "${TR_TEST_ENV}" LABELS cli)
 endforeach()
 # parallel runs two tightenings at once: alone, so that ctest -j2 does not add a third
 set_tests_properties(cli_batch_parallel PROPERTIES RUN_SERIAL TRUE)

@@ -11,6 +11,7 @@
 
 #include "cli/batch_manifest.h"
 #include "cli/cli_args.h"
+#include "topology/knot_table.h"
 #include "util/text_file.h"
 
 const char *tr_batch_reserved_option(const char *opt)
@@ -41,6 +42,8 @@ void tr_batch_list_free(tr_batch_list *l)
         tr_batch_knot *k = &l->knots[i];
         free(k->name);
         free(k->file);
+        free(k->source);
+        free(k->notation);
         for (int j = 0; j < k->nopts; j++)
             free(k->opts[j]);
         free(k->opts);
@@ -114,13 +117,91 @@ static int check_knot(const char *src, const tr_batch_knot *k, tr_error *err)
             return tr_fail(err, TR_EPARSE, "%s:%d: N is %ld and the options give %s too; give one of them",
                            src, k->line, k->n, k->opts[j]);
     }
-    if (access(k->file, R_OK) != 0)
+    if (k->from == TR_BATCH_FROM_FILE && access(k->file, R_OK) != 0)
         return tr_fail(err, TR_EPARSE, "%s:%d: start %s: %s", src, k->line, k->file, strerror(errno));
     return TR_OK;
 }
 
+/* The embedded knot table, loaded when a manifest's first start by name
+ * is read (a manifest of files never parses it). */
+typedef struct named_table {
+    tr_knot_table t;
+    int loaded;
+} named_table;
+
+/* Which start a file field names: TR_BATCH_FROM_KNOT or _LINK with *name
+ * pointing at the name (after `knot ` or `knot:`; may be empty), or
+ * TR_BATCH_FROM_FILE. A bare `knot` or `link` is a start by name without
+ * one (refused by the caller), never a file so called: ./knot is. */
+static tr_batch_start_kind start_kind(char *field, char **name)
+{
+    static const char *words[] = {"knot", "link"};
+    for (int w = 0; w < 2; w++) {
+        size_t len = strlen(words[w]);
+        if (strncmp(field, words[w], len) || (field[len] && field[len] != ' ' && field[len] != ':'))
+            continue;
+        char *p = field + len;
+        if (*p == ':')
+            p++;
+        while (*p == ' ')
+            p++;
+        size_t n = strlen(p);
+        while (n > 0 && p[n - 1] == ' ')
+            p[--n] = '\0';
+        *name = p;
+        return w ? TR_BATCH_FROM_LINK : TR_BATCH_FROM_KNOT;
+    }
+    return TR_BATCH_FROM_FILE;
+}
+
+/* Looks a start by name up in the table: k->source and k->notation from
+ * its entry, or the line's error (no name, an unknown one with the nearest,
+ * a link's name given as a knot's or the other way round). */
+static int name_start(const char *src, int lineno, tr_batch_knot *k, const char *name, named_table *nt,
+                      tr_error *err)
+{
+    int is_link = k->from == TR_BATCH_FROM_LINK;
+    const char *kind = is_link ? "link" : "knot";
+    if (!name[0])
+        return tr_fail(err, TR_EPARSE, "%s:%d: '%s' names no %s (%s NAME, e.g. %s; a file so called: ./%s)", src,
+                       lineno, kind, kind, kind, is_link ? "link L2a1" : "knot 3_1", kind);
+    if (!nt->loaded) {
+        tr_error sub;
+        if (tr_knot_table_load(&nt->t, &sub))
+            return tr_fail(err, TR_EPARSE, "the embedded knot table: %s", sub.msg);
+        nt->loaded = 1;
+    }
+    const tr_table_entry *e = tr_knot_table_find(&nt->t, name, is_link);
+    if (!e) {
+        const tr_table_entry *other = tr_knot_table_find(&nt->t, name, !is_link);
+        if (other)
+            return tr_fail(err, TR_EPARSE, "%s:%d: %s is a %s, not a %s (%s %s)", src, lineno, other->name,
+                           is_link ? "knot" : "link", kind, is_link ? "knot" : "link", other->name);
+        char near[256];
+        tr_knot_table_suggest(&nt->t, name, is_link, near, sizeof near);
+        return tr_fail(err, TR_EPARSE, "%s:%d: no %s named '%s' in %s; nearest: %s", src, lineno, kind, name,
+                       is_link ? "LinkInfo's table (prime links to 9 crossings, L2a1 ... L9n28)"
+                               : "KnotInfo's table (prime knots to 12 crossings, 0_1, 3_1 ... 10_165, 11a_1 ... "
+                                 "12n_888)",
+                       near);
+    }
+    /* the identity of the start is what it is made from: the name and its
+     * braid word, the same on every machine and for every build */
+    tr_text t = {0};
+    tr_text_printf(&t, "braid on %d strands:", e->braid.strands);
+    for (int j = 0; j < e->braid.len; j++)
+        tr_text_printf(&t, "%s%d", j ? "," : " ", e->braid.word[j]);
+    if (e->braid.len == 0)
+        tr_text_printf(&t, " none (the unknot: a circle)");
+    size_t sl = strlen(kind) + strlen(e->name) + 2;
+    if (!(k->notation = tr_text_take(&t, NULL)) || !(k->source = malloc(sl)))
+        return tr_fail(err, TR_ENOMEM, "out of memory");
+    snprintf(k->source, sl, "%s:%s", kind, e->name);
+    return TR_OK;
+}
+
 /* Parses manifest line `line` (text, tabs) into a new knot of l. */
-static int parse_line(const char *src, int lineno, char *line, tr_batch_list *l, tr_error *err)
+static int parse_line(const char *src, int lineno, char *line, tr_batch_list *l, named_table *nt, tr_error *err)
 {
     char *field[5] = {0};
     int nf = 0;
@@ -149,13 +230,18 @@ static int parse_line(const char *src, int lineno, char *line, tr_batch_list *l,
     if (nf > 2 && field[2][0] && strcmp(field[2], "-") && tr_arg_long(field[2], 4, 100000000, &n))
         return tr_fail(err, TR_EPARSE, "%s:%d: bad N '%s' (an integer >= 4, vertices per component, or -)", src,
                        lineno, field[2]);
+    char *named = NULL;
+    tr_batch_start_kind from = start_kind(field[1], &named);
     tr_batch_knot *k = add_knot(l);
-    if (!k || !(k->name = strdup(field[0])) || !(k->file = start_path(src, field[1])) ||
+    if (!k || !(k->name = strdup(field[0])) ||
+        (from == TR_BATCH_FROM_FILE && !(k->file = start_path(src, field[1]))) ||
         (nf > 3 && tr_batch_split_options(field[3], &k->opts, &k->nopts)))
         return tr_fail(err, TR_ENOMEM, "out of memory");
+    k->from = from;
     k->n = n;
     k->line = lineno;
-    return check_knot(src, k, err);
+    int rc = from == TR_BATCH_FROM_FILE ? TR_OK : name_start(src, lineno, k, named, nt, err);
+    return rc ? rc : check_knot(src, k, err);
 }
 
 static int read_manifest(const char *src, tr_batch_list *l, tr_error *err)
@@ -165,6 +251,7 @@ static int read_manifest(const char *src, tr_batch_list *l, tr_error *err)
     if (rc != TR_OK)
         return rc;
     int lineno = 0, seen = 0;
+    named_table nt = {0};
     /* a UTF-8 byte-order mark (a Windows editor's) is no part of the first name */
     char *first = !strncmp(text, "\xef\xbb\xbf", 3) ? text + 3 : text;
     for (char *line = first, *next; rc == TR_OK && line; line = next) {
@@ -180,9 +267,11 @@ static int read_manifest(const char *src, tr_batch_list *l, tr_error *err)
         /* a header names its first column "name" */
         if (!seen++ && !strncmp(line, "name\t", 5))
             continue;
-        rc = parse_line(src, lineno, line, l, err);
+        rc = parse_line(src, lineno, line, l, &nt, err);
     }
     free(text);
+    if (nt.loaded)
+        tr_knot_table_free(&nt.t);
     if (rc == TR_OK && l->count == 0)
         rc = tr_fail(err, TR_EPARSE, "%s: no knots (lines name<TAB>file[<TAB>N[<TAB>options]])", src);
     return rc;
@@ -262,6 +351,23 @@ static int read_dir(const char *dir, tr_batch_list *l, tr_error *err)
     if (rc == TR_OK && l->count == 0)
         rc = tr_fail(err, TR_EINVAL, "%s: no curve files (.vect, .tsv, .txt, .dat, .knot)", dir);
     return rc;
+}
+
+int tr_batch_place_named(tr_batch_list *l, const char *out)
+{
+    for (size_t i = 0; i < l->count; i++) {
+        tr_batch_knot *k = &l->knots[i];
+        if (k->from == TR_BATCH_FROM_FILE)
+            continue;
+        size_t len = strlen(out) + strlen(TR_BATCH_STARTS_DIR) + strlen(k->name) + 8;
+        char *p = malloc(len);
+        if (!p)
+            return -1;
+        snprintf(p, len, "%s/%s/%s.vect", out, TR_BATCH_STARTS_DIR, k->name);
+        free(k->file);
+        k->file = p;
+    }
+    return 0;
 }
 
 int tr_batch_read(const char *src, tr_batch_list *out, tr_error *err)

@@ -1,4 +1,5 @@
 /* The batch table's line of one knot and its record file (batch_row.h). */
+#include <ctype.h>
 #include <errno.h>
 #include <limits.h>
 #include <math.h>
@@ -12,12 +13,16 @@
 #include "cli/cli_args.h"
 #include "util/json.h"
 
-#define NCOLS 15
-/* the records of before: without the start (14), without seed and road (12) */
-static const int NCOLS_OLD[] = {14, 12};
+#define NCOLS 17
+/* the records of before: without source and type_check (15), without the
+ * start (14), without seed and road (12) */
+static const int NCOLS_OLD[] = {15, 14, 12};
 
 static const char header[] = "knot\tN\tropelength\tthickness\tMinRad\tdcsd\tkkt_residual\ttime_s\ttries\tsteps\tstop"
-                             "\tresumed\tseed\troad\tstart";
+                             "\tresumed\tseed\troad\tstart\tsource\ttype_check";
+
+/* The type_check column's words, by tr_batch_row.type_checked + 1. */
+static const char *const type_words[] = {"-", "unchecked", "kept"};
 
 const char *tr_batch_row_header(void) { return header; }
 
@@ -60,6 +65,7 @@ void tr_batch_row_format(tr_text *t, const tr_batch_row *r)
     tr_text_printf(t, "\t");
     known(t, r->road, 1, "-");
     tr_text_printf(t, "\t%s", r->start[0] ? r->start : "-");
+    tr_text_printf(t, "\t%s\t%s", r->source[0] ? r->source : "-", type_words[r->type_checked + 1]);
 }
 
 void tr_batch_row_json_fields(tr_text *t, const tr_batch_row *r)
@@ -87,6 +93,16 @@ void tr_batch_row_json_fields(tr_text *t, const tr_batch_row *r)
     tr_text_printf(t, ", \"start\": ");
     if (r->start[0])
         tr_json_string(t, r->start);
+    else
+        tr_text_printf(t, "null");
+    tr_text_printf(t, ", \"source\": ");
+    if (r->source[0])
+        tr_json_string(t, r->source);
+    else
+        tr_text_printf(t, "null");
+    tr_text_printf(t, ", \"type_check\": ");
+    if (r->type_checked >= 0)
+        tr_json_string(t, type_words[r->type_checked + 1]);
     else
         tr_text_printf(t, "null");
 }
@@ -129,6 +145,22 @@ static int id_ok(const char *s)
     return i == 16 && s[16] == '\0';
 }
 
+/* Whether s is a source (tr_batch_row): "file", "-", or "knot:" or
+ * "link:" and a name of the table's characters. */
+static int source_ok(const char *s)
+{
+    if (!strcmp(s, "file") || !strcmp(s, "-"))
+        return 1;
+    if (strncmp(s, "knot:", 5) && strncmp(s, "link:", 5))
+        return 0;
+    if (!s[5])
+        return 0;
+    for (const char *p = s + 5; *p; p++)
+        if (!isalnum((unsigned char)*p) && !strchr("_{},", *p))
+            return 0;
+    return 1;
+}
+
 /* Parses the record's second line (tabs cut into NUL-separated fields),
  * ncols of them. */
 static int parse_fields(char *line, int ncols, tr_batch_row *r)
@@ -153,10 +185,22 @@ static int parse_fields(char *line, int ncols, tr_batch_row *r)
         tr_arg_long(f[8], 0, 1000000, &tries) || tr_arg_long(f[9], 0, LONG_MAX, &r->steps) ||
         tr_arg_long(f[11], 0, 1, &resumed) ||
         (ncols >= 14 && (field_long(f[12], LONG_MAX, &seed) || field_long(f[13], 1000000, &road))) ||
-        (ncols >= 15 && strcmp(f[14], "-") && !id_ok(f[14])))
+        (ncols >= 15 && strcmp(f[14], "-") && !id_ok(f[14])) ||
+        (ncols >= 17 && (strlen(f[15]) >= sizeof r->source || !source_ok(f[15]))))
         return -1;
     if (ncols >= 15 && strcmp(f[14], "-"))
         strcpy(r->start, f[14]);
+    r->type_checked = -1;
+    if (ncols >= 17) {
+        if (strcmp(f[15], "-"))
+            strcpy(r->source, f[15]);
+        int w = 0;
+        while (w < 3 && strcmp(f[16], type_words[w]))
+            w++;
+        if (w == 3)
+            return -1;
+        r->type_checked = w - 1;
+    }
     strcpy(r->knot, f[0]);
     strcpy(r->stop, f[10]);
     r->n = (size_t)n;
@@ -204,6 +248,33 @@ int tr_batch_row_read(const char *path, tr_batch_row *r, tr_error *err)
     return rc;
 }
 
+/* FNV-1a: one multiply a byte, no table; 64 bits leave a chance
+ * collision at 2^-64, and the identity guards against mix-ups, not
+ * against an adversary */
+#define FNV_BASIS 14695981039346656037u
+static uint64_t fnv1a(uint64_t h, const unsigned char *p, size_t n)
+{
+    for (size_t i = 0; i < n; i++)
+        h = (h ^ p[i]) * 1099511628211u;
+    return h;
+}
+
+int tr_batch_knot_start_id(const tr_batch_knot *k, char id[TR_BATCH_ID_SIZE], tr_error *err)
+{
+    if (k->from == TR_BATCH_FROM_FILE)
+        return tr_batch_start_id(k->file, id, err);
+    /* the tag says what kind of identity this is (a start file would have
+     * to begin with these very bytes to share it); a change to how a start
+     * by name is made that should make it another start is a new tag */
+    static const char tag[] = "tightrope start by name 1\n";
+    uint64_t h = fnv1a(FNV_BASIS, (const unsigned char *)tag, sizeof tag - 1);
+    h = fnv1a(h, (const unsigned char *)k->source, strlen(k->source));
+    h = fnv1a(h, (const unsigned char *)"\n", 1);
+    h = fnv1a(h, (const unsigned char *)k->notation, strlen(k->notation));
+    snprintf(id, TR_BATCH_ID_SIZE, "%016llx", (unsigned long long)h);
+    return TR_OK;
+}
+
 int tr_batch_start_id(const char *path, char id[TR_BATCH_ID_SIZE], tr_error *err)
 {
     id[0] = '\0';
@@ -215,15 +286,11 @@ int tr_batch_start_id(const char *path, char id[TR_BATCH_ID_SIZE], tr_error *err
     FILE *f = fopen(path, "rb");
     if (!f)
         return tr_fail(err, TR_EIO, "%s: %s", path, strerror(errno));
-    /* FNV-1a: one multiply a byte, no table; 64 bits leave a chance
-     * collision at 2^-64, and the identity guards against mix-ups, not
-     * against an adversary */
-    uint64_t h = 14695981039346656037u;
+    uint64_t h = FNV_BASIS;
     unsigned char buf[65536];
     size_t got;
     while ((got = fread(buf, 1, sizeof buf, f)) > 0)
-        for (size_t i = 0; i < got; i++)
-            h = (h ^ buf[i]) * 1099511628211u;
+        h = fnv1a(h, buf, got);
     int bad = ferror(f);
     fclose(f);
     if (bad)

@@ -4,10 +4,13 @@
  * what "this knot is done" means; the table is rebuilt from the records,
  * whichever process (a GNU parallel job, a SLURM array task) wrote them.
  *
- * A record names the start it came from (tr_batch_start_id, a hash of the
- * start file's bytes): a knot's name alone does not say which curve it
- * was, and a manifest pointed at another file, or a start edited, must not
- * leave the old result in the table or let --merge take it for this one. */
+ * A record names the start it came from (tr_batch_knot_start_id: a hash of
+ * the start file's bytes, or of the name and notation of a start by name):
+ * a knot's name alone does not say which curve it was, and a manifest
+ * pointed at another file, or a start edited, must not leave the old
+ * result in the table or let --merge take it for this one. It also says
+ * where the start came from (a file, or the table's name: "knot:3_1") and
+ * whether the tightened curve was found to be the start's knot type. */
 #ifndef TR_BATCH_ROW_H
 #define TR_BATCH_ROW_H
 
@@ -33,6 +36,13 @@ typedef struct tr_batch_row {
     long seed;     /* the roads' --seed; -1 unknown (a resumed run, a record of before) */
     int road;      /* the road written, 1-based; 0 unknown */
     char start[TR_BATCH_ID_SIZE]; /* the start's identity; "" unknown (a record of before) */
+    /* "file", or a start by name's source ("knot:3_1", tr_batch_knot);
+     * "" unknown (a record of before) */
+    char source[48];
+    /* the type check of the run (tighten's: the curve written has its
+     * start's invariants): 1 kept, 0 not checked (no invariant the exact
+     * arithmetic takes), -1 unknown (a record of before) */
+    int type_checked;
 } tr_batch_row;
 
 /* The table's column names, tab-separated, no newline. */
@@ -49,8 +59,8 @@ void tr_batch_row_json_fields(tr_text *t, const tr_batch_row *r);
 int tr_batch_row_write(const char *path, const tr_batch_row *r, tr_error *err);
 
 /* Reads a record; TR_EPARSE "PATH:LINE: ..." for anything else. A record
- * written before the seed and road columns, or before the start column,
- * is read with them unknown. */
+ * written before the seed and road columns, before the start column, or
+ * before the source and type_check columns, is read with them unknown. */
 int tr_batch_row_read(const char *path, tr_batch_row *r, tr_error *err);
 
 /* The identity of a start file: the 64-bit FNV-1a hash of its bytes, as
@@ -59,6 +69,14 @@ int tr_batch_row_read(const char *path, tr_batch_row *r, tr_error *err);
  * would be drained, a device never ends) has none: id "". TR_EIO when the
  * file cannot be read. */
 int tr_batch_start_id(const char *path, char id[TR_BATCH_ID_SIZE], tr_error *err);
+
+/* The identity of knot k's start: its file's (tr_batch_start_id), or for
+ * a start by name the same hash of its source and notation (the name and
+ * the braid word the start is made from), so that a start by name is the
+ * same start on every machine and in every batch, before it is made and
+ * whatever its made file's last digits; the made file itself (OUT/starts)
+ * is the batch's and plays no part. */
+int tr_batch_knot_start_id(const tr_batch_knot *k, char id[TR_BATCH_ID_SIZE], tr_error *err);
 
 /* The start a checkpoint continues, in a file beside it (NAME.start): the
  * checkpoint holds the resampled, scaled curve, not the start's bytes, so

@@ -52,7 +52,7 @@ static int header_columns(const char *path, char *line, int *col_rl, int *col_n,
     return TR_OK;
 }
 
-static int add_ref(tr_batch_ref *ref, const char *name, double rl, long n)
+int tr_batch_ref_add(tr_batch_ref *ref, const char *name, double rl, long n)
 {
     size_t c = ref->count + 1;
     char **nm = realloc(ref->names, c * sizeof *nm);
@@ -102,7 +102,7 @@ int tr_batch_ref_read(const char *path, tr_batch_ref *ref, tr_error *err)
             (col_n >= 0 && (nf <= col_n || tr_arg_long(f[col_n], 0, 1000000000, &n))))
             rc = tr_fail(err, TR_EPARSE, "%s:%d: expected a knot name, a ropelength%s in the header's columns",
                          path, lineno, col_n >= 0 ? " and an N" : "");
-        else if (add_ref(ref, f[0], rl, n))
+        else if (tr_batch_ref_add(ref, f[0], rl, n))
             rc = tr_fail(err, TR_ENOMEM, "out of memory");
     }
     free(text);
@@ -143,7 +143,11 @@ static void compare_tsv(tr_text *t, const tr_batch_ref *ref, const tr_batch_row 
         return;
     }
     double d = r->ropelength - ref->ropelength[i];
-    tr_text_printf(t, "\t%ld\t%.10f\t", ref->n[i], ref->ropelength[i]);
+    if (ref->n[i] > 0)
+        tr_text_printf(t, "\t%ld", ref->n[i]);
+    else
+        tr_text_printf(t, "\t-");
+    tr_text_printf(t, "\t%.10f\t", ref->ropelength[i]);
     if (isfinite(d))
         tr_text_printf(t, "%+.10f\t%+.4f", d, 100 * d / ref->ropelength[i]);
     else
@@ -155,7 +159,7 @@ static void compare_json(tr_text *t, const tr_batch_ref *ref, const tr_batch_row
     long i = tr_batch_ref_find(ref, r->knot);
     double rl = i < 0 ? NAN : ref->ropelength[i], d = r->ropelength - rl;
     tr_text_printf(t, ", \"ref_N\": ");
-    tr_json_number(t, "%.0f", i < 0 ? NAN : (double)ref->n[i]);
+    tr_json_number(t, "%.0f", i < 0 || ref->n[i] <= 0 ? NAN : (double)ref->n[i]);
     tr_text_printf(t, ", \"ref_ropelength\": ");
     tr_json_number(t, "%.10f", rl);
     tr_text_printf(t, ", \"diff\": ");

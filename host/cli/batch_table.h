@@ -19,6 +19,9 @@ typedef struct tr_batch_ref {
 
 /* Reads a reference table; TR_EPARSE "FILE:LINE: ..." for a bad line. */
 int tr_batch_ref_read(const char *path, tr_batch_ref *ref, tr_error *err);
+
+/* Appends a line (n 0: no N) to ref; -1 out of memory. */
+int tr_batch_ref_add(tr_batch_ref *ref, const char *name, double ropelength, long n);
 void tr_batch_ref_free(tr_batch_ref *ref);
 
 /* The reference's line for a knot, or -1. Names match with '.' and '_'
@@ -27,7 +30,8 @@ long tr_batch_ref_find(const tr_batch_ref *ref, const char *knot);
 
 /* Writes the rows (in their order) to dir/table.tsv and dir/table.json,
  * each atomically; with ref, each row gains the reference's N and
- * ropelength and the difference (ours - reference, absolute and in %). */
+ * ropelength and the difference (ours - reference, absolute and in %);
+ * the reference's N is '-' (JSON null) where it has none. */
 int tr_batch_table_write(const char *dir, const tr_batch_row *rows, size_t count, const tr_batch_ref *ref,
                          tr_error *err);
 

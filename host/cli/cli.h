@@ -30,6 +30,7 @@ typedef struct tr_tighten_report {
     int tries;           /* tightenings whose best result was kept (1: one road) */
     long seed;           /* --seed: with tries and the options, what makes the roads again; -1 resumed */
     int road;            /* the road written, 1-based (1: the start's own); 0 resumed */
+    int type_checked;    /* 1: the curve written is the start's knot type (tr_tighten_result) */
 } tr_tighten_report;
 
 /* tighten's command-line checks alone, on argv as tr_cmd_tighten takes it

@@ -7,7 +7,9 @@
  * other, into OUT: NAME.vect (the tight curve, its certificate in
  * comments), NAME.ckpt while it runs, NAME.row.tsv once it is done
  * (batch_row.h), and the table of every knot done, table.tsv and
- * table.json (batch_table.h). A knot with a record is skipped and one with
+ * table.json (batch_table.h). A knot the manifest names (`knot 3_1`) has
+ * its start made by the batch into OUT/starts (batch_start.h). A knot
+ * with a record is skipped and one with
  * a checkpoint resumes from it, so a batch killed at any moment is started
  * again with the same command. A record and a checkpoint name the start
  * they came from (NAME.start beside a checkpoint), so that neither is
@@ -35,9 +37,11 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "cli/batch_knotinfo.h"
 #include "cli/batch_manifest.h"
 #include "cli/batch_merge.h"
 #include "cli/batch_row.h"
+#include "cli/batch_start.h"
 #include "cli/batch_table.h"
 #include "cli/cli.h"
 #include "cli/cli_args.h"
@@ -53,12 +57,16 @@ static void usage(FILE *out)
             "usage: tightrope batch SRC -o OUT [options] [-- TIGHTEN-OPTIONS...]\n"
             "  SRC                a folder of curve files (.vect, .tsv, .txt, .dat, .knot; each knot\n"
             "                     named by its file without the extension) or a manifest: lines\n"
-            "                     name<TAB>file<TAB>N<TAB>options ('#' comments; file relative to\n"
-            "                     the manifest; N the vertices per component of the tight curve,\n"
+            "                     name<TAB>start<TAB>N<TAB>options ('#' comments; start a file relative\n"
+            "                     to the manifest, or 'knot NAME' / 'link NAME' (also knot:NAME): a\n"
+            "                     knot of KnotInfo's table or a link of LinkInfo's, made as tightrope\n"
+            "                     make knot|link NAME makes it, into OUT/starts/; a file so called\n"
+            "                     is ./knot...; N the vertices per component of the tight curve,\n"
             "                     tighten --refine-to N, or --n N for a start with more, '-' none;\n"
             "                     options: tighten's, space-separated, for this knot)\n"
             "  -o, --out OUT      output folder: NAME.vect (tight curve and certificate), NAME.ckpt and\n"
-            "                     NAME.start (while it runs), NAME.row.tsv (done), table.tsv and table.json\n"
+            "                     NAME.start (while it runs), NAME.row.tsv (done), table.tsv and\n"
+            "                     table.json, starts/NAME.vect (a start by name)\n"
             "  --only NAME        this knot only (GNU parallel: one job per name of --list)\n"
             "  --job I --jobs J   the knots at places I, I+J, I+2J, ... of SRC (0 <= I < J):\n"
             "                     one of J independent jobs (a SLURM array, scripts/slurm_batch.sh)\n"
@@ -73,7 +81,10 @@ static void usage(FILE *out)
             "                     alone, and said so on stderr\n"
             "  --compare REF      add a reference table's N and ropelength (a TSV with a header: knot\n"
             "                     name first, a column 'ropelength...'; '.' and '_' match in names)\n"
-            "                     and the difference, ours - reference, absolute and in %%\n"
+            "                     and the difference, ours - reference, absolute and in %%.\n"
+            "                     --compare knotinfo: KnotInfo's ropelengths, built in (a knot by name\n"
+            "                     takes its knot's, one from a file its name's; links have none; a\n"
+            "                     file called knotinfo is ./knotinfo)\n"
             "  --retry R          with --compare: a knot whose ropelength is above the reference's is\n"
             "                     tightened again, up to R times, each time with the next seed (the\n"
             "                     options' --seed S, or 1, plus the round) into OUT/retry-ROUND/, and the\n"
@@ -85,10 +96,12 @@ static void usage(FILE *out)
             "  --checkpoint-every S  seconds between a knot's checkpoints (default 30)\n"
             "  --quiet            no progress lines\n"
             "A knot done (its NAME.row.tsv exists) is skipped; one with a checkpoint resumes from it.\n"
-            "A record names the start it came from (a hash of the start file's bytes; the table's column\n"
-            "start): a record or checkpoint of another start (the manifest points the knot at another\n"
-            "file, or the file was edited) is not skipped or resumed, the knot is tightened afresh, and\n"
-            "the table leaves the record out until then.\n"
+            "A record names the start it came from (a hash of the start file's bytes, or of a start by\n"
+            "name's name and braid word; the table's columns start and source) and whether the tight\n"
+            "curve kept its start's knot type (type_check: kept, unchecked): a record or checkpoint of\n"
+            "another start (the manifest points the knot at another file or name, or the file was\n"
+            "edited) is not skipped or resumed, the knot is tightened afresh, and the table leaves the\n"
+            "record out until then.\n"
             "Before anything runs or is written, batch refuses (one line, exit 2) a file it would write\n"
             "for any knot (curve, checkpoint, record, table, OUT/retry-R's) that is one it reads (a start,\n"
             "the manifest, --compare's), and any knot's options that tighten refuses (the line's with\n"
@@ -305,6 +318,10 @@ static void add_opts(char **args, int *na, char **opts, int nopts, int resume, i
     }
 }
 
+/* What knot k's start is, for a message: its file, or the name it was
+ * made from ("knot:3_1") */
+static const char *start_of(const tr_batch_knot *k) { return k->source ? k->source : k->file; }
+
 /* How N reaches tighten: --refine-to N refines the start's components up
  * to N; a start with more vertices than that is resampled to N (--n N). */
 static const char *n_option(const tr_batch_knot *k, int resume, tr_error *err, int *rc)
@@ -407,7 +424,7 @@ static int decide_resume(const batch_opts *o, const tr_batch_knot *k, const char
         return 1;
     if (!o->quiet)
         fprintf(stderr, "batch: %s: %s is of another start (%s; %s is %s now): it starts afresh\n", k->name, ckpt,
-                id, k->file, start);
+                id, start_of(k), start);
     if ((unlink(ckpt) && errno != ENOENT) || (unlink(side) && errno != ENOENT)) {
         fprintf(stderr, "tightrope batch: %s: cannot remove %s: %s\n", k->name, ckpt, strerror(errno));
         return -1;
@@ -431,6 +448,13 @@ static int run_knot(const batch_opts *o, const tr_batch_knot *k, const char *dir
     knot_path(side, sizeof side, dir, k->name, "start");
     tr_error err;
     int rc = TR_OK;
+    /* a start by name is made afresh for a run from the start (the same
+     * curve every time: tr_batch_make_start); a resumed run reads only its
+     * checkpoint */
+    if (!resume && (rc = tr_batch_make_start(k, &err)) != TR_OK) {
+        fprintf(stderr, "tightrope batch: %s: its start %s: %s\n", k->name, k->source, err.msg);
+        return rc == TR_ENOMEM || rc == TR_EGEOMETRY ? 1 : 2;
+    }
     const char *n_opt = k->n > 0 ? n_option(k, resume, &err, &rc) : NULL;
     if (rc != TR_OK) {
         fprintf(stderr, "tightrope batch: %s: %s\n", k->name, err.msg);
@@ -471,6 +495,8 @@ static int run_knot(const batch_opts *o, const tr_batch_knot *k, const char *dir
     snprintf(r.knot, sizeof r.knot, "%s", k->name);
     snprintf(r.stop, sizeof r.stop, "%s", rep->stop);
     snprintf(r.start, sizeof r.start, "%s", id);
+    snprintf(r.source, sizeof r.source, "%s", k->source ? k->source : "file");
+    r.type_checked = rep->type_checked ? 1 : 0;
     /* the record last: with it the knot is done, and its checkpoint is
      * no longer needed */
     if (tr_batch_row_write(row, &r, &err)) {
@@ -508,13 +534,13 @@ static int write_table(const batch_opts *o, const tr_batch_list *l, const tr_bat
         if (!exists(row))
             continue;
         char start[TR_BATCH_ID_SIZE];
-        if (tr_batch_row_read(row, &rows[n], &err) || tr_batch_start_id(l->knots[i].file, start, &err)) {
+        if (tr_batch_row_read(row, &rows[n], &err) || tr_batch_knot_start_id(&l->knots[i], start, &err)) {
             fprintf(stderr, "tightrope batch: %s\n", err.msg);
             status = 2;
         } else if (tr_batch_other_start(&rows[n], start)) {
             if (!o->quiet)
                 fprintf(stderr, "batch: %s: %s is of another start than %s now; left out of the table until the "
-                                "knot is tightened again\n", l->knots[i].name, row, l->knots[i].file);
+                                "knot is tightened again\n", l->knots[i].name, row, start_of(&l->knots[i]));
         } else
             n++;
     }
@@ -770,7 +796,7 @@ static int run_all(const batch_opts *o, const tr_batch_list *l, const size_t *se
         /* looked at under the lock: another process may just have finished it */
         char start[TR_BATCH_ID_SIZE];
         tr_error err;
-        int state = tr_batch_start_id(k->file, start, &err) ? -2 : record_state(row, start);
+        int state = tr_batch_knot_start_id(k, start, &err) ? -2 : record_state(row, start);
         if (state < 0) {
             if (state == -2)
                 fprintf(stderr, "tightrope batch: %s: %s\n", k->name, err.msg);
@@ -858,7 +884,7 @@ static int merge_check(const batch_opts *o, const tr_batch_list *l, const size_t
             continue;
         tr_batch_row r;
         tr_error err;
-        if (tr_batch_row_read(row, &r, &err) || tr_batch_start_id(k->file, start, &err)) {
+        if (tr_batch_row_read(row, &r, &err) || tr_batch_knot_start_id(k, start, &err)) {
             fprintf(stderr, "tightrope batch: --merge: %s\n", err.msg);
             return 2;
         }
@@ -876,7 +902,7 @@ static int merge_check(const batch_opts *o, const tr_batch_list *l, const size_t
     if (others > 1)
         snprintf(more, sizeof more, " (and %zu more such knots)", others - 1);
     fprintf(stderr, "tightrope batch: --merge: %s is of another start than %s's %s (%s, not %s): another knot "
-                    "under the name %s%s; nothing merged\n", row, where, first->file, theirs, ours, first->name, more);
+                    "under the name %s%s; nothing merged\n", row, where, start_of(first), theirs, ours, first->name, more);
     return 2;
 }
 
@@ -893,7 +919,7 @@ static int merge_all(const batch_opts *o, const tr_batch_list *l, const size_t *
         const char *name = k->name;
         char start[TR_BATCH_ID_SIZE];
         tr_error err;
-        if (tr_batch_start_id(k->file, start, &err)) {
+        if (tr_batch_knot_start_id(k, start, &err)) {
             fprintf(stderr, "tightrope batch: --merge: %s\n", err.msg);
             return 2;
         }
@@ -1143,7 +1169,8 @@ static int collision(const batch_opts *o, const batch_input *hit, const char *pa
 
 /* No file the batch writes (for any knot of the manifest, selected or not:
  * its curve, checkpoint, record and start record in OUT and in every
- * OUT/retry-R, and the table) may be one it reads (a knot's start, the
+ * OUT/retry-R, the start it makes of a knot by name in OUT/starts, and the
+ * table) may be one it reads (a knot's start, the
  * manifest, --compare's table, --merge's files), else the batch would
  * write over it and, worse, go on to tighten and tabulate what it wrote:
  * refused before anything runs, one line naming the start's manifest
@@ -1175,11 +1202,12 @@ static int check_collisions(const batch_opts *o, const tr_batch_list *l, const s
     }
     size_t n = 0;
     for (size_t i = 0; i < l->count; i++)
-        add_input(in, &n, l->knots[i].file, &l->knots[i], NULL);
+        if (l->knots[i].from == TR_BATCH_FROM_FILE)
+            add_input(in, &n, l->knots[i].file, &l->knots[i], NULL);
     struct stat st;
     if (stat(o->src, &st) == 0 && !S_ISDIR(st.st_mode))
         add_input(in, &n, o->src, NULL, "the manifest");
-    if (o->compare)
+    if (o->compare && strcmp(o->compare, TR_BATCH_REF_KNOTINFO))
         add_input(in, &n, o->compare, NULL, "--compare's table");
     for (size_t s = 0; s < nmerged; s++)
         add_input(in, &n, merged[s], &l->knots[sel[s / 2]], "--merge's");
@@ -1216,6 +1244,10 @@ static int check_collisions(const batch_opts *o, const tr_batch_list *l, const s
                 status = collision(o, hit, path, l->knots[i].name, whatr);
             }
     }
+    /* the starts by name the batch makes, OUT/starts/NAME.vect */
+    for (size_t i = 0; status < 0 && i < l->count; i++)
+        if (l->knots[i].from != TR_BATCH_FROM_FILE && (hit = input_at(in, n, l->knots[i].file)))
+            status = collision(o, hit, l->knots[i].file, l->knots[i].name, "start made by name");
     for (size_t s = 0; s < nmerged; s++)
         free(merged[s]);
     free(in);
@@ -1240,7 +1272,14 @@ int tr_cmd_batch(int argc, char **argv)
         fprintf(stderr, "tightrope batch: %s\n", err.msg);
         return 2;
     }
-    if (o.compare && tr_batch_ref_read(o.compare, &ref, &err)) {
+    if (tr_batch_place_named(&l, o.out ? o.out : "(no -o)")) {
+        fprintf(stderr, "tightrope batch: out of memory\n");
+        free_retry_options(&o);
+        tr_batch_list_free(&l);
+        return 1;
+    }
+    if (o.compare && (strcmp(o.compare, TR_BATCH_REF_KNOTINFO) ? tr_batch_ref_read(o.compare, &ref, &err)
+                                                                : tr_batch_ref_knotinfo(&l, &ref, &err))) {
         fprintf(stderr, "tightrope batch: %s\n", err.msg);
         free_retry_options(&o);
         tr_batch_list_free(&l);

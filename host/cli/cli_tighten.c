@@ -286,7 +286,8 @@ static void fill_report(const tr_tighten_result *r, tr_tighten_report *rep)
                                .steps = r->steps,
                                .tries = r->tries,
                                .seed = r->seed,
-                               .road = r->road};
+                               .road = r->road,
+                               .type_checked = r->type_checked};
 }
 
 /* The exit status of a failed tr_tighten (cli.h): a curve or an option the
