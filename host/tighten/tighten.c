@@ -484,7 +484,7 @@ int tr_tighten(const tr_curve *start, const tr_tighten_options *opt, tr_tighten_
          * settle) is not in its engine's time, and under load the scouts
          * once took all of T, leaving the refinement none (9_40 made by
          * name, T = 300 at load 7: road 9 of 10 stopped by the limit) */
-        if (scouting && t > 0 && t < o.tries && have && tr_clock_seconds() - t0 >= budget) {
+        if (scouting && o.time_limit > 0 && t > 0 && t < o.tries && have && tr_clock_seconds() - t0 >= budget) {
             tt_note(&o, TR_TIGHTEN_INFO, "the scouts' share of the time is spent after %ld of %ld roads", t, o.tries);
             scouts_ran = t;
             t = o.tries;
@@ -526,6 +526,11 @@ int tr_tighten(const tr_curve *start, const tr_tighten_options *opt, tr_tighten_
             ot.shuffled = 1;
         else
             ot.road_from = have ? &r.fin : NULL;
+        /* a scout after the first is bounded by the scouts' share too, its
+         * shuffle and settle included, so that no scout takes the
+         * refinement's time (the first has no road to fall back on) */
+        if (scouting && !refining && t > 0 && o.time_limit > 0)
+            ot.bound_at = fmin(o.bound_at, t0 + budget);
         /* a road that jams early leaves its time to the roads after it */
         if (o.time_limit > 0)
             ot.time_limit = refining ? fmax(o.time_limit - (tr_clock_seconds() - t0), 0.05 * o.time_limit)
