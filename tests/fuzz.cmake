@@ -37,6 +37,8 @@ if(TIGHTROPE_FUZZ)
     set(_fz_seeds ${CMAKE_SOURCE_DIR}/tests/bad)
     if(TR_HAVE_SHARED)
       list(APPEND _fz_seeds ${TIGHTROPE_SHARED_DIR}/data/knotplot)
+    else()
+      list(APPEND _fz_seeds ${CMAKE_SOURCE_DIR}/tests/data/knotplot)
     endif()
     add_test(NAME fuzz_readers
       COMMAND ${_fz_bin} -max_total_time=20 -timeout=10 -rss_limit_mb=2048 -print_final_stats=1

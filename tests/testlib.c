@@ -65,7 +65,7 @@ int tr_have_shared(const char *what)
         fclose(f);
         return 1;
     }
-    printf("skipped, no reference data at %s: %s\n", TR_SHARED_DIR, what);
+    printf("no reference data at %s: %s\n", TR_SHARED_DIR, what);
     return 0;
 }
 

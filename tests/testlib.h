@@ -64,15 +64,10 @@ int tr_test_allclose(const double *got, const double *want, size_t n, double rto
 int tr_test_finish(const char *name);
 
 /* 1 when the reference data (TR_SHARED_DIR/data, the project's ../shared)
- * is there; else prints that the checks of `what` are skipped and returns 0.
- * Checks against published values need it; a checkout without it still
- * runs everything else. */
+ * is there; else prints that it is not, naming `what`, and returns 0. The
+ * tests that use it fall back to the repository's own few files of it
+ * (tests/data): every test runs on a clone of the repository alone. */
 int tr_have_shared(const char *what);
-#define REQUIRE_SHARED(what)                                                           \
-    do {                                                                               \
-        if (!tr_have_shared(what))                                                     \
-            return;                                                                    \
-    } while (0)
 
 /* 1 when TIGHTROPE_TEST_SMALL is set (and not "0"): the OpenCL tests then
  * run fewer and smaller cases, for a simulator that runs every work-item

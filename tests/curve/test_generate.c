@@ -333,9 +333,8 @@ static void test_resample(void)
     tr_error err;
     char path[1024];
     tr_curve c, r;
-    REQUIRE_SHARED("resampling KnotPlot curves");
     /* an irregular closed KnotPlot trefoil, refined */
-    tr_shared_path(path, sizeof path, "data/knotplot/3.1.vect");
+    tr_source_path(path, sizeof path, "tests/data/knotplot/3.1.vect");
     REQUIRE_OK(tr_curve_read(path, TR_FORMAT_AUTO, &c, &err));
     size_t n = 120;
     CHECK_OK(tr_resample(&c, &n, &r, &err));
@@ -355,7 +354,7 @@ static void test_resample(void)
     tr_curve_free(&c);
 
     /* open ropes with plane constraints on their ends */
-    tr_shared_path(path, sizeof path, "data/knotplot/simple_clasp.vect");
+    tr_source_path(path, sizeof path, "tests/data/knotplot/simple_clasp.vect");
     REQUIRE_OK(tr_curve_read(path, TR_FORMAT_AUTO, &c, &err));
     size_t nn[2] = {50, 61};
     CHECK_OK(tr_resample(&c, nn, &r, &err));
@@ -377,7 +376,7 @@ static void test_resample(void)
     tr_curve_free(&c);
 
     /* smooth resampling of open ropes keeps their end vertices */
-    tr_shared_path(path, sizeof path, "data/knotplot/simple_clasp.vect");
+    tr_source_path(path, sizeof path, "tests/data/knotplot/simple_clasp.vect");
     REQUIRE_OK(tr_curve_read(path, TR_FORMAT_AUTO, &c, &err));
     CHECK_OK(tr_resample_smooth(&c, nn, &r, &err));
     if (r.nv) {

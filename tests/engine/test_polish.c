@@ -123,11 +123,12 @@ static void polish_checked(tr_curve *c, const char *name, double *before, double
     tr_curve_free(&w.c);
 }
 
-/* the TightKnot table's ropelength of `knot` (an independent code's) */
+/* the TightKnot table's ropelength of `knot` (an independent code's: octrope's
+ * rows for the two knots kept in tests/data/tightknot) */
 static double table_ropelength(const char *knot)
 {
     char path[4096], name[64];
-    FILE *f = fopen(tr_shared_path(path, sizeof path, "data/tightknot_ropelength.tsv"), "r");
+    FILE *f = fopen(tr_source_path(path, sizeof path, "tests/data/tightknot/octrope.tsv"), "r");
     CHECK(f != NULL);
     double rl = NAN;
     char line[512];
@@ -148,8 +149,7 @@ static void polish_loose_figure_eight(void)
     tr_error err;
     char path[4096];
     tr_curve k, c;
-    REQUIRE_SHARED("polishing KnotPlot's 4_1");
-    REQUIRE_OK(tr_curve_read(tr_shared_path(path, sizeof path, "data/knotplot/4.1.vect"), TR_FORMAT_AUTO, &k, &err));
+    REQUIRE_OK(tr_curve_read(tr_source_path(path, sizeof path, "tests/data/knotplot/4.1.vect"), TR_FORMAT_AUTO, &k, &err));
     size_t n = 100;
     CHECK_OK(tr_resample(&k, &n, &c, &err));
     tr_thickness t0, t1;
