@@ -278,8 +278,9 @@ int tt_read_start(const tt_opts *o, tr_curve *c, tr_error *err)
 #define CLASP_COARSE_N 100
 /* The automatic roads (issue 47: one plain command finds the good basin).
  * A loose start on the route above, given a time limit T and no --tries or
- * --shuffles, is scouted by one road per AUTO_ROAD_SECONDS of T (at most
- * AUTO_ROADS_MAX; under two, T goes to one road as before), all but the
+ * --shuffles, is scouted by one road per AUTO_ROAD_SECONDS of T (at least
+ * two from T = AUTO_ROADS_MIN_T on, at most AUTO_ROADS_MAX; under it one
+ * road has T, as before), all but the
  * first shuffled (the scouts stop at half of T: tighten.c), and the
  * shortest scout is refined to AUTO_N_PER_LENGTH vertices per unit of its
  * ropelength instead of the start's count. Why: a start made from notation
@@ -292,8 +293,13 @@ int tt_read_start(const tt_opts *o, tr_curve *c, tr_error *err)
  * polygon's excess over its limit goes as c L^2 / N^2 with c ~ 0.85 (the
  * trefoil's 914 / N^2 over L = 32.74), so N = 48 L leaves ~4e-4, below
  * the 4 decimals KnotInfo gives (the trefoil at 32.7433 against its
- * 32.7436). */
-#define AUTO_ROAD_SECONDS 25.0
+ * 32.7436). A scout has AUTO_ROAD_SECONDS / 2: a shuffle costs ~10 s of
+ * CPU for a nine-crossing knot (120 000 crankshaft moves, each checked by
+ * the oracle), and at 25 s a road 9_1 (T = 300, load 5) got 3 scouts in
+ * its half, two of them finished (86.0, 87.6), the refinement 75.632
+ * against KnotInfo's 75.546. */
+#define AUTO_ROAD_SECONDS 50.0
+#define AUTO_ROADS_MIN_T 50.0
 #define AUTO_ROADS_MAX 16
 #define AUTO_N_PER_LENGTH 48.0
 long tt_auto_refine_n(const tt_opts *o, double scout_ropelength)
@@ -309,10 +315,11 @@ static void choose_roads(tt_opts *o)
 {
     if (!o->auto_roads || !(o->time_limit > 0) || o->start->ncst > 0)
         return;
-    /* under 2 AUTO_ROAD_SECONDS, one road has the whole time */
+    if (o->time_limit < AUTO_ROADS_MIN_T)
+        return; /* one road has the whole time */
     long k = lround(floor(o->time_limit / AUTO_ROAD_SECONDS));
     if (k < 2)
-        return;
+        k = 2;
     if (k > AUTO_ROADS_MAX)
         k = AUTO_ROADS_MAX;
     o->tries = k;
