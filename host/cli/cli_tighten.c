@@ -79,13 +79,13 @@ int tr_cli_tighten_parse(int argc, char **argv, tr_cli_tighten *t)
     static const char *valued[] = {"-o", "--output", "--n", "--refine-to", "--target", "--residual",
                                    "--steps", "--time-limit", "--checkpoint", "--checkpoint-every",
                                    "--resume", "--device", "--device-from", "--tries", "--seed",
-                                   "--shuffles"};
+                                   "--shuffles", "--contacts"};
     /* what a bad value of each should have been, in the order of valued */
     static const char *wants[] = {"", "", "an integer >= 4, vertices per component",
                                   "an integer >= 4, vertices per component", "a number > 0", "a number >= 0",
                                   "an integer >= 1", "a number > 0 (seconds)", "", "a number > 0 (seconds)", "",
                                   "", "an integer >= 0", "an integer from 1 to 1000", "an integer >= 0",
-                                  "an integer from 0 to --tries - 1"};
+                                  "an integer from 0 to --tries - 1", "segment or vertex"};
     unsigned char given[sizeof valued / sizeof valued[0]] = {0};
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
@@ -176,6 +176,11 @@ int tr_cli_tighten_parse(int argc, char **argv, tr_cli_tighten *t)
                 bad = tr_arg_long(v, 0, LONG_MAX, &o->seed);
             else if (!strcmp(a, "--shuffles"))
                 bad = tr_arg_long(v, 0, 999, &o->shuffles);
+            else if (!strcmp(a, "--contacts")) {
+                /* measure's words: Rawdon's segments, or SP-FEM's vertices */
+                bad = strcmp(v, "segment") && strcmp(v, "vertex");
+                o->contacts = !strcmp(v, "vertex") ? TR_CONTACTS_VERTEX : TR_CONTACTS_RAWDON;
+            }
             else
                 o->device = v;
             if (bad) {
@@ -244,6 +249,13 @@ int tr_cli_tighten_parse(int argc, char **argv, tr_cli_tighten *t)
     }
     o->newton = newton ? 1 : no_newton ? -1 : 0;
     o->name = t->in;
+    /* the vertex model's route is the solver alone (vertex_route.c): the
+     * options of Rawdon's route are refused before anything is read */
+    const char *conflict = tr_tighten_vertex_conflict(o);
+    if (conflict) {
+        fprintf(stderr, "tightrope tighten: %s\n", conflict);
+        return 2;
+    }
     return -1;
 }
 

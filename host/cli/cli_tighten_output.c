@@ -25,6 +25,43 @@ static void json_str(const char *key, const char *v, int comma)
     printf("%s\n", comma ? "," : "");
 }
 
+/* The model a vertex-contact run held, in one line (K: the vertex oracle's
+ * exclusion for the written curve). */
+static void vertex_model_line(tr_text *t, const tr_tighten_result *r)
+{
+    tr_text_printf(t, "contacts: vertex (SP-FEM), K = %zu: vertices on different components or >= K apart along "
+                      "one at least 2 apart, MinRad >= 1; the first-order engine, polish and Rawdon's KKT "
+                      "certificate do not apply\n", r->vt.exclusion);
+}
+
+/* A vertex-contact run's measures: the model's by the vertex oracle on the
+ * written curve (tr_tighten measured it), then Rawdon's of the same curve,
+ * whose closest segments lie a sag e^2/8 inside 2. */
+static void vertex_comments(tr_text *t, const tr_tighten_result *r)
+{
+    const tr_vertex_thickness *v = &r->vt;
+    const tr_thickness *th = &r->th;
+    vertex_model_line(t, r);
+    tr_text_printf(t, "N %zu\nlength %.17g\nMinRad %.17g\nvertex_dmin %.17g\nthickness %.17g (vertex model)\n"
+                      "ropelength %.17g (vertex model)\n", v->vertices, v->length, v->minrad, v->vertex_dmin,
+                   v->thickness, v->ropelength);
+    tr_text_printf(t, "rawdon: dcsd %.17g thickness %.17g ropelength %.17g\n", th->dcsd, th->thickness,
+                   th->ropelength);
+    tr_text_printf(t, "steps %ld (second-order)\nstop %s\nrescaled to vertex-model thickness 1\n", r->steps,
+                   tr_stop_reason_name(r->stop));
+    tr_text_printf(t, "%s\n", r->type_line);
+    tr_text_printf(t, "kkt_residual not computed (Rawdon's certificate; not the vertex model's)\n");
+    const tr_engine_progress *p = &r->progress;
+    tr_text_printf(t, "newton %s%s: vertex-model ropelength %.9f -> %.9f in %.2f s, %d steps%s%s%s\n",
+                   p->newton_ran > 0 ? "accepted" : "rejected",
+                   r->stop == TR_STOP_SOLVED ? (r->vertex_converged ? " converged" : " settled") : "",
+                   p->newton_before, p->newton_after, p->newton_seconds, p->newton_iters, r->vertex_why ? " (" : "",
+                   r->vertex_why ? r->vertex_why : "", r->vertex_why ? ")" : "");
+    if (r->shift[0] != 0 || r->shift[1] != 0 || r->shift[2] != 0)
+        tr_text_printf(t, "centred: the start was moved by (%.17g, %.17g, %.17g) to be tightened about the "
+                          "origin\n", 0.0 - r->shift[0], 0.0 - r->shift[1], 0.0 - r->shift[2]);
+}
+
 /* Writes r's curve to OUT with its certificate and the command line in
  * comments. */
 int tr_cli_tighten_write(const tr_cli_tighten *t, const tr_tighten_result *r, int argc, char **argv, tr_error *err)
@@ -37,7 +74,12 @@ int tr_cli_tighten_write(const tr_cli_tighten *t, const tr_tighten_result *r, in
     tr_text_printf(&cm, "command:");
     for (int i = 0; i < argc; i++)
         tr_text_printf(&cm, " %s", argv[i]);
-    tr_text_printf(&cm, "\nN %zu\nlength %.17g\nMinRad %.17g\ndcsd %.17g\nthickness %.17g\nropelength %.17g\n",
+    tr_text_printf(&cm, "\n");
+    if (r->vertex) {
+        vertex_comments(&cm, r);
+        goto write;
+    }
+    tr_text_printf(&cm, "N %zu\nlength %.17g\nMinRad %.17g\ndcsd %.17g\nthickness %.17g\nropelength %.17g\n",
             th->vertices, th->length, th->minrad, th->dcsd, th->thickness, th->ropelength);
     if (isfinite(r->residual))
         tr_text_printf(&cm, "residual %.6g\n", r->residual);
@@ -66,6 +108,7 @@ int tr_cli_tighten_write(const tr_cli_tighten *t, const tr_tighten_result *r, in
     if (r->shift[0] != 0 || r->shift[1] != 0 || r->shift[2] != 0)
         tr_text_printf(&cm, "centred: the start was moved by (%.17g, %.17g, %.17g) to be tightened about the "
                             "origin\n", 0.0 - r->shift[0], 0.0 - r->shift[1], 0.0 - r->shift[2]);
+write:;
     char *comments = tr_text_take(&cm, NULL);
     if (!comments)
         return tr_fail(err, TR_ENOMEM, "out of memory");
@@ -84,13 +127,22 @@ void tr_cli_tighten_summary(const tr_cli_tighten *t, const tr_tighten_result *r)
         printf("{\n");
         json_str("output", t->out, 1);
         json_str("device", r->device, 1);
+        if (r->vertex) {
+            /* the model's figures below; Rawdon's of the same curve here
+             * (a Rawdon run's summary is as it was: readers key on it) */
+            json_str("contacts", "vertex", 1);
+            printf("  \"exclusion\": %zu,\n", r->vt.exclusion);
+            json_num("vertex_dmin", r->vt.vertex_dmin, 1);
+            json_num("rawdon_thickness", th->thickness, 1);
+            json_num("rawdon_ropelength", th->ropelength, 1);
+        }
         json_str("stop", tr_stop_reason_name(r->stop), 1);
         printf("  \"N\": %zu,\n  \"steps\": %ld,\n  \"rejected\": %ld,\n", th->vertices, r->steps, r->rejected);
         json_num("length", th->length, 1);
         json_num("minrad", th->minrad, 1);
         json_num("dcsd", th->dcsd, 1);
-        json_num("thickness", th->thickness, 1);
-        json_num("ropelength", th->ropelength, 1);
+        json_num("thickness", r->thickness, 1);
+        json_num("ropelength", r->ropelength, 1);
         json_num("residual", r->residual, 1);
         json_num("kkt_residual", r->kkt_residual, 1);
         if (r->certified)
@@ -99,6 +151,23 @@ void tr_cli_tighten_summary(const tr_cli_tighten *t, const tr_tighten_result *r)
         json_num("elapsed_s", r->elapsed, 1);
         json_num("steps_per_s", r->steps_per_s, 0);
         printf("}\n");
+        return;
+    }
+    if (r->vertex) {
+        const tr_vertex_thickness *v = &r->vt;
+        printf("%s: N %zu  ropelength %.9f in the vertex model  (length %.9f, thickness %.9f, MinRad %.9f, "
+               "vertex_dmin %.9f)\n", t->out, v->vertices, v->ropelength, v->length, v->thickness, v->minrad,
+               v->vertex_dmin);
+        printf("  contacts: vertex (SP-FEM), K = %zu; the first-order engine, polish and Rawdon's KKT certificate "
+               "do not apply\n", v->exclusion);
+        printf("  Rawdon's model, the same curve: ropelength %.9f (thickness %.9f, dcsd %.9f)\n", th->ropelength,
+               th->thickness, th->dcsd);
+        printf("  %ld second-order steps in %.1f s, stopped: %s\n", r->steps, r->elapsed,
+               tr_stop_reason_name(r->stop));
+        printf("  %s\n", r->type_line);
+        printf("  newton %s: vertex-model ropelength %.9f -> %.9f in %.1f s, %d steps\n",
+               p->newton_ran > 0 ? "accepted" : "rejected", p->newton_before, p->newton_after, p->newton_seconds,
+               p->newton_iters);
         return;
     }
     printf("%s: N %zu  ropelength %.6f  (length %.6f, thickness %.9f, MinRad %.9f, dcsd %.9f)\n", t->out,

@@ -868,12 +868,31 @@ static int start_from_curve(solver *s, const tr_curve *cv, const tr_thickness *t
      * the steps as from a loose start (4445 steps against 124). */
     int minrad_pressed = pressed && th0->minrad < 1.0 - CONSTRAINED_OUT_TOL;
     s->max_bend = INFINITY;
-    if ((overshoot && s->warm_residual < TIGHT_RESIDUAL) || minrad_pressed) {
+    /* A tight start in the vertex model (a knot tightened in Rawdon's,
+     * which the warm start finds tight: the models differ by O(e^2)) is
+     * none of the cases above, its MinRad at 1 and its vertices a little
+     * over 2 apart, but its first full steps bend vertices past MinRad as
+     * a refined start's do: with the vertex rows the rope relaxes where
+     * strands touch, and the inactive MinRad rows there are not in the
+     * Newton matrix. At N = 19 200 (the trefoil tightened in Rawdon's
+     * model) MinRad went 34 % over in the first pass, and the solve
+     * wandered at mu 1e4 with steps cut to 1/8 and MinRad 2 to 9 % over
+     * for 300 steps (423 steps, 155 s); the bend taken back alone (its
+     * bound is max(kappa, 1) + 0.05), with the guard or without, held
+     * MinRad at 5 % over for as long: the stiff rows (S = 0.1) are what
+     * takes the overshoot back. With the bend taken back and the guard
+     * too: 91 steps, 57 s; 129, 146, 149 against 202, 112, 185 at 1600,
+     * 4800, 9600 (stiff rows alone: 310, 126, 125 and 118 at 19 200), the
+     * results within the spread of the model's nearby settled points
+     * (4.5e-8 at 4800) (bench/notes/2026-11-28-vertex-tight-start.md).
+     * A loose start (the wobbled 32-gon) is left as it was. */
+    int vertex_tight = prm->vertex_contacts && s->warm_residual < TIGHT_RESIDUAL;
+    if ((overshoot && s->warm_residual < TIGHT_RESIDUAL) || minrad_pressed || vertex_tight) {
         /* a tight start's steps are small: where the multipliers it
          * starts with hold less than a quarter of the tension, the
          * curvature cap holds them to the model (bend.h); a loose
          * start's steps may not be small */
-        if (s->start_residual > CAUTIOUS_RESIDUAL)
+        if (s->start_residual > CAUTIOUS_RESIDUAL || vertex_tight)
             s->max_bend = prm->max_bend;
         /* the guard goes with the bends taken back: both are for the
          * inactive MinRad rows the model does not see (newton_rows.c) */

@@ -31,7 +31,8 @@
  * dense row per component for l_k) and factored by CHOLMOD (LL^T; when it is
  * not positive definite a multiple of I is added, Levenberg-Marquardt), the
  * step is capped so no vertex moves more than max_move (and, on a tight
- * start with poor first multipliers, no vertex's curvature rises more than
+ * start with poor first multipliers or a tight start in the vertex model
+ * (newton.c), no vertex's curvature rises more than
  * max_bend above max(its own, 1): on a clasp by cutting the whole step, on
  * a closed knot by taking those vertices back along their bend, a curved
  * search path that a short enough step leaves straight; newton.c), and an

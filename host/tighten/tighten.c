@@ -443,6 +443,12 @@ int tr_tighten(const tr_curve *start, const tr_tighten_options *opt, tr_tighten_
         res->failed_at = TR_TIGHTEN_AT_START;
         return tr_fail(err, TR_EINVAL, "no start curve and no checkpoint to resume");
     }
+    const char *conflict = tr_tighten_vertex_conflict(opt);
+    if (conflict) {
+        res->failed_at = TR_TIGHTEN_AT_START;
+        return tr_fail(err, TR_EINVAL, "%s", conflict);
+    }
+    int vertex = opt->contacts == TR_CONTACTS_VERTEX;
     tt_opts o = call_options(start, opt);
     /* a resumed run's type is its checkpoint's, taken as the engine opens it */
     tt_knot_type resume_type = {.known = 0, .why = "the checkpoint's state was not opened"};
@@ -454,13 +460,19 @@ int tr_tighten(const tr_curve *start, const tr_tighten_options *opt, tr_tighten_
         res->failed_at = TR_TIGHTEN_AT_RESUME;
         return rc;
     }
-    tt_choose_route(&o);
+    /* the vertex model's route is one solve at the start's N (vertex_route.c) */
+    if (!vertex)
+        tt_choose_route(&o);
     tt_start_shift(&o);
     /* the bound counts from here: shuffling and settling the start are the
      * call's time too; a resumed run's limit counts the time before its
      * checkpoint (as the engine's steps do) */
     if (o.time_limit > 0)
         o.bound_at = tr_clock_seconds() + fmax(o.time_limit - elapsed_before - finish_reserve(o.time_limit), 0.0);
+    if (vertex) {
+        rc = tt_tighten_vertex(&o, res, err);
+        return rc ? rc : check_type(start, &o, res, err);
+    }
     /* tries: the roads one after the other, each with an equal share of the
      * time left; of the certified ones the finest, then the shortest, is
      * kept. A road that fails after the first is skipped (said in a note);

@@ -26,6 +26,7 @@
 #include "engine/engine.h"
 #include "oracle/kkt.h"
 #include "oracle/thickness.h"
+#include "oracle/vertex_thickness.h"
 #include "util/error.h"
 
 /* The certificate costs ~0.05 s at N = 400, ~1.2 s at 1600 and ~12 s at
@@ -45,6 +46,14 @@ typedef struct tr_tighten_progress {
     double steps_per_s;
     int road, roads;   /* the road under way (1-based) of how many (tries, plus the scouts' refinement) */
 } tr_tighten_progress;
+
+/* The contact model a tightening holds (docs/physics.md): Rawdon's, every
+ * two edges that count at least 2 apart (the default: the engine, polish,
+ * second-order solver and KKT certificate), or SP-FEM's vertex model,
+ * every two vertices that count at least 2 apart, K = ceil(pi / e) along a
+ * component (oracle/vertex_thickness.h; vertex_route.c: the second-order
+ * solver alone, on closed unconstrained components). */
+enum { TR_CONTACTS_RAWDON = 0, TR_CONTACTS_VERTEX = 1 };
 
 /* What a note is: INFO (the route chosen, the roads as they go; a quiet
  * caller drops them) or WARNING (a road skipped and why, a start
@@ -85,6 +94,11 @@ typedef struct tr_tighten_options {
     long seed;      /* the roads' seed (default 1) */
     int kkt;        /* certify: 1 always, 0 never, -1 (default) up to TR_TIGHTEN_KKT_AUTO_MAX_N */
     int auto_route; /* a loose start of N >= 200 given without n and refine_to goes from N/4 (default 1) */
+    /* TR_CONTACTS_RAWDON (default) or TR_CONTACTS_VERTEX: the start (after
+     * n and scale) goes to the second-order solver in the vertex model, and
+     * the result is measured by the vertex oracle; the options that belong
+     * to Rawdon's route are refused (tr_tighten_vertex_conflict) */
+    int contacts;
     int centre;     /* a start whose box misses the origin is tightened about it (default 1) */
     /* a path the caller will write the result to: its format (for this
      * curve) and writability are checked once the start is open, before
@@ -152,6 +166,15 @@ typedef struct tr_tighten_result {
      * arithmetic does not take); type_line says which, in one line */
     int type_checked;
     char type_line[320];
+    /* contacts vertex: vt is the vertex oracle's measure of curve (curve is
+     * at the model's thickness 1, and ropelength, thickness are vt's; th is
+     * Rawdon's measure of the same curve); the solver converged or settled
+     * (stop TR_STOP_SOLVED), and why it kept the start if it did (static
+     * text, NULL when its result was accepted) */
+    int vertex;
+    tr_vertex_thickness vt;
+    int vertex_converged;
+    const char *vertex_why;
 } tr_tighten_result;
 
 /* Tightens start (or opt->resume's checkpoint, start NULL) as opt says
@@ -161,5 +184,12 @@ typedef struct tr_tighten_result {
 int tr_tighten(const tr_curve *start, const tr_tighten_options *opt, tr_tighten_result *res, tr_error *err);
 
 void tr_tighten_result_free(tr_tighten_result *res);
+
+/* With opt->contacts TR_CONTACTS_VERTEX: the first option that has no
+ * meaning in the vertex model (it belongs to Rawdon's route: the engine's
+ * levels, roads, goals, checkpoints and devices, the KKT certificate), as
+ * one line that names it, or NULL when there is none (or the model is
+ * Rawdon's). tr_tighten refuses such options (TR_EINVAL). */
+const char *tr_tighten_vertex_conflict(const tr_tighten_options *opt);
 
 #endif

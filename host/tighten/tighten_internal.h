@@ -80,6 +80,11 @@ int tt_at_refine_n(const tt_opts *o, const tr_curve *c);
 int tt_scout_at_refine_n(const tt_opts *o, const tr_curve *scout, tr_curve *out);
 int tt_other_road(const tt_opts *o, tr_curve *c, tr_error *err);
 int tt_shuffle_start(const tt_opts *o, tr_curve *c, tr_error *err);
+/* vertex_route.c: the whole call in the vertex contact model (contacts
+ * TR_CONTACTS_VERTEX): res filled (its type not yet checked), or the error
+ * with res->failed_at */
+int tt_tighten_vertex(const tt_opts *o, tr_tighten_result *res, tr_error *err);
+
 /* the share of the time the scouts take on a route of levels */
 #define TT_SCOUT_SHARE 0.5
 
