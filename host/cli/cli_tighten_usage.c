@@ -69,7 +69,7 @@ void tr_cli_tighten_usage(FILE *out)
             "                     except for a loose start taking the automatic route\n"
             "                     (N >= 200, no --n or --refine-to) with --time-limit T:\n"
             "                     the automatic roads: one scout per 50 s of T (T >= 50;\n"
-            "                     2 to 16) in half of T, all but the first shuffled,\n"
+            "                     2 to 16) in half of T, the start compacted, then shuffled,\n"
             "                     the shortest refined to 48 vertices per unit of its\n"
             "                     ropelength, with --newton unless --no-newton\n"
             "  --shuffles S       the last S of the K roads start from the start shuffled: the\n"

@@ -194,6 +194,12 @@ static const shuffle_recipe SHUFFLE_RECIPES[] = {
     {6.0, 20000, 200000, 0.995},
 };
 
+/* The start compacted, its conformation kept: the second phase of the
+ * recipes above alone, at the start's own scale (the automatic roads'
+ * first scout, tighten.c): inflated by a hair only, as the walk's gate is
+ * thickness 1 and a rope scaled to thickness 1 measures 1 - 1e-16. */
+static const shuffle_recipe COMPACT_RECIPE = {1.01, 0, 100000, 0.98};
+
 int tt_shuffle_start(const tt_opts *o, tr_curve *c, tr_error *err)
 {
     if (c->ncst > 0)
@@ -219,7 +225,7 @@ int tt_shuffle_start(const tt_opts *o, tr_curve *c, tr_error *err)
         goto out;
     }
     const size_t nrecipes = sizeof SHUFFLE_RECIPES / sizeof *SHUFFLE_RECIPES;
-    const shuffle_recipe *sr = &SHUFFLE_RECIPES[(size_t)o->shuffle_index % nrecipes];
+    const shuffle_recipe *sr = o->compacted ? &COMPACT_RECIPE : &SHUFFLE_RECIPES[(size_t)o->shuffle_index % nrecipes];
     tt_scale_curve(&r, sr->inflate / t.thickness);
     tr_deadline bound = tt_bound(o);
     if ((rc = tr_curve_shuffle(&r, sr->moves, 1.0, 0.0, seed, &bound, NULL, err)) ||

@@ -280,8 +280,9 @@ int tt_read_start(const tt_opts *o, tr_curve *c, tr_error *err)
  * A loose start on the route above, given a time limit T and no --tries or
  * --shuffles, is scouted by one road per AUTO_ROAD_SECONDS of T (at least
  * two from T = AUTO_ROADS_MIN_T on, at most AUTO_ROADS_MAX; under it one
- * road has T, as before), all but the
- * first shuffled (the scouts stop at half of T: tighten.c), and the
+ * road has T, as before): the first the start compacted (its own
+ * conformation), the others shuffled (the scouts stop at half of T:
+ * tighten.c), and the
  * shortest scout is refined to AUTO_N_PER_LENGTH vertices per unit of its
  * ropelength instead of the start's count. Why: a start made from notation
  * (`make knot`, a braid closure, 3.5 times longer than tight) slides into
@@ -361,10 +362,10 @@ void tt_choose_route(tt_opts *o)
             tt_note(o, TR_TIGHTEN_INFO, "%s is loose (%zu struts within 1e-3 of the shortest, %zu vertices)",
                     o->in, sl.n, c.nv);
             tt_note(o, TR_TIGHTEN_INFO,
-                    "the automatic roads for a time limit of %g s: up to %ld scouts in half of it (the start at "
-                    "%ld vertices, then %ld shuffled), the shortest refined to %.0f vertices per unit of its "
+                    "the automatic roads for a time limit of %g s: up to %ld scouts in half of it (the start "
+                    "compacted, then %ld shuffled), the shortest refined to %.0f vertices per unit of its "
                     "ropelength%s (--tries or --shuffles choose the roads yourself)",
-                    o->time_limit, o->tries, o->n, o->shuffles, AUTO_N_PER_LENGTH,
+                    o->time_limit, o->tries, o->shuffles, AUTO_N_PER_LENGTH,
                     o->newton ? " with the second-order solver" : "");
         } else
             tt_note(o, TR_TIGHTEN_INFO,

@@ -23,6 +23,7 @@ typedef struct tt_opts {
     int road_as_is; /* road_from is refined as it is, not moved off its minimum */
     int shuffled; /* shuffles: this road starts from the start shuffled (tt_shuffle_start) */
     int shuffle_index; /* which of the shuffled roads (0: the first), so which recipe */
+    int compacted; /* with shuffled: the start compacted only, not inflated and walked first */
     int roads;    /* roads in all, for the progress callback */
     double target, residual, time_limit, ckpt_every;
     /* time_limit as a clock time (tr_clock_seconds; 0: none): the hard

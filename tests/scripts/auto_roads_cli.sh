@@ -18,6 +18,7 @@ cat "$work/a.err"
 grep -q '^tightrope tighten: the automatic roads for a time limit of 50 s: up to 2 scouts' "$work/a.err" ||
   fail "no automatic roads said"
 grep -q '^tightrope tighten: road 2 of 2: the start shuffled' "$work/a.err" || fail "road 2 is not shuffled"
+grep -q "^tightrope tighten: road 1 of 2: the start compacted" "$work/a.err" || fail "road 1 is not the start compacted"
 best=$(awk '/road [0-9]+ of 2: ropelength/ { if (m == "" || $NF < m) m = $NF } END { print m }' "$work/a.err")
 [ -n "$best" ] || fail "no scout finished"
 want=$(awk -v b="$best" 'BEGIN { printf "%d", b * 48 + 0.5 }')
