@@ -8,13 +8,15 @@ from __future__ import annotations
 import json
 import math
 import os
+import re
 import shutil
 import signal
 import subprocess
+import sys
 import threading
 import time
 from pathlib import Path
-from typing import List
+from typing import List, Tuple
 
 import numpy as np
 import pytest
@@ -22,6 +24,9 @@ import pytest
 import tightrope
 
 IDEAL_TREFOIL = 32.7429  # Przybyl & Pieranski: no trefoil of thickness 1 is shorter
+# (nor, as far as any computation has found, any knotted curve)
+IDEAL_HOPF = 8 * math.pi  # closed form: two round circles of radius 2, each through the other's centre
+TREFOIL_PD = [(1, 5, 2, 4), (3, 1, 4, 6), (5, 3, 6, 2)]  # KnotTheory's PD[3_1]
 DEVICE = "reference"  # the serial engine: the same on every machine
 
 
@@ -30,6 +35,18 @@ def cli() -> str:
     if not exe:
         pytest.skip("no tightrope command line (TIGHTROPE_CLI) to compare with")
     return exe
+
+
+def test_import_and_version() -> None:
+    """The version is the project's (CMakeLists.txt); the library, opened on
+    first use, is looked for at import: a TIGHTROPE_LIBRARY that names no
+    file is an ImportError there, not a failure at the first call."""
+    cmake = Path(__file__).resolve().parents[2] / "CMakeLists.txt"
+    want = re.search(r"project\(tightrope VERSION ([0-9.]+)", cmake.read_text())
+    assert want is not None and tightrope.__version__ == tightrope.version() == want.group(1)
+    env = dict(os.environ, TIGHTROPE_LIBRARY="/nonexistent/libtightrope.so")
+    r = subprocess.run([sys.executable, "-c", "import tightrope"], env=env, capture_output=True, text=True)
+    assert r.returncode != 0 and "ImportError: tightrope: TIGHTROPE_LIBRARY=/nonexistent/libtightrope.so: no such file" in r.stderr
 
 
 def test_make_knot_and_link() -> None:
@@ -188,7 +205,7 @@ def test_ctrl_c_keeps_the_best_state() -> None:
     r = e.value.result
     assert r is not None and r.interrupted and r.stopped == "signal"
     # an interrupt on the route's coarse level (N/4) keeps that level's curve
-    assert r.curve.shape == (r.n, 3) and r.ropelength < l0
+    assert isinstance(r.curve, np.ndarray) and r.curve.shape == (r.n, 3) and r.ropelength < l0
     assert tightrope.measure(r.curve)["ropelength"] == pytest.approx(r.ropelength, rel=1e-12)
 
 
@@ -216,3 +233,145 @@ def test_tighten_far_from_origin_reports_its_shift() -> None:
     r = tightrope.tighten(start, time_limit=1, device=DEVICE, kkt=False)
     assert r.shift.shape == (3,) and abs(r.shift[0] - 1000.0) < 10
     assert np.allclose((r.curve + r.shift).mean(axis=0), start.mean(axis=0), atol=5.0)
+
+
+# ---------------------------------------------------------------- Links and PD codes where a curve is
+#
+# The knot type of a curve, found here independently of the library (which
+# checks it with its own Alexander polynomials): the crossings of a generic
+# projection give the knot's determinant |Alexander(-1)| from the Fox
+# colouring matrix (Livingston, Knot Theory, 3.3; 1 for the unknot, 3 for
+# the trefoil, 5 for the figure eight) and a two-component link's linking
+# number (half the signed crossings between the components).
+
+
+def _crossings(comps: List[np.ndarray]) -> List[Tuple[int, float, int, float, int]]:
+    """(over component, over position, under component, under position,
+    sign) per crossing of the projection along a generic direction; a
+    position is edge index + parameter along the edge."""
+    d = np.array([0.2358, 0.4617, 0.8552])  # generic: no vertex over an edge
+    d /= np.linalg.norm(d)
+    e1 = np.cross(d, [1.0, 0.0, 0.0])
+    e1 /= np.linalg.norm(e1)
+    e2 = np.cross(d, e1)
+    frame = np.stack([e1, e2, d], axis=1)
+    start = np.concatenate([c @ frame for c in comps])  # every edge, in the frame (e1, e2, d)
+    step = np.concatenate([np.roll(c, -1, axis=0) @ frame - c @ frame for c in comps])
+    comp = np.concatenate([np.full(len(c), k) for k, c in enumerate(comps)])
+    index = np.concatenate([np.arange(len(c)) for c in comps])
+    size = np.concatenate([np.full(len(c), len(c)) for c in comps])
+    out = []
+    for a in range(len(start) - 1):  # edge a against every later edge b at once
+        b = np.arange(a + 1, len(start))
+        den = step[a, 0] * step[b, 1] - step[a, 1] * step[b, 0]
+        w = start[b] - start[a]
+        with np.errstate(divide="ignore", invalid="ignore"):
+            s = (w[:, 0] * step[b, 1] - w[:, 1] * step[b, 0]) / den
+            t = (w[:, 0] * step[a, 1] - w[:, 1] * step[a, 0]) / den
+        neighbours = (comp[b] == comp[a]) & np.isin((index[b] - index[a]) % size[a], (1, size[a] - 1))
+        hit = (den != 0) & ~neighbours & (s >= 0) & (s < 1) & (t >= 0) & (t < 1)
+        for j, sj, tj, dj in zip(b[hit], s[hit], t[hit], den[hit]):
+            za, zb = start[a, 2] + sj * step[a, 2], start[j, 2] + tj * step[j, 2]
+            sign = int(np.sign(dj))
+            if za > zb:
+                out.append((int(comp[a]), index[a] + sj, int(comp[j]), index[j] + tj, sign))
+            else:
+                out.append((int(comp[j]), index[j] + tj, int(comp[a]), index[a] + sj, -sign))
+    return out
+
+
+def knot_determinant(curve: np.ndarray) -> int:
+    """|det| of the colouring matrix with one row and column struck out."""
+    cr = _crossings([curve])
+    under = sorted(c[3] for c in cr)
+    n = len(under)
+    if n < 2:
+        return 1
+    m = np.zeros((n, n))
+    for _, over, _, pos, _ in cr:
+        k = under.index(pos)  # the under-arc k ends here, k + 1 starts
+        o = sum(u < over for u in under) % n  # the arc passing over
+        m[k, o] += 2
+        m[k, k] -= 1
+        m[k, (k + 1) % n] -= 1
+    return abs(round(float(np.linalg.det(m[1:, 1:]))))
+
+
+def linking_number(link: List[np.ndarray]) -> int:
+    assert len(link) == 2
+    return abs(sum(c[4] for c in _crossings(link) if c[0] != c[2])) // 2
+
+
+class StandInLink:
+    """What a spherogram/SnapPy Link offers tightrope: its braid word."""
+
+    def __init__(self, word: List[int]) -> None:
+        self.word = word
+
+    def braid_word(self) -> List[int]:
+        return self.word
+
+
+def test_knot_type_helpers_on_known_curves() -> None:
+    """The independent type checks against the published determinants and linking number."""
+    assert knot_determinant(tightrope.make_knot("circle")) == 1
+    assert knot_determinant(tightrope.make_knot("trefoil", n=90)) == 3
+    assert knot_determinant(tightrope.make_knot("braid 1,-2,1,-2")) == 5
+    assert knot_determinant(tightrope.make_knot("5_1")) == 5
+    assert linking_number(tightrope.make_link("hopf")) == 1
+
+
+def test_measure_takes_a_link_or_a_pd_code() -> None:
+    """A PD code or a Link is measured as the start make_knot makes of it:
+    of its type, at thickness >= 1, looser than the ideal trefoil."""
+    for knot, det in ((TREFOIL_PD, 3), (StandInLink([1, -2, 1, -2]), 5)):
+        m = tightrope.measure(knot)
+        start = tightrope.make_knot(knot)
+        assert m == tightrope.measure(start)
+        assert m["components"] == 1 and m["vertices"] == len(start)
+        assert m["thickness"] >= 1.0 and m["ropelength"] > IDEAL_TREFOIL
+        assert knot_determinant(start) == det
+    hopf = tightrope.measure(StandInLink([1, 1]))  # a braid closing to two components: a link
+    assert hopf["components"] == 2 and hopf["ropelength"] > IDEAL_HOPF
+    assert tightrope.measure(tuple(TREFOIL_PD)) == tightrope.measure(TREFOIL_PD)
+    # spherogram numbers a PD code's edges from 0, KnotTheory from 1: the same code
+    assert tightrope.measure([tuple(v - 1 for v in c) for c in TREFOIL_PD]) == tightrope.measure(TREFOIL_PD)
+    # a name is not a curve (it could be a file's): make_knot or read says which
+    with pytest.raises(tightrope.Error, match="not a curve: make_knot"):
+        tightrope.measure("trefoil")
+    # a PD code the library refuses, with its message
+    with pytest.raises(tightrope.Error, match="appears 3 times"):
+        tightrope.measure([(1, 5, 2, 4), (3, 1, 4, 6), (5, 3, 5, 2)])
+
+
+def test_tighten_and_analyze_take_a_link_or_a_pd_code() -> None:
+    """A short tighten from a PD code keeps the trefoil (determinant 3) and
+    stays above the ideal; from a Link closing to two components, a link
+    comes back (a list), linked once, above the Hopf link's 8 pi."""
+    loose = tightrope.measure(TREFOIL_PD)["ropelength"]
+    r = tightrope.tighten(TREFOIL_PD, time_limit=2, device=DEVICE, kkt=False)
+    assert isinstance(r.curve, np.ndarray) and r.curve.shape[1] == 3
+    assert knot_determinant(r.curve) == 3
+    assert IDEAL_TREFOIL < r.ropelength < loose
+    h = tightrope.tighten(StandInLink([1, 1]), time_limit=2, device=DEVICE, kkt=False)
+    assert isinstance(h.curve, list) and len(h.curve) == 2
+    assert linking_number(h.curve) == 1
+    assert IDEAL_HOPF < h.ropelength < tightrope.measure(StandInLink([1, 1]))["ropelength"]
+    # analyze: the start's profiles, at thickness 1 (curvature <= 1 / MinRad <= 1)
+    a = tightrope.analyze(StandInLink([1, 1, 1]))
+    b = tightrope.analyze(tightrope.make_knot(StandInLink([1, 1, 1])))
+    assert np.array_equal(a.curvature, b.curvature) and a.curvature.max() <= 1 + 1e-9
+
+
+def test_spherogram_links_and_their_pd_codes() -> None:
+    """The real thing, where spherogram is installed: a Link and its own
+    (0-based) PD code give starts of the knot's published determinant
+    (3_1: 3, 4_1: 5, 5_2: 7); its Hopf link is linked once."""
+    spherogram = pytest.importorskip("spherogram")
+    for name, det in (("3_1", 3), ("4_1", 5), ("5_2", 7)):
+        link = spherogram.Link(name)
+        assert tightrope.measure(link)["components"] == 1
+        assert knot_determinant(tightrope.make_knot(link)) == det
+        assert knot_determinant(tightrope.make_knot(link.PD_code())) == det
+    hopf = tightrope.make_link(spherogram.Link("L2a1"))
+    assert len(hopf) == 2 and linking_number(hopf) == 1

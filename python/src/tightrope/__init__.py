@@ -8,7 +8,10 @@ clasps (ropes of radius 1 pulled tight), over the C library libtightrope.so.
 
 A curve is an (N, 3) array (one closed component), a list of them (a
 link), or a tightrope.Curve (any components, open ropes and their
-constraints, e.g. a clasp read from a file). Errors raise tightrope.Error
+constraints, e.g. a clasp read from a file); measure, tighten and analyze
+also take a spherogram/SnapPy Link or a PD code (a list of 4-tuples), made
+into the start curve make_knot/make_link make (a name string is not a
+curve: make_knot(name) says which is meant). Errors raise tightrope.Error
 with the library's one-line message.
 """
 
@@ -16,9 +19,8 @@ from __future__ import annotations
 
 import ctypes
 import os
-import threading
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Any, Callable, Dict, List, NamedTuple, Optional, Sequence, Union
+from typing import TYPE_CHECKING, Any, Callable, Dict, List, NamedTuple, Optional, Protocol, Sequence, Union, cast
 
 import numpy as np
 
@@ -42,7 +44,13 @@ __all__ = [
     "version",
 ]
 
-__version__: str = lib.tightrope_version().decode()
+__version__: str  # the library's, read when first asked for (module __getattr__)
+
+
+def __getattr__(name: str) -> Any:
+    if name == "__version__":
+        return lib.tightrope_version().decode()
+    raise AttributeError(f"module 'tightrope' has no attribute {name!r}")
 
 if TYPE_CHECKING:  # numpy.typing only for the checker: import time (json too, imported where used)
     import numpy.typing as npt
@@ -68,7 +76,7 @@ def _check(rc: int, err: _lib.ErrorStruct) -> None:
 
 def version() -> str:
     """The library's version, e.g. "0.1.0"."""
-    return __version__
+    return str(lib.tightrope_version().decode())
 
 
 class Curve:
@@ -153,7 +161,15 @@ class Curve:
         return f"tightrope.Curve({self.vertices} vertices in {len(self.closed)} component(s), closed {self.closed})"
 
 
-CurveLike = Union[Curve, "npt.ArrayLike", Sequence["npt.ArrayLike"]]
+class LinkLike(Protocol):
+    """A spherogram/SnapPy Link, as far as tightrope uses it: its braid word."""
+
+    def braid_word(self) -> Sequence[int]: ...
+
+
+# a Link or a PD code (a list of 4-tuples of ints, an ArrayLike too) is made
+# into its start curve, as make_knot/make_link make it
+CurveLike = Union[Curve, LinkLike, "npt.ArrayLike", Sequence["npt.ArrayLike"]]
 
 
 def _components(x: Any) -> List[Array]:
@@ -174,7 +190,18 @@ def _components(x: Any) -> List[Array]:
 
 
 def _curve(x: CurveLike) -> Curve:
-    return x if isinstance(x, Curve) else Curve(x)
+    """A curve argument as the library's Curve: a Curve as it is; a
+    spherogram/SnapPy Link or a PD code made into its start curve, as
+    make_knot/make_link make it (_start); an (N, 3) array or a list of them
+    as those coordinates. A string is refused: a name and a file path look
+    alike (make_knot(name), read(path) say which is meant)."""
+    if isinstance(x, Curve):
+        return x
+    if isinstance(x, (str, bytes, os.PathLike)):
+        raise Error(-3, f"{str(x)!r} is not a curve: make_knot(name) or make_link(name) makes one by name, read(path) reads a file")
+    if _is_link(x) or _is_pd(x):
+        return _start(x)
+    return Curve(cast("npt.ArrayLike", x))  # not a Link: the checks above
 
 
 def _out(c: Curve) -> Union[Array, List[Array]]:
@@ -182,16 +209,44 @@ def _out(c: Curve) -> Union[Array, List[Array]]:
     return comps[0] if len(comps) == 1 else comps
 
 
+def _is_link(x: Any) -> bool:
+    """A spherogram/SnapPy Link (what they share: braid_word())."""
+    return callable(getattr(x, "braid_word", None))
+
+
+def _is_pd(x: Any) -> bool:
+    """A PD code: a non-empty list of 4-tuples of integers (KnotTheory's
+    convention, edges numbered from 1, or spherogram's, from 0). No curve
+    looks like one: a curve's rows have 3 numbers."""
+    return (
+        isinstance(x, (list, tuple))
+        and len(x) > 0
+        and all(isinstance(c, (list, tuple)) and len(c) == 4 and all(isinstance(v, (int, np.integer)) and not isinstance(v, bool) for v in c) for c in x)
+    )
+
+
 def _notation(knot: Any) -> str:
     """The make spec of a knot given as a name, a PD code (a list of
     4-tuples) or a spherogram/SnapPy Link (by its braid word)."""
     if isinstance(knot, str):
         return knot
-    if hasattr(knot, "braid_word"):  # spherogram.Link, snappy.Link
+    if _is_link(knot):  # spherogram.Link, snappy.Link
         return "braid " + ",".join(str(int(g)) for g in knot.braid_word())
-    if isinstance(knot, (list, tuple)) and all(isinstance(x, (list, tuple)) and len(x) == 4 for x in knot):
-        return "pd [" + ",".join("[" + ",".join(str(int(v)) for v in x) + "]" for x in knot) + "]"
+    if _is_pd(knot):
+        # KnotTheory numbers the edges from 1, spherogram's Link.PD_code()
+        # from 0: the same walk along the knot, each label one lower
+        shift = 1 if min(int(v) for x in knot for v in x) == 0 else 0
+        return "pd [" + ",".join("[" + ",".join(str(int(v) + shift) for v in x) + "]" for x in knot) + "]"
     raise Error(-3, f"not a knot's name, PD code or Link: {type(knot).__name__}")
+
+
+def _start(knot: Any, n: Optional[int] = None) -> Curve:
+    """The one way a knot or link given by name, PD code or Link becomes a
+    start curve (make_knot, make_link, and measure/tighten/analyze given a
+    Link or a PD code): the library's make, whose curve has as many
+    components as the braid's closure or the code has; knot or link is
+    that number, not a choice made here."""
+    return Curve.make(_notation(knot), n)
 
 
 def make_knot(name: Any, n: Optional[int] = None) -> Array:
@@ -200,7 +255,7 @@ def make_knot(name: Any, n: Optional[int] = None) -> Array:
     its type checked), "braid 1,-2,1,-2", "pd [[...]]", "trefoil",
     "torus P Q" (default n 200), "circle [R]" (64); or a PD code as a list
     of 4-tuples, or a spherogram/SnapPy Link (its braid word)."""
-    comps = Curve.make(_notation(name), n).components
+    comps = _start(name, n).components
     if len(comps) != 1:
         raise Error(-3, f"'{name}' has {len(comps)} components: make_link makes links")
     return comps[0]
@@ -211,7 +266,7 @@ def make_link(name: Any, n: Optional[int] = None) -> List[Array]:
     9 crossings by its LinkInfo name ("L6a4", "L2a1{1}"), "braid WORD", a
     spherogram/SnapPy Link, "hopf", "clasp [H]" (two open ropes; their end
     planes are kept only by Curve.make("clasp"))."""
-    return Curve.make(_notation(name), n).components
+    return _start(name, n).components
 
 
 def read(path: Union[str, "os.PathLike[str]"]) -> Curve:
@@ -252,7 +307,8 @@ def measure(curve: CurveLike, kkt: bool = False, kkt_band: Optional[float] = Non
     """The numbers `tightrope measure --json` prints (the same keys, null as
     None): components, vertices, length, minrad, dcsd, thickness, ropelength,
     L_p, L_c, L_a, minrad_vertex, shortest_strut, per_component; with kkt=True
-    the KKT certificate under "kkt" (as --kkt)."""
+    the KKT certificate under "kkt" (as --kkt). A Link or a PD code is
+    measured as its start curve (make_knot/make_link's)."""
     c = _curve(curve)
     err = _lib.ErrorStruct()
     m = _lib.Measurement()
@@ -333,6 +389,9 @@ def tighten(curve: CurveLike, time_limit: Optional[float] = None, progress: Opti
     only on a tight start, None never), polish, scale, tries (0, default: chosen
     as the command line chooses without --tries), shuffles, seed,
     kkt (True, False, None: up to N = 2400), checkpoint (a path).
+    A Link or a PD code starts from the curve make_knot/make_link make of it
+    (make's default n; n= resamples it); .curve is an array for a knot, a
+    list for a link.
 
     Ctrl-C stops the run within a step and raises tightrope.Interrupted (a
     KeyboardInterrupt) whose .result holds the best state reached."""
@@ -378,6 +437,8 @@ def tighten(curve: CurveLike, time_limit: Optional[float] = None, progress: Opti
     res = _lib.TightenResultStruct()
     err = _lib.ErrorStruct()
     h = ctypes.c_void_p()
+    import threading  # here, not at import: only tighten needs it
+
     status: List[int] = []
     done = threading.Event()
 
@@ -464,7 +525,8 @@ class Analysis:
 
 
 def analyze(curve: CurveLike, component: int = 0, m: Optional[int] = None, scale: bool = True, strut_tol: Optional[float] = None) -> Analysis:
-    """Curvature, torsion and contacts of one component, with the summary."""
+    """Curvature, torsion and contacts of one component, with the summary
+    (a Link or a PD code: of its start curve, as make_knot/make_link make it)."""
     import json
     c = _curve(curve)
     o = _lib.AnalyzeOptions(m or 0, 0 if scale else 1, strut_tol or 0.0)

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import ctypes
 import os
+from typing import Any, Optional
 
 c_size_t = ctypes.c_size_t
 c_double = ctypes.c_double
@@ -134,6 +135,8 @@ def _find() -> str:
     libtightrope.so)."""
     env = os.environ.get("TIGHTROPE_LIBRARY")
     if env:
+        if os.sep in env and not os.path.exists(env):  # (a bare name is dlopen's to search)
+            raise ImportError(f"tightrope: TIGHTROPE_LIBRARY={env}: no such file")
         return env
     here = os.path.join(os.path.dirname(os.path.abspath(__file__)), "libtightrope.so")
     if os.path.exists(here):
@@ -149,39 +152,62 @@ def _find() -> str:
     )
 
 
-def _load() -> ctypes.CDLL:
-    lib = ctypes.CDLL(_find())  # CDLL: the GIL is released during each call
-    E = POINTER(ErrorStruct)
-    H = c_void_p
-    PH = POINTER(c_void_p)
-    sig = {
-        "tightrope_version": (c_char_p, []),
-        "tightrope_strerror": (c_char_p, [c_int]),
-        "tightrope_curve_new": (c_int, [c_int, POINTER(c_size_t), POINTER(c_int), POINTER(c_double), PH, E]),
-        "tightrope_curve_free": (None, [H]),
-        "tightrope_curve_vertices": (c_size_t, [H]),
-        "tightrope_curve_components": (c_int, [H]),
-        "tightrope_curve_offset": (c_size_t, [H, c_int]),
-        "tightrope_curve_closed": (c_int, [H, c_int]),
-        "tightrope_curve_constraints": (c_int, [H]),
-        "tightrope_curve_xyz": (POINTER(c_double), [H]),
-        "tightrope_make": (c_int, [c_char_p, c_size_t, PH, E]),
-        "tightrope_read": (c_int, [c_char_p, PH, E]),
-        "tightrope_write": (c_int, [c_char_p, H, c_char_p, E]),
-        "tightrope_measure": (c_int, [H, c_int, POINTER(Measurement), E]),
-        "tightrope_certify": (c_int, [H, c_double, POINTER(Kkt), POINTER(c_double), POINTER(c_double), E]),
-        "tightrope_tighten_options_init": (None, [POINTER(TightenOptions)]),
-        "tightrope_tighten": (c_int, [H, POINTER(TightenOptions), PH, POINTER(TightenResultStruct), E]),
-        "tightrope_analyze": (c_int, [H, c_int, POINTER(AnalyzeOptions), PH, E]),
-        "tightrope_analysis_free": (None, [H]),
-        "tightrope_analysis_profile": (POINTER(c_double), [H, c_int, POINTER(c_size_t)]),
-        "tightrope_analysis_summary": (c_char_p, [H]),
-    }
-    for name, (res, args) in sig.items():
-        f = getattr(lib, name)
-        f.restype = res
-        f.argtypes = args
-    return lib
+_SIGNATURES = {
+    "tightrope_version": (c_char_p, []),
+    "tightrope_strerror": (c_char_p, [c_int]),
+    "tightrope_curve_new": (c_int, [c_int, POINTER(c_size_t), POINTER(c_int), POINTER(c_double), POINTER(c_void_p), POINTER(ErrorStruct)]),
+    "tightrope_curve_free": (None, [c_void_p]),
+    "tightrope_curve_vertices": (c_size_t, [c_void_p]),
+    "tightrope_curve_components": (c_int, [c_void_p]),
+    "tightrope_curve_offset": (c_size_t, [c_void_p, c_int]),
+    "tightrope_curve_closed": (c_int, [c_void_p, c_int]),
+    "tightrope_curve_constraints": (c_int, [c_void_p]),
+    "tightrope_curve_xyz": (POINTER(c_double), [c_void_p]),
+    "tightrope_make": (c_int, [c_char_p, c_size_t, POINTER(c_void_p), POINTER(ErrorStruct)]),
+    "tightrope_read": (c_int, [c_char_p, POINTER(c_void_p), POINTER(ErrorStruct)]),
+    "tightrope_write": (c_int, [c_char_p, c_void_p, c_char_p, POINTER(ErrorStruct)]),
+    "tightrope_measure": (c_int, [c_void_p, c_int, POINTER(Measurement), POINTER(ErrorStruct)]),
+    "tightrope_certify": (c_int, [c_void_p, c_double, POINTER(Kkt), POINTER(c_double), POINTER(c_double), POINTER(ErrorStruct)]),
+    "tightrope_tighten_options_init": (None, [POINTER(TightenOptions)]),
+    "tightrope_tighten": (c_int, [c_void_p, POINTER(TightenOptions), POINTER(c_void_p), POINTER(TightenResultStruct), POINTER(ErrorStruct)]),
+    "tightrope_analyze": (c_int, [c_void_p, c_int, POINTER(AnalyzeOptions), POINTER(c_void_p), POINTER(ErrorStruct)]),
+    "tightrope_analysis_free": (None, [c_void_p]),
+    "tightrope_analysis_profile": (POINTER(c_double), [c_void_p, c_int, POINTER(c_size_t)]),
+    "tightrope_analysis_summary": (c_char_p, [c_void_p]),
+}
 
 
-lib = _load()
+class Library:
+    """libtightrope, opened on first use: `import tightrope` finds the file
+    (a missing library is an ImportError there) but leaves the dlopen --
+    the library and what it links (CHOLMOD, BLAS, LAPACK, OpenCL's loader),
+    about as long again as the rest of the package's import -- to the first
+    call that needs it (docs/python.md). Each function, once looked up, is
+    kept as an attribute, so later calls do not come back here."""
+
+    def __init__(self, path: str) -> None:
+        self._path = path
+        self._cdll: Optional[ctypes.CDLL] = None
+
+    def _open(self) -> ctypes.CDLL:
+        if self._cdll is None:  # two threads may both open it: dlopen counts, the handle is the same
+            try:
+                cdll = ctypes.CDLL(self._path)  # CDLL: the GIL is released during each call
+            except OSError as e:
+                raise OSError(f"tightrope: cannot load {self._path}: {e}") from e
+            for name, (res, args) in _SIGNATURES.items():
+                f = getattr(cdll, name)
+                f.restype = res
+                f.argtypes = args
+            self._cdll = cdll
+        return self._cdll
+
+    def __getattr__(self, name: str) -> Any:
+        if not name.startswith("tightrope_"):  # (copy, pickle: not the library's)
+            raise AttributeError(name)
+        f = getattr(self._open(), name)
+        setattr(self, name, f)
+        return f
+
+
+lib = Library(_find())
