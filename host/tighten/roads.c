@@ -228,9 +228,17 @@ int tt_shuffle_start(const tt_opts *o, tr_curve *c, tr_error *err)
     const shuffle_recipe *sr = o->compacted ? &COMPACT_RECIPE : &SHUFFLE_RECIPES[(size_t)o->shuffle_index % nrecipes];
     tt_scale_curve(&r, sr->inflate / t.thickness);
     tr_deadline bound = tt_bound(o);
-    if ((rc = tr_curve_shuffle(&r, sr->moves, 1.0, 0.0, seed, &bound, NULL, err)) ||
-        (rc = tr_curve_shuffle(&r, sr->anneal, 1.0, sr->ratchet, seed + 7, &bound, NULL, err)) ||
-        (rc = tr_thickness_measure(&r, NULL, &t, NULL, err)))
+    rc = tr_curve_shuffle(&r, sr->moves, 1.0, 0.0, seed, &bound, NULL, err);
+    if (!rc)
+        rc = tr_curve_shuffle(&r, sr->anneal, 1.0, sr->ratchet, seed + 7, &bound, NULL, err);
+    /* a compaction the bound or a signal stops is a start all the same
+     * (every kept move kept the rope thick and the knot), and the first
+     * road of the automatic ones has no other: the run goes on with it,
+     * and stops at once, keeping it (Ctrl-C in the first seconds once
+     * left no curve at all) */
+    if (rc == TR_EINTERRUPTED && o->compacted)
+        rc = TR_OK;
+    if (rc || (rc = tr_thickness_measure(&r, NULL, &t, NULL, err)))
         goto out;
     tt_scale_curve(&r, 1.0 / t.thickness);
 out:
