@@ -111,6 +111,12 @@ add_test(NAME tighten_solver_checkpoint
   COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/scripts/solver_checkpoint.sh $<TARGET_FILE:tightrope>
           ${PROJECT_SOURCE_DIR}/bench/data/trefoil_2400.vect ${_eng_dir}/solver_ckpt)
 set_tests_properties(tighten_solver_checkpoint PROPERTIES ENVIRONMENT "${TR_TEST_ENV}" LABELS cli)
+# a tighten stopped mid-solve resumes the solve's state and takes the steps
+# it had left (tests/scripts/solver_state_resume.sh; host/engine/solver_state.c)
+add_test(NAME tighten_solver_state_resume
+  COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/scripts/solver_state_resume.sh $<TARGET_FILE:tightrope>
+          ${PROJECT_SOURCE_DIR}/bench/data/trefoil_2400.vect ${_eng_dir}/solver_state_resume)
+set_tests_properties(tighten_solver_state_resume PROPERTIES ENVIRONMENT "${TR_TEST_ENV}" LABELS cli)
 # --tries K --seed S: the shortest of K roads, reproducible (tests/scripts/tries_cli.sh)
 add_test(NAME tighten_tries
   COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/scripts/tries_cli.sh $<TARGET_FILE:tightrope> ${_eng_dir}/tries)

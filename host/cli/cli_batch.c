@@ -48,6 +48,7 @@
 #include "cli/cli_tighten.h"
 #include "curve/curve.h"
 #include "curve/curve_io.h"
+#include "solver/newton.h"
 #include "util/clock.h"
 #include "util/text_file.h"
 
@@ -406,6 +407,20 @@ static int build_args(const batch_opts *o, const tr_batch_knot *k, const char *d
  * start unknown. *id gets the identity the run's record will carry.
  * Returns 0 or 1, or -1 with the message printed. */
 static int decide_resume(const batch_opts *o, const tr_batch_knot *k, const char *dir, const char *start,
+                         char id[TR_BATCH_ID_SIZE]);
+
+/* The solver's state tighten keeps beside a knot's checkpoint (CKPT.newton,
+ * host/engine/solver_state.c) goes with the checkpoint; only a solver
+ * state is removed. */
+static void unlink_solver_state(const char *ckpt)
+{
+    char p[PATH_SIZE + 8];
+    int n = snprintf(p, sizeof p, "%s.newton", ckpt);
+    if (n > 0 && (size_t)n < sizeof p && tr_newton_state_is_file(p))
+        unlink(p);
+}
+
+static int decide_resume(const batch_opts *o, const tr_batch_knot *k, const char *dir, const char *start,
                          char id[TR_BATCH_ID_SIZE])
 {
     char ckpt[PATH_SIZE], side[PATH_SIZE];
@@ -429,6 +444,7 @@ static int decide_resume(const batch_opts *o, const tr_batch_knot *k, const char
         fprintf(stderr, "tightrope batch: %s: cannot remove %s: %s\n", k->name, ckpt, strerror(errno));
         return -1;
     }
+    unlink_solver_state(ckpt);
     snprintf(id, TR_BATCH_ID_SIZE, "%s", start);
     return 0;
 }
@@ -504,6 +520,7 @@ static int run_knot(const batch_opts *o, const tr_batch_knot *k, const char *dir
         return 2;
     }
     unlink(a.ckpt);
+    unlink_solver_state(a.ckpt);
     unlink(side);
     return status;
 }

@@ -3,6 +3,7 @@
  * (engine.h). */
 #include <math.h>
 #include <signal.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -37,6 +38,10 @@ int tr_engine_i_checkpoint_curve(tr_engine *e, const tr_curve *c, const double *
     const tr_engine_goals *g = &e->prm.goals;
     tr_text_printf(&b, "goals %ld %d %a %a %d %ld %a\n", g->refine_to, g->refine_given, g->target, g->residual,
                    g->residual_given, g->steps, g->time_limit);
+    /* the solver's state that goes with this checkpoint (solver_state.c) */
+    char line[64];
+    tr_engine_i_solver_state_line(e, path, line, sizeof line);
+    tr_text_printf(&b, "%s", line);
     tr_text_printf(&b, "ncst %d\n", c->ncst);
     for (int q = 0; q < c->ncst; q++) {
         const tr_constraint *k = &c->cst[q];
@@ -205,6 +210,19 @@ int tr_engine_resume(tr_engine **out, const char *path, const char *device,
             BAD("bad 'goals' line");
         NEXT();
     }
+    /* the solver's state that goes with it (solver_state.c; older
+     * checkpoints and those taken outside a solve have none) */
+    int state_named = 0;
+    uint64_t state_hash = 0;
+    if (!strncmp(ln, "newton_state ", 13)) {
+        unsigned long long h;
+        char tail;
+        if (sscanf(ln, "newton_state %16llx %c", &h, &tail) != 1 || strlen(ln) != 13 + 16)
+            BAD("bad 'newton_state' line (expected 'newton_state' and 16 hexadecimal digits)");
+        state_named = 1;
+        state_hash = (uint64_t)h;
+        NEXT();
+    }
     int ncst;
     if (sscanf(ln, "ncst %d", &ncst) != 1 || ncst < 0)
         BAD("expected 'ncst C'");
@@ -289,6 +307,8 @@ int tr_engine_resume(tr_engine **out, const char *path, const char *device,
         e->length = len;
     }
     e->steps_at_t0 = e->steps;
+    /* the solver's state beside it, when it is the one named (else a note) */
+    tr_engine_i_solver_state_open(e, path, state_named, state_hash);
     free(text);
     free(nv);
     free(closed);

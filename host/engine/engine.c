@@ -245,9 +245,8 @@ tr_engine *tr_engine_i_new(const char *device, const tr_engine_params *p)
  * with the edge targets and gaps of that curve, in the engine's format, so
  * that --resume goes on from it. A failure is counted as the level loop's
  * are (tr_engine_checkpoint_failures); the solve goes on. */
-static int newton_checkpoint(void *user, const tr_curve *best, tr_error *err)
+int tr_engine_i_solver_checkpoint(tr_engine *e, const tr_curve *best, tr_error *err)
 {
-    tr_engine *e = user;
     int nc = best->ncomp, rc;
     double *ebar = malloc((size_t)nc * sizeof *ebar);
     int *gap = malloc((size_t)nc * sizeof *gap);
@@ -269,6 +268,15 @@ static int newton_checkpoint(void *user, const tr_curve *best, tr_error *err)
     return rc;
 }
 
+/* The solver's checkpoint callback: the curve also kept, for the
+ * checkpoint that goes with each of its states (solver_state.c). */
+static int newton_checkpoint(void *user, const tr_curve *best, tr_error *err)
+{
+    tr_engine *e = user;
+    tr_engine_i_solver_state_keep_best(e, best);
+    return tr_engine_i_solver_checkpoint(e, best, err);
+}
+
 int tr_engine_i_newton(tr_engine *e, double seconds, int tight_only, volatile sig_atomic_t *stop, int *accepted,
                        tr_error *err)
 {
@@ -287,6 +295,8 @@ int tr_engine_i_newton(tr_engine *e, double seconds, int tight_only, volatile si
         np.checkpoint_every = e->ckpt_every;
         np.user = e;
     }
+    /* its state beside the checkpoint, or the resumed one's */
+    tr_engine_i_solver_state_before(e, &np);
     tr_newton_stats ns;
     /* tried, whatever comes of it: the level loop must not try again */
     e->newton_tried = 1;
@@ -305,6 +315,7 @@ int tr_engine_i_newton(tr_engine *e, double seconds, int tight_only, volatile si
     const tr_backend *be = e->be.ops ? &e->be : own.ops ? &own : NULL;
     np.backend = be && !be->ops->serial ? be : NULL;
     int rc = tr_newton(&e->curve, &np, &ns, err);
+    tr_engine_i_solver_state_after(e, rc, &ns);
     tr_backend_close(&own);
     snprintf(e->newton_why, sizeof e->newton_why, "%.150s",
              rc ? err->msg : ns.why_rejected ? ns.why_rejected : ns.skipped ? "skipped" : "");
@@ -452,6 +463,7 @@ void tr_engine_destroy(tr_engine *e)
     if (!e)
         return;
     free(e->presettle_x);
+    tr_engine_i_solver_state_free(e);
     tr_backend_close(&e->be);
     tr_curve_free(&e->curve);
     free(e->gap);
@@ -475,6 +487,9 @@ int tr_engine_step(tr_engine *e, int *accepted, tr_error *err)
     const tr_backend_ops *op = e->be.ops;
     int rc;
     *accepted = 0;
+    /* the engine moves past a stopped solve: its state no longer goes
+     * with the engine's curve */
+    tr_engine_i_solver_state_drop(e);
     if (!e->contacts_valid && (rc = tr_engine_i_rebuild_contacts(e, 1, NULL, err)))
         return rc;
     tr_tension_params tp = {.h = e->h, .max_move = e->prm.max_move, .smooth_passes = e->prm.smooth_passes,
@@ -602,6 +617,7 @@ static int unrefine(tr_engine *e, tr_curve *coarse, double *ebar, const tr_engin
 
 int tr_engine_refine(tr_engine *e, size_t n, tr_error *err)
 {
+    tr_engine_i_solver_state_drop(e);
     int rc = e->be.ops->download(e->be.state, e->curve.x, NULL, err);
     if (rc)
         return rc;

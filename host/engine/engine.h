@@ -227,6 +227,13 @@ const char *tr_engine_warning(const tr_engine *e);
  * them); *why the last failure's message (may be NULL). */
 int tr_engine_checkpoint_failures(const tr_engine *e, const char **why);
 
+/* What became of the second-order solver's state beside a checkpoint
+ * (solver_state.c), in one line, once: at resume, taken (the solve goes on
+ * from it) or ignored and why; during a run, a state not kept. Returns -1
+ * when there is nothing new to say (buf untouched), else 1 for a state
+ * ignored or not kept, 0 for news, with the line in buf. */
+int tr_engine_solver_state_take_note(tr_engine *e, char *buf, size_t cap);
+
 /* Current coordinates (and constraints) as a curve the caller frees. */
 int tr_engine_get_curve(tr_engine *e, tr_curve *out, tr_error *err);
 

@@ -5,6 +5,8 @@
 #ifndef TR_ENGINE_INTERNAL_H
 #define TR_ENGINE_INTERNAL_H
 
+#include <stdint.h>
+
 #include "backend/backend.h"
 #include "engine/engine.h"
 
@@ -66,6 +68,23 @@ struct tr_engine {
     char ckpt_failure[256];
     double *presettle_x;
     long polish_steps;
+    /* The second-order solver's resumable state beside the checkpoint
+     * (solver_state.c): with a checkpoint path P, the solve's state goes to
+     * P.newton and every checkpoint written to P while that state is the
+     * engine's (live) names it by the FNV-1a hash of its bytes; a resumed
+     * run takes P.newton only when its checkpoint names it. */
+    struct {
+        int live;            /* file holds the state of the engine's last solve (unfinished) */
+        int ours;            /* file was written by this engine */
+        int resumed;         /* file is the state this engine resumed from (its checkpoint named it) */
+        char file[4200];     /* where that state is */
+        uint64_t hash;       /* of its bytes */
+        struct tr_newton_state *resume; /* read at resume: the first solve goes on from it */
+        tr_curve best;       /* the solver's last checkpoint curve in this solve (nv 0: none) */
+        int refused;         /* a file at P.newton that is no solver state: never written over */
+        char note[640];      /* what a caller says once (tr_engine_solver_state_note) */
+        int note_warning;    /* the note is a warning (a state ignored), not news */
+    } ss;
     /* the hard bound in force (engine.h, bound): the params' at create,
      * narrowed by tr_engine_run's limits while it runs */
     tr_deadline bound;
@@ -95,6 +114,35 @@ int tr_engine_i_newton(tr_engine *e, double seconds, int tight_only, volatile si
  * downloads e's). */
 int tr_engine_i_checkpoint_curve(tr_engine *e, const tr_curve *c, const double *ebar, const int *gap,
                                  const char *path, tr_error *err);
+/* solver_state.c: the solver's state beside the checkpoint. Sets np's
+ * state callback (with a checkpoint path) and its resume (the state a
+ * resumed run read, once); before a solve that does not resume, the state
+ * of an earlier one is dropped. */
+struct tr_newton_params;
+struct tr_newton_stats;
+void tr_engine_i_solver_state_before(tr_engine *e, struct tr_newton_params *np);
+/* After the solve: a converged or settled one's state is dropped; the
+ * state it resumed from is freed either way. */
+void tr_engine_i_solver_state_after(tr_engine *e, int rc, const struct tr_newton_stats *ns);
+/* The engine moves past the solve (a step, a refinement): its state no
+ * longer goes with the engine's curve; the file is removed if this engine
+ * made it (or resumed from it and rewrites its checkpoint). */
+void tr_engine_i_solver_state_drop(tr_engine *e);
+/* The solver's checkpoint curve, kept for the checkpoint written with each
+ * state. */
+void tr_engine_i_solver_state_keep_best(tr_engine *e, const tr_curve *best);
+/* The checkpoint line naming the live state beside path ("" when none):
+ * "newton_state HASH\n". */
+void tr_engine_i_solver_state_line(const tr_engine *e, const char *path, char *line, size_t cap);
+/* At resume from the checkpoint at path, whose line named hash (named 0:
+ * no line): reads path.newton when it matches, else a note. */
+void tr_engine_i_solver_state_open(tr_engine *e, const char *path, int named, uint64_t hash);
+void tr_engine_i_solver_state_free(tr_engine *e);
+/* engine.c: the solver's curve (at thickness 1) as a checkpoint at
+ * e->ckpt_path, its edge targets and gaps its own; a failure is counted
+ * (tr_engine_checkpoint_failures). */
+int tr_engine_i_solver_checkpoint(tr_engine *e, const tr_curve *best, tr_error *err);
+
 /* Keeps e->curve.x as the level's presettle_x. */
 int tr_engine_i_keep_presettle(tr_engine *e, tr_error *err);
 /* Opens e->be on c: the device, or the reference for a coarse level. */

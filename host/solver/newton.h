@@ -182,6 +182,10 @@ int tr_newton_state_write(const char *path, const tr_newton_state *s, tr_error *
  * is not one, or is cut short, is an error naming the file and the byte,
  * and leaves s empty. */
 int tr_newton_state_read(const char *path, tr_newton_state *s, tr_error *err);
+/* 1 when path is a file that begins as tr_newton_state_write's do (its
+ * magic line), else 0 (absent, unreadable, or another file): what a caller
+ * that writes states beside its own files checks before writing over one. */
+int tr_newton_state_is_file(const char *path);
 
 typedef struct tr_newton_params {
     double time_limit; /* seconds (0: none) */

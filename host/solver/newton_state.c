@@ -280,6 +280,17 @@ int tr_newton_state_write(const char *path, const tr_newton_state *s, tr_error *
     return rc;
 }
 
+int tr_newton_state_is_file(const char *path)
+{
+    char magic[sizeof STATE_MAGIC - 1];
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return 0;
+    size_t got = fread(magic, 1, sizeof magic, f);
+    fclose(f);
+    return got == sizeof magic && !memcmp(magic, STATE_MAGIC, sizeof magic);
+}
+
 typedef struct reader {
     const unsigned char *p;
     size_t n, at;

@@ -139,6 +139,16 @@ typedef struct road_result {
     int tries, best_try; /* roads run, the one kept (0-based) */
 } road_result;
 
+/* What became of the solver's state beside the checkpoint (engine.h):
+ * taken at resume, ignored, not kept; one line when there is news. */
+static void say_solver_state(const tt_opts *o, tr_engine *e)
+{
+    char line[640];
+    int kind = tr_engine_solver_state_take_note(e, line, sizeof line);
+    if (kind >= 0)
+        tt_note(o, kind ? TR_TIGHTEN_WARNING : TR_TIGHTEN_INFO, "%s", line);
+}
+
 /* Opens the engine on the road's start (the call's start or the
  * checkpoint to resume) and checks the outputs before the run. *stage says
  * where a failure came. */
@@ -200,6 +210,7 @@ static int open_start(const tt_opts *o, tr_engine **e, tr_tighten_stage *stage, 
     }
     if (rc)
         return rc;
+    say_solver_state(o, *e);
     /* A run of hours must not end in "cannot write": the output's format
      * and both paths are checked before it starts. */
     *stage = TR_TIGHTEN_AT_CHECK;
@@ -297,7 +308,9 @@ static int one_road(const tt_opts *o, tr_engine **e, road_result *r, tr_tighten_
         return rc;
     *r = (road_result){0};
     *stage = TR_TIGHTEN_AT_RUN;
-    if ((rc = run(o, *e, &r->why, err))) {
+    rc = run(o, *e, &r->why, err);
+    say_solver_state(o, *e);
+    if (rc) {
         tr_engine_destroy(*e);
         return rc;
     }

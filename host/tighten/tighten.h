@@ -15,7 +15,9 @@
  * caller's interrupt is a flag it raises (opt->cancel), polled where the
  * engine polls its stop flag; the run then ends at its next step with its
  * best state kept. It writes only the checkpoint (opt->checkpoint, part of
- * the run's safety); the caller writes the output. */
+ * the run's safety, and during a second-order solve the solver's state
+ * beside it, CHECKPOINT.newton: engine/solver_state.c); the caller writes
+ * the output. */
 #ifndef TR_TIGHTEN_H
 #define TR_TIGHTEN_H
 
@@ -79,7 +81,8 @@ typedef struct tr_tighten_options {
     double target;      /* stop at this ropelength estimate (0, default: off) */
     long steps;         /* accepted steps in all (0, default: off) */
     double time_limit;  /* seconds of wall clock for the whole call (0, default: none) */
-    const char *checkpoint; /* written at the start, every checkpoint_every s, at the end (NULL: none) */
+    const char *checkpoint; /* written at the start, every checkpoint_every s, at the end (NULL: none);
+                             * a solve's state beside it (checkpoint.newton), which resume takes up */
     double checkpoint_every; /* default 300 */
     int polish;     /* the polish stage at every level (default 1) */
     int newton;     /* the second-order solver: 1 also in the polish's place at the finest
