@@ -263,7 +263,7 @@ int tr_cli_tighten_parse(int argc, char **argv, tr_cli_tighten *t)
  * was interrupted or did not reach a requested ropelength, residual or N. */
 static int final_status(const tr_cli_tighten *t, const tr_tighten_result *r)
 {
-    const char *ckpt = t->opt.checkpoint;
+    const char *ckpt = r->checkpointed ? t->opt.checkpoint : NULL;
     if (r->checkpoint_failures > 0)
         fprintf(stderr, "tightrope tighten: warning: %d checkpoint%s could not be written (the run went on): %s\n",
                 r->checkpoint_failures, r->checkpoint_failures > 1 ? "s" : "", r->checkpoint_why);

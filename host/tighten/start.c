@@ -305,7 +305,10 @@ int tt_read_start(const tt_opts *o, tr_curve *c, tr_error *err)
 #define AUTO_N_PER_LENGTH 48.0
 long tt_auto_refine_n(const tt_opts *o, double scout_ropelength)
 {
-    long n = isfinite(scout_ropelength) ? lround(AUTO_N_PER_LENGTH * scout_ropelength) : o->refine_to;
+    /* refine_to counts the vertices of each component: a link's length is
+     * shared among its components */
+    int ncomp = o->start && o->start->ncomp > 0 ? o->start->ncomp : 1;
+    long n = isfinite(scout_ropelength) ? lround(AUTO_N_PER_LENGTH * scout_ropelength / ncomp) : o->refine_to;
     /* never below the provisional count, and a refinement (twice the coarse) */
     if (n < o->refine_to)
         n = o->refine_to;

@@ -495,7 +495,7 @@ int tr_tighten(const tr_curve *start, const tr_tighten_options *opt, tr_tighten_
      * the rest (scouting). */
     tr_engine *e = NULL;
     road_result r = {0};
-    int have = 0, scouting = o.tries > 1 && tt_multi_level(&o);
+    int have = 0, scouting = o.tries > 1 && tt_multi_level(&o), kept_ckpt = 0;
     o.roads = (int)o.tries + scouting;
     double t0 = tr_clock_seconds();
     const double budget = scouting ? TT_SCOUT_SHARE * o.time_limit : o.time_limit; /* the scouts' */
@@ -565,6 +565,14 @@ int tr_tighten(const tr_curve *start, const tr_tighten_options *opt, tr_tighten_
          * refinement's time (the first has no road to fall back on) */
         if (scouting && !refining && t > 0 && o.time_limit > 0)
             ot.bound_at = fmin(o.bound_at, t0 + budget);
+        /* scouts write no checkpoint: one would carry a scout's goals (its
+         * coarse level, its share of the time), and --resume would go on as
+         * that scout and never refine (a stopped `tighten --time-limit 60
+         * --checkpoint` of 3_1 made by name resumed to N 96, "solved"); the
+         * refinement checkpoints with the call's goals, and a run stopped
+         * while scouting starts again */
+        if (scouting && !refining)
+            ot.ckpt = NULL;
         /* a road that jams early leaves its time to the roads after it */
         if (o.time_limit > 0)
             ot.time_limit = refining ? fmax(o.time_limit - (tr_clock_seconds() - t0), 0.05 * o.time_limit)
@@ -604,6 +612,9 @@ int tr_tighten(const tr_curve *start, const tr_tighten_options *opt, tr_tighten_
                         tr_deadline_passed(&bound) == 2 ? "stopped by a signal" : "stopped by the time limit");
             else if (refining)
                 tt_note(&o, TR_TIGHTEN_WARNING, "the refinement failed; the shortest scout is written");
+            else if (rc == TR_EINTERRUPTED && scouting && o.time_limit > 0 && tr_clock_seconds() >= t0 + budget)
+                tt_note(&o, TR_TIGHTEN_INFO, "road %ld of %ld stopped: the scouts' share of the time is spent", t + 1,
+                        o.tries);
             else
                 tt_note(&o, TR_TIGHTEN_WARNING, "road %ld of %ld skipped", t + 1, o.tries);
             continue;
@@ -630,6 +641,7 @@ int tr_tighten(const tr_curve *start, const tr_tighten_options *opt, tr_tighten_
                 tr_engine_destroy(e);
             }
             e = et;
+            kept_ckpt = ot.ckpt != NULL;
             r = rt;
             r.best_try = best_try;
             have = 1;
@@ -643,6 +655,10 @@ int tr_tighten(const tr_curve *start, const tr_tighten_options *opt, tr_tighten_
     if (tt_cancelled(&o))
         r.why = TR_STOP_SIGNAL;
     fill_result(&o, e, &r, res);
+    res->checkpointed = kept_ckpt;
+    if (o.ckpt && !kept_ckpt && have)
+        tt_note(&o, TR_TIGHTEN_INFO, "no checkpoint: the run %s while its scouts ran, and scouts write none "
+                "(the command again starts afresh)", res->interrupted ? "was interrupted" : "ended");
     tr_engine_destroy(e);
     return check_type(start, &o, res, err);
 }

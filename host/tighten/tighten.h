@@ -162,6 +162,7 @@ typedef struct tr_tighten_result {
     char device[128];
     double shift[3];     /* the start was moved by -shift (centred), 0 if not */
     int checkpoint_failures;
+    int checkpointed; /* the kept road wrote checkpoints (scouts write none: tighten.c) */
     char checkpoint_why[256];
     tr_tighten_stage failed_at; /* when tr_tighten fails */
     /* the knot type kept (knot_type.h: the result's invariants equal the

@@ -19,6 +19,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "curve/curve_io.h"
 #include "solver/newton.h"
 #include "tighten/tighten_internal.h"
 #include "util/clock.h"
@@ -115,6 +116,14 @@ int tt_tighten_vertex(const tt_opts *o, tr_tighten_result *res, tr_error *err)
     int rc = tt_read_start(o, &c, err);
     if (rc)
         return rc;
+    /* a solve of minutes must not end in "cannot write": the output's
+     * format and folder are checked first, as the engine's route does */
+    res->failed_at = TR_TIGHTEN_AT_CHECK;
+    if (o->out && (rc = tr_curve_check_output(o->out, TR_FORMAT_AUTO, &c, err))) {
+        tr_curve_free(&c);
+        return rc;
+    }
+    res->failed_at = TR_TIGHTEN_AT_START;
     tt_note(o, TR_TIGHTEN_INFO, "contacts vertex: the second-order solver in SP-FEM's model (%zu vertices); the "
             "first-order engine, polish and Rawdon's KKT certificate do not apply", c.nv);
     tr_newton_params np;
