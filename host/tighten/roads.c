@@ -228,6 +228,8 @@ int tt_shuffle_start(const tt_opts *o, tr_curve *c, tr_error *err)
     const shuffle_recipe *sr = o->compacted ? &COMPACT_RECIPE : &SHUFFLE_RECIPES[(size_t)o->shuffle_index % nrecipes];
     tt_scale_curve(&r, sr->inflate / t.thickness);
     tr_deadline bound = tt_bound(o);
+    if (o->compacted && o->compact_until > 0 && (bound.at == 0 || o->compact_until < bound.at))
+        bound.at = o->compact_until;
     rc = tr_curve_shuffle(&r, sr->moves, 1.0, 0.0, seed, &bound, NULL, err);
     if (!rc)
         rc = tr_curve_shuffle(&r, sr->anneal, 1.0, sr->ratchet, seed + 7, &bound, NULL, err);

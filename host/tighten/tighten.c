@@ -577,6 +577,11 @@ int tr_tighten(const tr_curve *start, const tr_tighten_options *opt, tr_tighten_
         if (o.time_limit > 0)
             ot.time_limit = refining ? fmax(o.time_limit - (tr_clock_seconds() - t0), 0.05 * o.time_limit)
                                      : fmax(budget - (tr_clock_seconds() - t0), 0.05 * budget) / (double)(o.tries - t);
+        /* the first scout's compaction has half its share: it is the one
+         * road the scouts' share does not bound, and under a sanitizer
+         * 10^5 moves took all of a 50 s limit, leaving no time to tighten */
+        if (ot.compacted && o.time_limit > 0)
+            ot.compact_until = tr_clock_seconds() + 0.5 * ot.time_limit;
         if (refining)
             tt_note(&o, TR_TIGHTEN_INFO, "the shortest scout (road %d, N %zu) %s to %ld vertices", r.best_try + 1,
                     r.fin.nv, resampled ? "resampled" : "refined", o.refine_to);

@@ -29,6 +29,9 @@ typedef struct tt_opts {
     /* time_limit as a clock time (tr_clock_seconds; 0: none): the hard
      * bound of the whole call, which the roads' shares divide */
     double bound_at;
+    /* the compaction of a compacted road stops here too (0: none), and
+     * goes on with what it reached (roads.c) */
+    double compact_until;
     int residual_given; /* the default residual is a stopping rule, not a goal */
     int refine_given;   /* refine_to given (or taken from a checkpoint): a goal */
     /* subtracted from the start's coordinates (tt_start_shift): a knot far
