@@ -508,8 +508,10 @@ int tr_tighten(const tr_curve *start, const tr_tighten_options *opt, tr_tighten_
         /* the scouts' share is a bound too: a road's setup (a shuffle, a
          * settle) is not in its engine's time, and under load the scouts
          * once took all of T, leaving the refinement none (9_40 made by
-         * name, T = 300 at load 7: road 9 of 10 stopped by the limit) */
-        if (scouting && o.time_limit > 0 && t > 0 && t < o.tries && have && tr_clock_seconds() - t0 >= budget) {
+         * name, T = 300 at load 7: road 9 of 10 stopped by the limit);
+         * on the automatic roads only: roads given by --tries all run, as
+         * they always did (each with its share's floor) */
+        if (scouting && o.refine_auto && o.time_limit > 0 && t > 0 && t < o.tries && have && tr_clock_seconds() - t0 >= budget) {
             tt_note(&o, TR_TIGHTEN_INFO, "the scouts' share of the time is spent after %ld of %ld roads", t, o.tries);
             scouts_ran = t;
             t = o.tries;
@@ -563,7 +565,7 @@ int tr_tighten(const tr_curve *start, const tr_tighten_options *opt, tr_tighten_
         /* a scout after the first is bounded by the scouts' share too, its
          * shuffle and settle included, so that no scout takes the
          * refinement's time (the first has no road to fall back on) */
-        if (scouting && !refining && t > 0 && o.time_limit > 0)
+        if (scouting && o.refine_auto && !refining && t > 0 && o.time_limit > 0)
             ot.bound_at = fmin(o.bound_at, t0 + budget);
         /* scouts write no checkpoint: one would carry a scout's goals (its
          * coarse level, its share of the time), and --resume would go on as
