@@ -191,7 +191,10 @@ def test_progress_exception_stops_the_run() -> None:
 
 def test_ctrl_c_keeps_the_best_state() -> None:
     """SIGINT during a run raises KeyboardInterrupt within a second; the best state comes with it."""
-    start = tightrope.make_knot("trefoil", n=400)
+    # N = 800 (tightened from 200 and refined): a run of ten seconds or more, so
+    # that the signal at 2 s lands inside it on an idle machine too (at
+    # N = 400 the whole run could end before it)
+    start = tightrope.make_knot("trefoil", n=800)
     l0 = tightrope.measure(start)["ropelength"]
     sent = []
 
