@@ -29,13 +29,13 @@
  * (struts at 2, MinRad rows over), and OUT is it restored and rescaled to
  * thickness 1 where the oracle measures that shorter, else as scaled. */
 #include <math.h>
-#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 
 #include <string.h>
 
 #include "backend/backend.h"
+#include "cli/cli_interrupt.h"
 #include "curve/curve_io.h"
 #include "curve/generate.h"
 #include "engine/refine_lowpass.h"
@@ -47,16 +47,6 @@
 typedef struct run_files {
     char ckpt[4096], state[4096];
 } run_files;
-
-/* raised by SIGINT, SIGTERM, SIGHUP with --state: the solver stops at its
- * next step and hands its state over */
-static volatile sig_atomic_t stop_asked = 0;
-
-static void on_stop(int sig)
-{
-    (void)sig;
-    stop_asked = 1;
-}
 
 static double l0_min(const tr_newton_state *s)
 {
@@ -222,14 +212,10 @@ int main(int argc, char **argv)
     if (keep_state) {
         p.state_every = argc > 5 ? atof(argv[5]) : 300.0;
         p.state = write_state;
-        struct sigaction sa;
-        memset(&sa, 0, sizeof sa);
-        sa.sa_handler = on_stop;
-        sigemptyset(&sa.sa_mask);
-        sigaction(SIGINT, &sa, NULL);
-        sigaction(SIGTERM, &sa, NULL);
-        sigaction(SIGHUP, &sa, NULL);
-        p.stop = &stop_asked;
+        /* SIGINT, SIGTERM, SIGHUP: the solver stops at its next step and
+         * hands its state over (the commands' flag, cli_interrupt.h) */
+        tr_cli_catch_interrupts();
+        p.stop = tr_cli_interrupt_flag();
     }
     if (resume) {
         /* the multipliers by the warm start instead of the state's, for
@@ -268,7 +254,7 @@ int main(int argc, char **argv)
            st.hess_triplets, 24e-6 * (double)st.hess_triplets, st.hess_entries, 20e-6 * (double)st.hess_entries,
            st.factor_entries, 8e-6 * (double)st.factor_entries);
     tr_newton_state_free(&from);
-    if (stop_asked) {
+    if (tr_cli_interrupted()) {
         fprintf(stderr, "newton_run: stopped by a signal; %s not written, the state is in %s (resume with --resume)\n",
                 argv[2], state_path);
         return 1;

@@ -24,19 +24,11 @@
 #include "oracle/thickness.h"
 #include "solver/newton.h"
 #include "testlib.h"
+#include "testlib_oracle.h"
 
 #ifndef M_PI
 #define M_PI 3.14159265358979323846
 #endif
-
-static double ropelength(const tr_curve *c)
-{
-    tr_thickness th;
-    tr_error err = {0};
-    if (tr_thickness_measure(c, NULL, &th, NULL, &err))
-        return NAN;
-    return th.ropelength;
-}
 
 /* Runs the solver with its defaults (one minute at most); the stop's name */
 static const char *solve(tr_curve *c, tr_newton_stats *st)
@@ -57,10 +49,10 @@ static void test_unknot(size_t n, double radius, int max_steps)
     /* a wobble, so the start is not already the answer's shape */
     for (size_t i = 0; i < n; i++)
         c.x[3 * i + 2] += 0.05 * radius * sin(3.0 * 2.0 * M_PI * (double)i / (double)n);
-    double before = ropelength(&c);
+    double before = tr_test_ropelength(&c);
     tr_newton_stats st;
     const char *how = solve(&c, &st);
-    double want = 2.0 * (double)n * tan(M_PI / (double)n), got = ropelength(&c);
+    double want = 2.0 * (double)n * tan(M_PI / (double)n), got = tr_test_ropelength(&c);
     printf("unknot n=%zu: %.12f -> %.12f (closed form %.12f), %d steps, %d updates, %s\n", n, before, got, want,
            st.iters, st.outer, how);
     CHECK(st.accepted);
@@ -94,10 +86,10 @@ static void test_hopf(size_t n)
         q[0] = 3.0 + ct * qx - sn * qz;
         q[2] = sn * qx + ct * qz;
     }
-    double before = ropelength(&c);
+    double before = tr_test_ropelength(&c);
     tr_newton_stats st;
     const char *how = solve(&c, &st);
-    double got = ropelength(&c);
+    double got = tr_test_ropelength(&c);
     double want = 8.0 * (double)n * tan(M_PI / (double)n);
     printf("hopf n=%zu: %.12f -> %.12f (8 n tan(pi / n) = %.12f, 8 pi = %.12f), %d steps, %s\n", n, before, got,
            want, 8.0 * M_PI, st.iters, how);

@@ -22,15 +22,7 @@
 #include "oracle/thickness.h"
 #include "solver/newton.h"
 #include "testlib.h"
-
-static double ropelength(const tr_curve *c)
-{
-    tr_thickness th;
-    tr_error err = {0};
-    if (tr_thickness_measure(c, NULL, &th, NULL, &err))
-        return NAN;
-    return th.ropelength;
-}
+#include "testlib_oracle.h"
 
 /* the states a run hands over: each written to path, and how many */
 typedef struct saved {
@@ -71,7 +63,7 @@ static double solve(const tr_curve *start, int max_iter, const tr_newton_state *
     }
     double rl = NAN;
     if (tr_newton(&c, &p, st, &err) == TR_OK && st->accepted)
-        rl = ropelength(&c);
+        rl = tr_test_ropelength(&c);
     else
         printf("  solve: %s\n", err.msg[0] ? err.msg : (st->why_rejected ? st->why_rejected : "not accepted"));
     tr_curve_free(&c);
@@ -134,7 +126,7 @@ static void test_resume(void)
     tr_curve_free(&in);
 
     tr_newton_stats full;
-    double rl_full = ropelength(&c);
+    double rl_full = tr_test_ropelength(&c);
     double rl_end = solve(&c, 5000, NULL, NULL, &full);
     printf("uninterrupted: %.12f -> %.12f, %d steps, %d updates, %s\n", rl_full, rl_end, full.iters, full.outer,
            full.converged ? "converged" : full.settled ? "settled" : "stopped");
