@@ -236,6 +236,25 @@ static void put_sizes(buf *b, const size_t *v, size_t n)
         put_u64(b, (uint64_t)v[i]);
 }
 
+/* The state's scalars in the file's order, as one list for the writer and
+ * the reader (a field added to one and not the other would shift every
+ * field after it) */
+#define STATE_DOUBLES 14
+#define STATE_INTS 10
+typedef struct scalar_fields {
+    double *d[STATE_DOUBLES];
+    int *i[STATE_INTS];
+} scalar_fields;
+
+static scalar_fields scalars(tr_newton_state *s)
+{
+    return (scalar_fields){
+        .d = {&s->mu, &s->band, &s->max_bend, &s->guard, &s->viol_tol, &s->warm_residual, &s->omega, &s->prev_viol,
+              &s->lm, &s->prev_len, &s->best_rl, &s->best_viol_edge, &s->best_thickness, &s->seconds},
+        .i = {&s->bend_cap, &s->iter, &s->outer, &s->inner, &s->settled, &s->last_full, &s->moved, &s->stuck,
+              &s->inner_done, &s->best_restored}};
+}
+
 int tr_newton_state_write(const char *path, const tr_newton_state *s, tr_error *err)
 {
     buf b = {0};
@@ -248,13 +267,12 @@ int tr_newton_state_write(const char *path, const tr_newton_state *s, tr_error *
     put_i32(&b, s->nfixed);
     put_u64(&b, s->nstrut);
     put_i32(&b, s->has_best);
-    const double sc[] = {s->mu,       s->band,     s->max_bend, s->guard,   s->viol_tol,
-                         s->warm_residual, s->omega, s->prev_viol, s->lm,   s->prev_len,
-                         s->best_rl,  s->best_viol_edge, s->best_thickness, s->seconds};
-    put(&b, sc, sizeof sc);
-    const int32_t si[] = {s->bend_cap, s->iter,  s->outer,      s->inner, s->settled,      s->last_full,
-                          s->moved,    s->stuck, s->inner_done, s->best_restored};
-    put(&b, si, sizeof si);
+    /* read through the list's pointers only */
+    scalar_fields f = scalars((tr_newton_state *)s);
+    for (int k = 0; k < STATE_DOUBLES; k++)
+        put(&b, f.d[k], sizeof(double));
+    for (int k = 0; k < STATE_INTS; k++)
+        put_i32(&b, (int32_t)*f.i[k]);
     put_u64(&b, (uint64_t)s->steps);
     put_sizes(&b, s->fixed, 6);
     put_sizes(&b, s->comp_nv, (size_t)s->ncomp);
@@ -417,7 +435,7 @@ int tr_newton_state_read(const char *path, tr_newton_state *s, tr_error *err)
     }
     {
         uint64_t ny = 3 * nv + (uint64_t)nc;
-        uint64_t need = (uint64_t)r.at + 14 * 8 + 10 * 4 + 8 + 6 * 8 + (uint64_t)nc * 24 + ny * 8 + 5 * nv * 8 +
+        uint64_t need = (uint64_t)r.at + STATE_DOUBLES * 8 + STATE_INTS * 4 + 8 + 6 * 8 + (uint64_t)nc * 24 + ny * 8 + 5 * nv * 8 +
                         nstrut * 24 + (has_best ? ny * 8 : 0) + 4;
         if ((uint64_t)r.n < need) {
             rc = tr_fail(err, TR_EPARSE, "%s: cut short at byte %zu (its sizes, %llu vertices and %llu strut rows, "
@@ -435,34 +453,11 @@ int tr_newton_state_read(const char *path, tr_newton_state *s, tr_error *err)
     s->nfixed = nfixed;
     s->nstrut = (size_t)nstrut;
     s->has_best = has_best;
-    double sc[14];
-    get(&r, sc, sizeof sc);
-    s->mu = sc[0];
-    s->band = sc[1];
-    s->max_bend = sc[2];
-    s->guard = sc[3];
-    s->viol_tol = sc[4];
-    s->warm_residual = sc[5];
-    s->omega = sc[6];
-    s->prev_viol = sc[7];
-    s->lm = sc[8];
-    s->prev_len = sc[9];
-    s->best_rl = sc[10];
-    s->best_viol_edge = sc[11];
-    s->best_thickness = sc[12];
-    s->seconds = sc[13];
-    int32_t si[10];
-    get(&r, si, sizeof si);
-    s->bend_cap = si[0];
-    s->iter = si[1];
-    s->outer = si[2];
-    s->inner = si[3];
-    s->settled = si[4];
-    s->last_full = si[5];
-    s->moved = si[6];
-    s->stuck = si[7];
-    s->inner_done = si[8];
-    s->best_restored = si[9];
+    scalar_fields sf = scalars(s);
+    for (int k = 0; k < STATE_DOUBLES; k++)
+        get(&r, sf.d[k], sizeof(double));
+    for (int k = 0; k < STATE_INTS; k++)
+        *sf.i[k] = get_i32(&r);
     s->steps = (long)get_u64(&r);
     size_t nvv = (size_t)nv, ny = 3 * nvv + (size_t)nc;
     get_sizes(&r, s->fixed, 6);
