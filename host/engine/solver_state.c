@@ -119,7 +119,7 @@ static int give_state(void *user, const tr_newton_state *s, tr_error *err)
     }
     /* no checkpoint names a state while it is being replaced */
     e->ss.live = 0;
-    uint64_t h;
+    uint64_t h = 0;
     int rc = tr_newton_state_write(path, s, err);
     if (rc == TR_OK && !file_hash(path, &h))
         rc = tr_fail(err, TR_EIO, "cannot read back %s", path);

@@ -146,7 +146,7 @@ static int load_text(tr_knot_table *t, const char *text, unsigned long size, int
             header = 1; /* the column names */
             continue;
         }
-        char *f[MAX_FIELDS];
+        char *f[MAX_FIELDS] = {0}; /* all set up to nf; the rest NULL, never read */
         int nf = 0;
         for (char *q = p;;) {
             if (nf == MAX_FIELDS) {
