@@ -11,3 +11,9 @@ foreach(_case kill_resume sigterm lock manifest_errors folder_compare jobs merge
 endforeach()
 # parallel runs two tightenings at once: alone, so that ctest -j2 does not add a third
 set_tests_properties(cli_batch_parallel PROPERTIES RUN_SERIAL TRUE)
+# scripts/gallery.py: a batch's results as a release folder, its page opened in a headless
+# browser (tests/scripts/gallery_cli.sh)
+add_test(NAME cli_batch_gallery
+  COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/scripts/gallery_cli.sh $<TARGET_FILE:tightrope> ${CMAKE_SOURCE_DIR}
+          ${CMAKE_CURRENT_BINARY_DIR}/batch_gallery)
+set_tests_properties(cli_batch_gallery PROPERTIES ENVIRONMENT "${TR_TEST_ENV}" LABELS cli)
