@@ -136,6 +136,7 @@ typedef struct road_result {
     int certified; /* kr holds the KKT certificate of fin */
     int ckpt_failures; /* checkpoints the run could not write */
     const char *ckpt_why;
+    char ckpt_why_buf[256]; /* ckpt_why of a failure after the roads */
     int tries, best_try; /* roads run, the one kept (0-based) */
 } road_result;
 
@@ -501,6 +502,7 @@ int tr_tighten(const tr_curve *start, const tr_tighten_options *opt, tr_tighten_
     const double budget = scouting ? TT_SCOUT_SHARE * o.time_limit : o.time_limit; /* the scouts' */
     tr_deadline bound = tt_bound(&o);
     long scouts_ran = o.tries; /* fewer when the scouts' share ran out */
+    long kept_t = -1, last_ckpt_t = -1; /* the kept road, the last to write the checkpoint */
     /* once a road has a result, no road starts past the bound: each has at
      * least its share's floor, and a thousand roads of a second's floor
      * were once a minute past a three-second limit */
@@ -601,6 +603,8 @@ int tr_tighten(const tr_curve *start, const tr_tighten_options *opt, tr_tighten_
         tr_tighten_stage stage;
         tr_error road_err;
         rc = one_road(&ot, &et, &rt, &stage, have ? &road_err : err);
+        if (ot.ckpt)
+            last_ckpt_t = t;
         if (resampled)
             tr_curve_free(&scout_at_n);
         if (rc) {
@@ -648,6 +652,7 @@ int tr_tighten(const tr_curve *start, const tr_tighten_options *opt, tr_tighten_
                 tr_engine_destroy(e);
             }
             e = et;
+            kept_t = t;
             kept_ckpt = ot.ckpt != NULL;
             r = rt;
             r.best_try = best_try;
@@ -657,6 +662,20 @@ int tr_tighten(const tr_curve *start, const tr_tighten_options *opt, tr_tighten_
             tr_engine_destroy(et);
         }
         r.tries = (int)(t < o.tries ? t + 1 : scouts_ran);
+    }
+    /* the roads share the checkpoint's path and the last one's end wrote
+     * it: where another road is kept, its state goes there, so that
+     * --resume goes on from the written curve's road (a trefoil of three
+     * roads once resumed from road 3's state to 32.993 where the run had
+     * written road 1's 32.8044). A checkpoint that cannot be written costs
+     * the checkpoint only, as in the engine (counted, said). */
+    if (have && kept_ckpt && last_ckpt_t != kept_t) {
+        tr_error ce = {0};
+        if (tr_engine_checkpoint_write(e, o.ckpt, &ce)) {
+            r.ckpt_failures++;
+            snprintf(r.ckpt_why_buf, sizeof r.ckpt_why_buf, "%.255s", ce.msg);
+            r.ckpt_why = r.ckpt_why_buf;
+        }
     }
     /* an interrupted series is an interrupted run, whichever road is kept */
     if (tt_cancelled(&o))

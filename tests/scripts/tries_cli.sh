@@ -66,6 +66,20 @@ for bad in 0 1001 x; do
   "$tr" tighten "$work/s.vect" -o "$work/x.vect" --tries $bad 2>"$work/bad.err" && fail "--tries $bad accepted"
   grep -q "bad --tries" "$work/bad.err" || fail "--tries $bad: $(cat "$work/bad.err")"
 done
+# --checkpoint: the roads share the path and the last road's end wrote it; the checkpoint left
+# is the kept road's, so --resume goes on from the written curve (it once went on from road 3's
+# state, 33.04 where the run wrote road 1's 32.86: the trefoil of 120 vertices, 100 steps a road,
+# road 1 the shortest)
+"$tr" make torus 2 3 --n 120 -o "$work/c.vect" >/dev/null || fail "make 120"
+"$tr" tighten "$work/c.vect" -o "$work/c.out.vect" --tries 3 --steps 100 --checkpoint "$work/c.ckpt" --no-polish \
+  --no-kkt --device reference >/dev/null 2>"$work/c.err" || fail "tighten --checkpoint: $(cat "$work/c.err")"
+grep -q '^# tries 3, seed 1: the shortest was road 1$' "$work/c.out.vect" || fail "road 1 is not the kept one here: nothing tested"
+"$tr" tighten --resume "$work/c.ckpt" -o "$work/c.res.vect" --no-kkt --device reference >/dev/null 2>&1 ||
+  fail "--resume of the roads' checkpoint"
+w=$("$tr" measure "$work/c.out.vect" | awk '$1 == "curve" { print $7 }')
+r=$("$tr" measure "$work/c.res.vect" | awk '$1 == "curve" { print $7 }')
+awk -v r="$r" -v w="$w" 'BEGIN { exit !(r <= w * (1 + 1e-12)) }' ||
+  fail "resumed to $r from the checkpoint, the run wrote $w: the checkpoint is not the kept road's"
 "$tr" tighten --resume "$work/none.ckpt" -o "$work/x.vect" --tries 2 2>"$work/res.err" && fail "--resume --tries accepted"
 grep -q -- "--tries starts several" "$work/res.err" || fail "--resume --tries: $(cat "$work/res.err")"
 exit 0
