@@ -503,6 +503,9 @@ int tr_tighten(const tr_curve *start, const tr_tighten_options *opt, tr_tighten_
     tr_deadline bound = tt_bound(&o);
     long scouts_ran = o.tries; /* fewer when the scouts' share ran out */
     long kept_t = -1, last_ckpt_t = -1; /* the kept road, the last to write the checkpoint */
+    /* the automatic roads' scouts end at their share of the time (0: no
+     * such bound; roads given by --tries all run, each with its share) */
+    const double scouts_end = scouting && o.refine_auto && o.time_limit > 0 ? t0 + budget : 0.0;
     /* once a road has a result, no road starts past the bound: each has at
      * least its share's floor, and a thousand roads of a second's floor
      * were once a minute past a three-second limit */
@@ -513,7 +516,7 @@ int tr_tighten(const tr_curve *start, const tr_tighten_options *opt, tr_tighten_
          * name, T = 300 at load 7: road 9 of 10 stopped by the limit);
          * on the automatic roads only: roads given by --tries all run, as
          * they always did (each with its share's floor) */
-        if (scouting && o.refine_auto && o.time_limit > 0 && t > 0 && t < o.tries && have && tr_clock_seconds() - t0 >= budget) {
+        if (scouts_end > 0 && t > 0 && t < o.tries && have && tr_clock_seconds() >= scouts_end) {
             tt_note(&o, TR_TIGHTEN_INFO, "the scouts' share of the time is spent after %ld of %ld roads", t, o.tries);
             scouts_ran = t;
             t = o.tries;
@@ -567,8 +570,8 @@ int tr_tighten(const tr_curve *start, const tr_tighten_options *opt, tr_tighten_
         /* a scout after the first is bounded by the scouts' share too, its
          * shuffle and settle included, so that no scout takes the
          * refinement's time (the first has no road to fall back on) */
-        if (scouting && o.refine_auto && !refining && t > 0 && o.time_limit > 0)
-            ot.bound_at = fmin(o.bound_at, t0 + budget);
+        if (scouts_end > 0 && !refining && t > 0)
+            ot.bound_at = fmin(o.bound_at, scouts_end);
         /* scouts write no checkpoint: one would carry a scout's goals (its
          * coarse level, its share of the time), and --resume would go on as
          * that scout and never refine (a stopped `tighten --time-limit 60
