@@ -136,15 +136,26 @@ int tr_type_check_of(const tr_curve *c, tr_type_check *tc, tr_error *err)
     tc->components = c->ncomp;
     if (c->ncomp == 1)
         return tr_knot_invariants_of(c, &tc->inv, err);
-    if (c->ncomp > 5)
-        return tr_fail(err, TR_EUNSUPPORTED, "%d components: the check takes at most 5", c->ncomp);
-    int lk[25];
+    if (c->ncomp > TR_TYPE_CHECK_MAX_COMPONENTS)
+        return tr_fail(err, TR_EUNSUPPORTED, "%d components: the check takes at most %d", c->ncomp,
+                       TR_TYPE_CHECK_MAX_COMPONENTS);
+    int lk[TR_TYPE_CHECK_MAX_COMPONENTS * TR_TYPE_CHECK_MAX_COMPONENTS];
     int rc = tr_linking_numbers(c, lk, err);
     if (rc)
         return rc;
     for (int i = 0; i < c->ncomp; i++)
         for (int j = i + 1; j < c->ncomp; j++)
             tc->linking[tc->npairs++] = lk[i * c->ncomp + j];
+    /* each component alone: a strand of one component passed through
+     * another strand of the same one changes no linking number, and may
+     * change that component's knot (a view of its vertices, no copy) */
+    for (int k = 0; k < c->ncomp; k++) {
+        size_t start[2] = {0, tr_comp_nv(c, k)};
+        unsigned char closed = c->closed[k];
+        tr_curve one = {.nv = start[1], .x = c->x + 3 * c->start[k], .ncomp = 1, .start = start, .closed = &closed};
+        if ((rc = tr_knot_invariants_of(&one, &tc->comp[k], err)))
+            return tr_fail_wrap(err, rc, "component %d", k);
+    }
     return 0;
 }
 
@@ -234,6 +245,10 @@ void tr_type_describe(const tr_type_check *tc, char *buf, size_t bufsize)
     size_t u = (size_t)snprintf(buf, bufsize, "%d components, linking numbers", tc->components);
     for (int k = 0; k < tc->npairs && u < bufsize; k++)
         u += (size_t)snprintf(buf + u, bufsize - u, " %d", tc->linking[k]);
+    if (u < bufsize)
+        u += (size_t)snprintf(buf + u, bufsize - u, ", components' determinants");
+    for (int k = 0; k < tc->components && u < bufsize; k++)
+        u += (size_t)snprintf(buf + u, bufsize - u, " %lld", tc->comp[k].alexander.determinant);
 }
 
 int tr_knot_start_named(const char *name, int want_link, size_t n, tr_curve *out, tr_error *err)

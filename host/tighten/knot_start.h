@@ -52,6 +52,8 @@ int tr_knot_start_braid_text(const char *text, size_t n, tr_curve *out, tr_error
 int tr_knot_start_pd_text(const char *text, size_t n, tr_curve *out, tr_error *err);
 
 /* What a curve's type came to, and whether it matches an entry's. */
+/* the most components the type check takes */
+#define TR_TYPE_CHECK_MAX_COMPONENTS 5
 typedef struct tr_type_check {
     int components;
     /* knots */
@@ -59,11 +61,15 @@ typedef struct tr_type_check {
     /* links: linking numbers of pairs (0,1), (0,2) ..., (1,2) ... */
     int npairs;
     int linking[TR_TABLE_MAX_PAIRS];
+    /* links: each component's own knot type, in the curve's order (the
+     * table lists none, so only a start and its result compare them) */
+    tr_knot_invariants comp[TR_TYPE_CHECK_MAX_COMPONENTS];
 } tr_type_check;
 
 /* The invariants of c: for one closed component the Alexander polynomial and
- * determinant of a generic projection; for several the component count and
- * the pairwise linking numbers. Errors are the topology layer's. */
+ * determinant of a generic projection; for several the component count, the
+ * pairwise linking numbers and each component's own invariants. Errors are
+ * the topology layer's. */
 int tr_type_check_of(const tr_curve *c, tr_type_check *tc, tr_error *err);
 
 /* 1 when tc matches entry e: a knot's Alexander polynomial (up to sign),

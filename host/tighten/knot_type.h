@@ -2,7 +2,7 @@
  * result's invariants against the start's, each computed from the curve's
  * own projection (knot_start.h tr_type_check_of). A knot: the Alexander
  * polynomial, the determinant and the signature; a link of closed
- * components: the linking numbers. A tightening is an isotopy, which keeps
+ * components: the linking numbers and each component's own three. A tightening is an isotopy, which keeps
  * the orientation, the components' order and the handedness (a mirror
  * image flips the signature's and the linking numbers' signs), so all are
  * compared exactly, where a name's check (tr_type_matches) allows a mirror

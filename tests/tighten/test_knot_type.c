@@ -4,7 +4,9 @@
  * sigma_1 sigma_2^-1 sigma_1 sigma_2^-1 the figure eight (-t^-1 + 3 - t,
  * determinant 5), a curve and its mirror image (z -> -z) differ in the
  * signature's sign, and the Hopf link's mirror image in its linking
- * number's; a rigid motion and a scaling keep everything. */
+ * number's; a rigid motion and a scaling keep everything. A split link of
+ * a circle and a trefoil is not one of two circles, though every linking
+ * number is 0 in both: the components' own types tell them apart. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -30,6 +32,49 @@ static void move(tr_curve *c)
         p[1] = 3.0 * (sn * x + cs * y) - 2.0;
         p[2] = 3.0 * p[2] + 1.0;
     }
+}
+
+/* a and b side by side, 60 apart along x: a split link of two components */
+static void split_link(const tr_curve *a, const tr_curve *b, tr_curve *out)
+{
+    tr_error err = {0};
+    size_t nv[2] = {a->nv, b->nv};
+    unsigned char closed[2] = {1, 1};
+    REQUIRE_OK(tr_curve_alloc(out, 2, nv, closed, &err));
+    memcpy(out->x, a->x, 3 * a->nv * sizeof *out->x);
+    for (size_t i = 0; i < b->nv; i++) {
+        out->x[3 * (a->nv + i)] = b->x[3 * i] + 60.0;
+        out->x[3 * (a->nv + i) + 1] = b->x[3 * i + 1];
+        out->x[3 * (a->nv + i) + 2] = b->x[3 * i + 2];
+    }
+}
+
+static void test_split_links(void)
+{
+    tr_error err = {0};
+    tr_curve circle = {0}, tref = {0}, two_circles = {0}, circle_tref = {0};
+    REQUIRE_OK(tr_make_circle(&circle, 7.0, 60, &err));
+    REQUIRE_OK(tr_make_torus(&tref, 2, 3, 120, &err));
+    split_link(&circle, &circle, &two_circles);
+    split_link(&circle, &tref, &circle_tref);
+    tt_knot_type *a = malloc(sizeof *a), *b = malloc(sizeof *b);
+    if (!a || !b) {
+        CHECK(a && b);
+        return;
+    }
+    tt_knot_type_of(&two_circles, a);
+    tt_knot_type_of(&circle_tref, b);
+    CHECK(a->known && b->known && a->tc.components == 2 && b->tc.components == 2);
+    CHECK(a->tc.linking[0] == 0 && b->tc.linking[0] == 0);
+    CHECK(a->tc.comp[1].alexander.determinant == 1 && b->tc.comp[1].alexander.determinant == 3);
+    CHECK(tt_knot_type_same(a, a));
+    CHECK(!tt_knot_type_same(a, b));
+    free(a);
+    free(b);
+    tr_curve_free(&circle);
+    tr_curve_free(&tref);
+    tr_curve_free(&two_circles);
+    tr_curve_free(&circle_tref);
 }
 
 static void test_types(void)
@@ -86,5 +131,6 @@ static void test_types(void)
 int main(void)
 {
     test_types();
+    test_split_links();
     return tr_test_finish("test_knot_type");
 }
