@@ -30,7 +30,10 @@ for k in 3_1 4_1; do
 done
 # the page in the browser: its DOM after load
 view() {
-  "$browser" --no-sandbox --disable-gpu --virtual-time-budget=10000 --dump-dom "file://$1/index.html" 2>/dev/null
+  # no sandbox (CI runs as root), /tmp instead of a container's small /dev/shm, its profile
+  # in the work folder, not in HOME
+  "$browser" --no-sandbox --disable-gpu --disable-dev-shm-usage --user-data-dir="$work/profile" \
+    --virtual-time-budget=10000 --dump-dom "file://$1/index.html" 2>/dev/null
 }
 dom=$(view "$work/rel")
 grep -q 'data-checked="1"' <<<"$dom" || fail "the page's load check did not run in $browser"
