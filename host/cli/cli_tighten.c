@@ -282,26 +282,6 @@ static int final_status(const tr_cli_tighten *t, const tr_tighten_result *r)
     return r->interrupted || r->goal_missed ? 1 : 0;
 }
 
-/* The report batch reads: what the summary prints, as numbers. */
-static void fill_report(const tr_tighten_result *r, tr_tighten_report *rep)
-{
-    *rep = (tr_tighten_report){.written = 1,
-                               .interrupted = r->interrupted,
-                               .stop = tr_stop_reason_name(r->stop),
-                               .n = r->th.vertices,
-                               .ropelength = r->ropelength,
-                               .thickness = r->thickness,
-                               .minrad = r->minrad,
-                               .dcsd = r->dcsd,
-                               .kkt_residual = r->kkt_residual,
-                               .elapsed = r->elapsed,
-                               .steps = r->steps,
-                               .tries = r->tries,
-                               .seed = r->seed,
-                               .road = r->road,
-                               .type_checked = r->type_checked};
-}
-
 /* The exit status of a failed tr_tighten (cli.h): a curve or an option the
  * user can fix is 2; a device that fails (kernel build, OpenCL call),
  * memory, or a run stopped by its time limit or a signal before it had a
@@ -380,7 +360,7 @@ int tr_cli_tighten_run(const tr_cli_tighten *t, int argc, char **argv, tr_tighte
         return 2;
     }
     if (rep)
-        fill_report(&r, rep);
+        tr_cli_tighten_report(&r, rep);
     else
         tr_cli_tighten_summary(t, &r);
     rc = final_status(t, &r);

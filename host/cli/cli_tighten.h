@@ -38,4 +38,7 @@ int tr_cli_tighten_write(const tr_cli_tighten *t, const tr_tighten_result *r, in
 /* Prints the summary of the run on stdout: JSON with --json, else lines. */
 void tr_cli_tighten_summary(const tr_cli_tighten *t, const tr_tighten_result *r);
 
+/* The report batch reads (cli.h): what the summary prints, as numbers. */
+void tr_cli_tighten_report(const tr_tighten_result *r, tr_tighten_report *rep);
+
 #endif

@@ -190,3 +190,23 @@ void tr_cli_tighten_summary(const tr_cli_tighten *t, const tr_tighten_result *r)
         printf("  newton %s: ropelength %.9f -> %.9f in %.1f s, %d steps\n", p->newton_ran > 0 ? "accepted" : "rejected",
                p->newton_before, p->newton_after, p->newton_seconds, p->newton_iters);
 }
+
+/* The report batch reads: what the summary prints, as numbers. */
+void tr_cli_tighten_report(const tr_tighten_result *r, tr_tighten_report *rep)
+{
+    *rep = (tr_tighten_report){.written = 1,
+                               .interrupted = r->interrupted,
+                               .stop = tr_stop_reason_name(r->stop),
+                               .n = r->th.vertices,
+                               .ropelength = r->ropelength,
+                               .thickness = r->thickness,
+                               .minrad = r->minrad,
+                               .dcsd = r->dcsd,
+                               .kkt_residual = r->kkt_residual,
+                               .elapsed = r->elapsed,
+                               .steps = r->steps,
+                               .tries = r->tries,
+                               .seed = r->seed,
+                               .road = r->road,
+                               .type_checked = r->type_checked};
+}
