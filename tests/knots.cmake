@@ -25,7 +25,7 @@ tr_knot_test(make_knot_12 0 DIR ${_kn_dir}/k12 ONLY "k.vect" OUT ${_kn_dir}/k12/
   MATCH "as 12n_888's"
   CMD ${_tr} make knot 12n888 -o ${_kn_dir}/k12/k.vect)
 tr_knot_test(make_link_name 0 DIR ${_kn_dir}/link ONLY "l.vect" OUT ${_kn_dir}/link/l.vect
-  MATCH "type checked: 3 components, linking numbers 0 0 0, components' determinants 1 1 1, as L6a4[{]0,0[}]'s"
+  MATCH "type checked: 3 components, linking numbers 0 0 0, components' determinants and signatures 1/0 1/0 1/0, as L6a4[{]0,0[}]'s"
   CMD ${_tr} make link L6a4 -o ${_kn_dir}/link/l.vect)
 # an unknown name: the nearest suggested
 tr_knot_test(make_knot_unknown 2 DIR ${_kn_dir}/unknown ONLY ""

@@ -148,13 +148,15 @@ int tr_type_check_of(const tr_curve *c, tr_type_check *tc, tr_error *err)
             tc->linking[tc->npairs++] = lk[i * c->ncomp + j];
     /* each component alone: a strand of one component passed through
      * another strand of the same one changes no linking number, and may
-     * change that component's knot (a view of its vertices, no copy) */
+     * change that component's knot (a view of its vertices, no copy). One
+     * that cannot be computed is left out, not the link's failure: the
+     * name's check (tr_type_matches) does not use them */
     for (int k = 0; k < c->ncomp; k++) {
         size_t start[2] = {0, tr_comp_nv(c, k)};
         unsigned char closed = c->closed[k];
         tr_curve one = {.nv = start[1], .x = c->x + 3 * c->start[k], .ncomp = 1, .start = start, .closed = &closed};
-        if ((rc = tr_knot_invariants_of(&one, &tc->comp[k], err)))
-            return tr_fail_wrap(err, rc, "component %d", k);
+        tr_error sub;
+        tc->comp_known[k] = tr_knot_invariants_of(&one, &tc->comp[k], &sub) == TR_OK;
     }
     return 0;
 }
@@ -245,10 +247,14 @@ void tr_type_describe(const tr_type_check *tc, char *buf, size_t bufsize)
     size_t u = (size_t)snprintf(buf, bufsize, "%d components, linking numbers", tc->components);
     for (int k = 0; k < tc->npairs && u < bufsize; k++)
         u += (size_t)snprintf(buf + u, bufsize - u, " %d", tc->linking[k]);
+    /* each component's determinant and signature ("?" where not known):
+     * a component mirrored keeps its determinant, not its signature */
     if (u < bufsize)
-        u += (size_t)snprintf(buf + u, bufsize - u, ", components' determinants");
+        u += (size_t)snprintf(buf + u, bufsize - u, ", components' determinants and signatures");
     for (int k = 0; k < tc->components && u < bufsize; k++)
-        u += (size_t)snprintf(buf + u, bufsize - u, " %lld", tc->comp[k].alexander.determinant);
+        u += tc->comp_known[k] ? (size_t)snprintf(buf + u, bufsize - u, " %lld/%d", tc->comp[k].alexander.determinant,
+                                                  tc->comp[k].signature)
+                               : (size_t)snprintf(buf + u, bufsize - u, " ?");
 }
 
 int tr_knot_start_named(const char *name, int want_link, size_t n, tr_curve *out, tr_error *err)

@@ -52,8 +52,10 @@ int tr_knot_start_braid_text(const char *text, size_t n, tr_curve *out, tr_error
 int tr_knot_start_pd_text(const char *text, size_t n, tr_curve *out, tr_error *err);
 
 /* What a curve's type came to, and whether it matches an entry's. */
-/* the most components the type check takes */
+/* the most components the type check takes (their pairs fill linking[]) */
 #define TR_TYPE_CHECK_MAX_COMPONENTS 5
+_Static_assert(TR_TABLE_MAX_PAIRS >= TR_TYPE_CHECK_MAX_COMPONENTS * (TR_TYPE_CHECK_MAX_COMPONENTS - 1) / 2,
+               "linking[] holds every pair of components");
 typedef struct tr_type_check {
     int components;
     /* knots */
@@ -62,8 +64,11 @@ typedef struct tr_type_check {
     int npairs;
     int linking[TR_TABLE_MAX_PAIRS];
     /* links: each component's own knot type, in the curve's order (the
-     * table lists none, so only a start and its result compare them) */
+     * table lists none, so only a start and its result compare them);
+     * comp_known[k] 0 where the component's diagram is beyond the exact
+     * arithmetic (the link's check then rests on the linking numbers) */
     tr_knot_invariants comp[TR_TYPE_CHECK_MAX_COMPONENTS];
+    int comp_known[TR_TYPE_CHECK_MAX_COMPONENTS];
 } tr_type_check;
 
 /* The invariants of c: for one closed component the Alexander polynomial and

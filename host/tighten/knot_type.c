@@ -31,10 +31,13 @@ int tt_knot_type_same(const tt_knot_type *a, const tt_knot_type *b)
     for (int i = 0; i < x->npairs; i++)
         if (x->linking[i] != y->linking[i])
             return 0;
+    /* a component whose type one of the two lacks is judged by the
+     * linking numbers alone */
     for (int k = 0; k < x->components; k++)
-        if (!tr_alexander_equal(&x->comp[k].alexander, &y->comp[k].alexander) ||
+        if (x->comp_known[k] && y->comp_known[k] &&
+            (!tr_alexander_equal(&x->comp[k].alexander, &y->comp[k].alexander) ||
             x->comp[k].alexander.determinant != y->comp[k].alexander.determinant ||
-            x->comp[k].signature != y->comp[k].signature)
+            x->comp[k].signature != y->comp[k].signature))
             return 0;
     return 1;
 }

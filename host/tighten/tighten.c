@@ -12,6 +12,7 @@
 
 #include "curve/curve_io.h"
 #include "tighten/knot_type.h"
+#include "tighten/road_checkpoint.h"
 #include "tighten/tighten_internal.h"
 #include "util/clock.h"
 #include "util/text_file.h"
@@ -503,6 +504,8 @@ int tr_tighten(const tr_curve *start, const tr_tighten_options *opt, tr_tighten_
     tr_deadline bound = tt_bound(&o);
     long scouts_ran = o.tries; /* fewer when the scouts' share ran out */
     long kept_t = -1, last_ckpt_t = -1; /* the kept road, the last to write the checkpoint */
+    tt_road_checkpoint kept_files = {0}; /* the checkpoint's files as the kept road's end left them */
+    tr_error files_err = {.msg = "its files could not be copied"};
     /* the automatic roads' scouts end at their share of the time (0: no
      * such bound; roads given by --tries all run, each with its share) */
     const double scouts_end = scouting && o.refine_auto && o.time_limit > 0 ? t0 + budget : 0.0;
@@ -657,6 +660,9 @@ int tr_tighten(const tr_curve *start, const tr_tighten_options *opt, tr_tighten_
             e = et;
             kept_t = t;
             kept_ckpt = ot.ckpt != NULL;
+            /* only a series can leave another road's files there */
+            if (kept_ckpt && o.tries + scouting > 1 && t + 1 < o.tries + scouting)
+                tt_road_checkpoint_take(o.ckpt, &kept_files, &files_err);
             r = rt;
             r.best_try = best_try;
             have = 1;
@@ -667,25 +673,30 @@ int tr_tighten(const tr_curve *start, const tr_tighten_options *opt, tr_tighten_
         r.tries = (int)(t < o.tries ? t + 1 : scouts_ran);
     }
     /* the roads share the checkpoint's path and the last one's end wrote
-     * it: where another road is kept, its state goes there, so that
-     * --resume goes on from the written curve's road (a trefoil of three
-     * roads once resumed from road 3's state to 32.993 where the run had
-     * written road 1's 32.8044). A checkpoint that cannot be written costs
-     * the checkpoint only, as in the engine (counted, said). */
+     * it: where another road is kept, the files as the kept road's end
+     * left them go back, so that --resume goes on from the written curve's
+     * road (a trefoil of three roads once resumed from road 3's state to
+     * 32.993 where the run had written road 1's 32.8044), with that road's
+     * clock and goals and its solver state. A copy that could not be taken
+     * or put back costs the checkpoint only, as in the engine (counted),
+     * and is said: the files are then another road's. */
     if (have && kept_ckpt && last_ckpt_t != kept_t) {
-        tr_error ce = {0};
-        if (tr_engine_checkpoint_write(e, o.ckpt, &ce)) {
+        if (!kept_files.taken || tt_road_checkpoint_put(o.ckpt, &kept_files, &files_err)) {
             r.ckpt_failures++;
-            snprintf(r.ckpt_why_buf, sizeof r.ckpt_why_buf, "%.255s", ce.msg);
+            snprintf(r.ckpt_why_buf, sizeof r.ckpt_why_buf, "%.255s", files_err.msg);
             r.ckpt_why = r.ckpt_why_buf;
+            tt_note(&o, TR_TIGHTEN_WARNING, "warning: %s is road %ld's checkpoint, not the written curve's (road "
+                    "%ld): %s; a --resume of it goes on from that road", o.ckpt, last_ckpt_t + 1, kept_t + 1,
+                    files_err.msg);
         }
     }
+    tt_road_checkpoint_free(&kept_files);
     /* an interrupted series is an interrupted run, whichever road is kept */
     if (tt_cancelled(&o))
         r.why = TR_STOP_SIGNAL;
     fill_result(&o, e, &r, res);
     res->checkpointed = kept_ckpt;
-    if (o.ckpt && !kept_ckpt && have)
+    if (o.ckpt && last_ckpt_t < 0 && have)
         tt_note(&o, TR_TIGHTEN_INFO, "no checkpoint: the run %s while its scouts ran, and scouts write none "
                 "(the command again starts afresh)", res->interrupted ? "was interrupted" : "ended");
     tr_engine_destroy(e);

@@ -60,6 +60,8 @@ static void test_split_links(void)
     tt_knot_type *a = malloc(sizeof *a), *b = malloc(sizeof *b);
     if (!a || !b) {
         CHECK(a && b);
+        free(a);
+        free(b);
         return;
     }
     tt_knot_type_of(&two_circles, a);
@@ -68,6 +70,16 @@ static void test_split_links(void)
     CHECK(a->tc.linking[0] == 0 && b->tc.linking[0] == 0);
     CHECK(a->tc.comp[1].alexander.determinant == 1 && b->tc.comp[1].alexander.determinant == 3);
     CHECK(tt_knot_type_same(a, a));
+    CHECK(!tt_knot_type_same(a, b));
+    /* the trefoil component mirrored: the same determinant and
+     * polynomial, the opposite signature */
+    tt_knot_type_of(&circle_tref, a);
+    for (size_t i = circle.nv; i < circle_tref.nv; i++)
+        circle_tref.x[3 * i + 2] = -circle_tref.x[3 * i + 2];
+    tt_knot_type_of(&circle_tref, b);
+    CHECK(a->known && b->known && a->tc.comp_known[1] && b->tc.comp_known[1]);
+    CHECK(b->tc.comp[1].alexander.determinant == 3 && b->tc.comp[1].signature == -a->tc.comp[1].signature);
+    CHECK(a->tc.comp[1].signature != 0);
     CHECK(!tt_knot_type_same(a, b));
     free(a);
     free(b);
