@@ -4,7 +4,8 @@
 # table has its row, its picture drawn by the browser (the page marks each <img> the browser
 # decoded; a picture removed is caught), its curve (xz, the batch's bytes) and the table copied;
 # refusals: a release folder that exists (left as it was), one inside the batch folder, a table
-# that is not a batch's (file:line), an interrupted run leaves no release.
+# that is not a batch's (file:line); an interrupted run (SIGINT, SIGTERM) or a failing one
+# leaves no release and no temporary folder.
 # Usage: gallery_cli.sh TIGHTROPE SOURCE_DIR WORK_DIR. Exit 0 pass, 1 fail.
 set -u
 tr=$1 src=$2 work=$3
@@ -55,6 +56,14 @@ grep -q "exists" "$work/e1" || fail "no message: $(cat "$work/e1")"
 mkdir "$work/bad" && printf 'knot\tN\nx\t1\n' >"$work/bad/table.tsv"
 "${gallery[@]}" "$work/bad" -o "$work/rel2" --tightrope "$tr" 2>"$work/e3" && fail "a table without ropelengths accepted"
 grep -q "table.tsv:2: no 'ropelength'" "$work/e3" || fail "no file:line message: $(cat "$work/e3")"
+# interrupted (SIGINT, SIGTERM) while it draws: no release, no temporary folder
+for sig in INT TERM; do
+  timeout -s $sig 1 "${gallery[@]}" "$work/batch" -o "$work/rel-$sig" --tightrope "$tr" 2>"$work/i-$sig.err" &&
+    fail "SIG$sig: the gallery finished within 1 s: nothing tested"
+  grep -q "interrupted; no release written" "$work/i-$sig.err" || fail "SIG$sig: $(cat "$work/i-$sig.err")"
+  [ -e "$work/rel-$sig" ] && fail "SIG$sig left a release"
+  ls -a "$work" | grep -q "^\.rel-$sig\." && fail "SIG$sig left a temporary folder"
+done
 # a failing picture (no such program) leaves no release, and no temporary folder
 "${gallery[@]}" "$work/batch" -o "$work/rel3" --tightrope /nonexistent/tightrope 2>"$work/e4" && fail "no program, yet done"
 ls -a "$work" | grep -q '^\.rel3\.' && fail "a temporary folder was left"
