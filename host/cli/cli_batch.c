@@ -747,9 +747,13 @@ static int tighten_one(const batch_opts *o, const tr_batch_knot *k, const char *
     tr_tighten_report rep;
     int rc = run_knot(o, k, o->out, -1, -1, resume, id, &rep);
     if (rep.interrupted || tr_tighten_stop_requested()) {
+        /* a run whose roads were scouts wrote no checkpoint (tighten says
+         * why): the knot then starts again, and is not said to resume */
+        char ckpt[PATH_SIZE];
+        knot_path(ckpt, sizeof ckpt, o->out, k->name, "ckpt");
         if (!o->quiet && rep.interrupted)
-            fprintf(stderr, "batch: interrupted; %s resumes from its checkpoint when the batch is run again\n",
-                    k->name);
+            fprintf(stderr, "batch: interrupted; %s %s when the batch is run again\n", k->name,
+                    exists(ckpt) ? "resumes from its checkpoint" : "starts again (its run wrote no checkpoint)");
         else if (!o->quiet)
             fprintf(stderr, "batch: interrupted after %s\n", k->name);
         return -1;

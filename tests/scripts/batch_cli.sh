@@ -111,9 +111,22 @@ sigterm)
   [ -n "$running" ] || fail "no checkpoint after SIGTERM: $(ls out)"
   k=$(basename "$running" .ckpt)
   [ -f out/$k.row.tsv ] && fail "$k recorded as done"
+  grep -q "^batch: interrupted; $k resumes from its checkpoint" err.log || fail "no resume said: $(cat err.log)"
   "$tr" batch m.tsv -o out 2>>err.log || fail "second run: exit $?"
   [ "$(col out/table.tsv $k resumed)" = 1 ] || fail "$k did not resume"
   check_table out
+  # a knot whose roads are scouts (--tries on a route of levels) writes no checkpoint: it is
+  # said to start again, not to resume
+  printf 'name\tfile\tN\toptions\nscouted\tt25.vect\t400\t--scale --tries 4 --time-limit 60\n' >s.tsv
+  "$tr" batch s.tsv -o sout 2>serr.log &
+  pid=$!
+  for _ in $(seq 100); do grep -q 'scouted: tightening' serr.log && break; sleep 0.1; done
+  sleep 1
+  kill -TERM $pid
+  wait $pid
+  [ -f sout/scouted.ckpt ] && fail "a scout wrote a checkpoint"
+  grep -q "^batch: interrupted; scouted starts again (its run wrote no checkpoint)" serr.log ||
+    fail "not said to start again: $(cat serr.log)"
   ;;
 lock)
   # A second batch over the same folder leaves the knot the first is running alone.
