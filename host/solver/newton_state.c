@@ -435,8 +435,8 @@ int tr_newton_state_read(const char *path, tr_newton_state *s, tr_error *err)
     }
     {
         uint64_t ny = 3 * nv + (uint64_t)nc;
-        uint64_t need = (uint64_t)r.at + STATE_DOUBLES * 8 + STATE_INTS * 4 + 8 + 6 * 8 + (uint64_t)nc * 24 + ny * 8 + 5 * nv * 8 +
-                        nstrut * 24 + (has_best ? ny * 8 : 0) + 4;
+        uint64_t need = (uint64_t)r.at + STATE_DOUBLES * 8 + STATE_INTS * 4 + 8 + 6 * 8 + (uint64_t)nc * 24 + ny * 8 +
+                        5 * nv * 8 + nstrut * 24 + (has_best ? ny * 8 : 0) + 4;
         if ((uint64_t)r.n < need) {
             rc = tr_fail(err, TR_EPARSE, "%s: cut short at byte %zu (its sizes, %llu vertices and %llu strut rows, "
                          "need %llu bytes)", path, r.n, (unsigned long long)nv, (unsigned long long)nstrut,

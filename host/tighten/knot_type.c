@@ -20,24 +20,27 @@ void tt_knot_type_of(const tr_curve *c, tt_knot_type *t)
         snprintf(t->why, sizeof t->why, "%.1000s", err.msg);
 }
 
+/* a knot's three, exactly: the Alexander polynomial, determinant, signature */
+static int same_knot(const tr_knot_invariants *a, const tr_knot_invariants *b)
+{
+    return tr_alexander_equal(&a->alexander, &b->alexander) && a->alexander.determinant == b->alexander.determinant &&
+           a->signature == b->signature;
+}
+
 int tt_knot_type_same(const tt_knot_type *a, const tt_knot_type *b)
 {
     const tr_type_check *x = &a->tc, *y = &b->tc;
     if (x->components != y->components || x->npairs != y->npairs)
         return 0;
     if (x->components == 1)
-        return tr_alexander_equal(&x->inv.alexander, &y->inv.alexander) &&
-               x->inv.alexander.determinant == y->inv.alexander.determinant && x->inv.signature == y->inv.signature;
+        return same_knot(&x->inv, &y->inv);
     for (int i = 0; i < x->npairs; i++)
         if (x->linking[i] != y->linking[i])
             return 0;
     /* a component whose type one of the two lacks is judged by the
      * linking numbers alone */
     for (int k = 0; k < x->components; k++)
-        if (x->comp_known[k] && y->comp_known[k] &&
-            (!tr_alexander_equal(&x->comp[k].alexander, &y->comp[k].alexander) ||
-            x->comp[k].alexander.determinant != y->comp[k].alexander.determinant ||
-            x->comp[k].signature != y->comp[k].signature))
+        if (x->comp_known[k] && y->comp_known[k] && !same_knot(&x->comp[k], &y->comp[k]))
             return 0;
     return 1;
 }

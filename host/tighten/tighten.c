@@ -661,7 +661,7 @@ int tr_tighten(const tr_curve *start, const tr_tighten_options *opt, tr_tighten_
             kept_t = t;
             kept_ckpt = ot.ckpt != NULL;
             /* only a series can leave another road's files there */
-            if (kept_ckpt && o.tries + scouting > 1 && t + 1 < o.tries + scouting)
+            if (kept_ckpt && t + 1 < o.tries + scouting)
                 tt_road_checkpoint_take(o.ckpt, &kept_files, &files_err);
             r = rt;
             r.best_try = best_try;
