@@ -11,7 +11,7 @@
 #include "api/api_internal.h"
 #include "curve/curve_io.h"
 #include "curve/generate.h"
-#include "tighten/knot_start.h"
+#include "tighten/knot_notation_start.h"
 
 /* The public status codes are the internal ones (error.h), so a status
  * passes through unchanged. */
@@ -194,6 +194,14 @@ static int split_words(const char *spec, char *buf, size_t bufn, char **w, int m
     return n;
 }
 
+/* a start by a table's name (want_link -1: a knot's or a link's) */
+static int start_named(const char *name, int want_link, size_t n, tr_curve *c, tr_error *e)
+{
+    tr_knot_made made;
+    tr_knot_notation nt = {.name = name, .want_link = want_link, .n = n};
+    return tr_knot_start_make(&nt, c, &made, e);
+}
+
 int tightrope_make(const char *spec, size_t n, tightrope_curve **out, tightrope_error *err)
 {
     tr_error e = {{0}};
@@ -203,8 +211,10 @@ int tightrope_make(const char *spec, size_t n, tightrope_curve **out, tightrope_
     if (out && rest && (!strncmp(rest, "braid ", 6) || !strncmp(rest, "pd ", 3))) {
         *out = NULL;
         tr_curve nc;
+        tr_knot_made made;
         int braid = rest[0] == 'b';
-        int nrc = braid ? tr_knot_start_braid_text(rest + 6, n, &nc, &e) : tr_knot_start_pd_text(rest + 3, n, &nc, &e);
+        tr_knot_notation nt = {.braid = braid ? rest + 6 : NULL, .pd = braid ? NULL : rest + 3, .want_link = -1, .n = n};
+        int nrc = tr_knot_start_make(&nt, &nc, &made, &e);
         return nrc ? tr_api_fail(err, nrc, &e) : tr_api_wrap(&nc, out, err);
     }
     if (!spec || !out || strlen(spec) >= sizeof buf)
@@ -242,10 +252,10 @@ int tightrope_make(const char *spec, size_t n, tightrope_curve **out, tightrope_
             rc = tr_make_clasp(&c, n ? n : 100, nw == 2 ? v : 5.0, &e);
     } else if ((!strcmp(kind, "knot") || !strcmp(kind, "link")) && nw == 2) {
         /* by name, from KnotInfo's and LinkInfo's tables, the type checked */
-        rc = tr_knot_start_named(w[1], !strcmp(kind, "link"), n, &c, &e);
+        rc = start_named(w[1], !strcmp(kind, "link"), n, &c, &e);
     } else if (nw == 1 && strcmp(kind, "knot") && strcmp(kind, "link")) {
         /* a bare name: a knot's or a link's */
-        rc = tr_knot_start_named(kind, -1, n, &c, &e);
+        rc = start_named(kind, -1, n, &c, &e);
     } else {
         return tr_api_fail(err, tr_fail(&e, TR_EINVAL, "unknown curve '%s' (knot NAME, link NAME, a name such as "
                                                         "7_4, torus P Q, trefoil, circle [R], hopf, clasp [H])", spec),

@@ -8,7 +8,7 @@
 #include <sys/stat.h>
 
 #include "curve/curve_io.h"
-#include "tighten/knot_start.h"
+#include "tighten/knot_notation_start.h"
 
 int tr_batch_make_start(const tr_batch_knot *k, tr_error *err)
 {
@@ -30,18 +30,19 @@ int tr_batch_make_start(const tr_batch_knot *k, tr_error *err)
     const char *name = strchr(k->source, ':') + 1;
     int is_link = k->from == TR_BATCH_FROM_LINK;
     tr_curve c;
+    tr_knot_made made;
     /* n 0: as many vertices as make knot gives it; the manifest's N is
      * tighten's (--refine-to or --n), as for a file */
-    int rc = tr_knot_start_named(name, is_link, 0, &c, err);
+    tr_knot_notation nt = {.name = name, .want_link = is_link};
+    int rc = tr_knot_start_make(&nt, &c, &made, err);
     if (rc)
         return rc;
-    char comments[512];
+    char comments[2048];
     snprintf(comments, sizeof comments,
-             "%s %s (%s), %zu vertices, equilateral per component, type checked as %s's\n"
+             "%s, %zu vertices, equilateral per component\n%s\n"
              "made by tightrope batch as tightrope make %s %s makes it; %s\n"
              "notation: KnotInfo/LinkInfo (database_knotinfo, GPL-3.0)",
-             is_link ? "link" : "knot", name, is_link ? "LinkInfo" : "KnotInfo", c.nv, name,
-             is_link ? "link" : "knot", name, k->notation);
+             made.what, c.nv, made.check, is_link ? "link" : "knot", name, k->notation);
     rc = tr_curve_write(k->file, TR_FORMAT_AUTO, &c, comments, err);
     tr_curve_free(&c);
     return rc;

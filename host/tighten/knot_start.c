@@ -257,46 +257,6 @@ void tr_type_describe(const tr_type_check *tc, char *buf, size_t bufsize)
                                : (size_t)snprintf(buf + u, bufsize - u, " ?");
 }
 
-int tr_knot_start_named(const char *name, int want_link, size_t n, tr_curve *out, tr_error *err)
-{
-    memset(out, 0, sizeof *out);
-    tr_knot_table table = {0};
-    int rc = tr_knot_table_load(&table, err);
-    if (rc)
-        return rc;
-    const char *kind = want_link < 0 ? "knot or link" : want_link ? "link" : "knot";
-    const tr_table_entry *e = tr_knot_table_find(&table, name, want_link);
-    if (!e) {
-        const tr_table_entry *other = want_link < 0 ? NULL : tr_knot_table_find(&table, name, !want_link);
-        char near[256];
-        if (other)
-            rc = tr_fail(err, TR_EINVAL, "%s is a %s, not a %s", other->name, want_link ? "knot" : "link", kind);
-        else {
-            tr_knot_table_suggest(&table, name, want_link, near, sizeof near);
-            rc = tr_fail(err, TR_EINVAL, "no %s named '%s' in the table; nearest: %s", kind, name, near);
-        }
-        tr_knot_table_free(&table);
-        return rc;
-    }
-    double thickness;
-    if (e->braid.len == 0) {
-        /* the unknot: a round circle of radius 3 (edges below 1 from 19 vertices) */
-        size_t nv = n ? n : 32;
-        rc = nv < 19 ? tr_fail(err, TR_EINVAL, "%zu vertices make the unknot's edges longer than 1 (at least 19)", nv)
-                     : tr_make_circle(out, 3.0, nv, err);
-    } else
-        rc = tr_knot_start_from_braid(&e->braid, n, out, &thickness, err);
-    tr_type_check tc;
-    char why[512];
-    if (!rc && (rc = tr_type_check_of(out, &tc, err)) == TR_OK && !tr_type_matches(&tc, e, why, sizeof why))
-        rc = tr_fail(err, TR_EGEOMETRY, "the curve made for %s %s is not of its type: %s", e->is_link ? "link" : "knot",
-                     e->name, why);
-    if (rc)
-        tr_curve_free(out);
-    tr_knot_table_free(&table);
-    return rc;
-}
-
 int tr_pd_type_matches(const tr_type_check *tc, const tr_pd *pd, tr_error *err)
 {
     tr_alexander want;
@@ -305,41 +265,4 @@ int tr_pd_type_matches(const tr_type_check *tc, const tr_pd *pd, tr_error *err)
         tr_signature_from_pd((const int(*)[4])pd->x, pd->n, &want_sig, err))
         return -1;
     return tc->components == 1 && tr_alexander_equal(&want, &tc->inv.alexander) && want_sig == tc->inv.signature;
-}
-
-int tr_knot_start_braid_text(const char *text, size_t n, tr_curve *out, tr_error *err)
-{
-    memset(out, 0, sizeof *out);
-    tr_braid b;
-    int rc = tr_braid_parse(text, &b, err);
-    double thickness;
-    if (!rc)
-        rc = tr_knot_start_from_braid(&b, n, out, &thickness, err);
-    tr_braid_free(&b);
-    return rc;
-}
-
-int tr_knot_start_pd_text(const char *text, size_t n, tr_curve *out, tr_error *err)
-{
-    memset(out, 0, sizeof *out);
-    tr_pd pd;
-    int rc = tr_pd_parse(text, &pd, err);
-    if (rc)
-        return rc;
-    tr_curve dense;
-    double thickness;
-    /* as make knot --pd lays it out (cli_make_knot.c) */
-    rc = tr_make_pd_layout(&dense, (const int(*)[4])pd.x, pd.n, (size_t)pd.n * 2000, err);
-    if (!rc) {
-        rc = tr_knot_start_from_curve(&dense, n, out, &thickness, err);
-        tr_curve_free(&dense);
-    }
-    tr_type_check tc;
-    int m;
-    if (!rc && !(rc = tr_type_check_of(out, &tc, err)) && (m = tr_pd_type_matches(&tc, &pd, err)) != 1)
-        rc = m < 0 ? TR_EINVAL : tr_fail(err, TR_EGEOMETRY, "the PD code's layout is not of the code's type");
-    if (rc)
-        tr_curve_free(out);
-    tr_pd_free(&pd);
-    return rc;
 }

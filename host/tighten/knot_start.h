@@ -31,26 +31,6 @@ int tr_knot_start_from_braid(const tr_braid *b, size_t n, tr_curve *out, double 
  * component (0: the default), scaled to TR_KNOT_START_THICKNESS. */
 int tr_knot_start_from_curve(const tr_curve *dense, size_t n, tr_curve *out, double *thickness, tr_error *err);
 
-/* The start of the table's knot (want_link 0), link (1) or either (-1)
- * called name:
- * the unknot 0_1 a circle of radius 3 (n vertices, default 32), any other
- * the closure of its braid (tr_knot_start_from_braid), its type checked
- * against the entry's (tr_type_matches). TR_EINVAL for a name not in the
- * table, the message naming the nearest ones (or the other kind, when the
- * name is a link's and a knot was asked for); TR_EGEOMETRY when the curve
- * made is not of the named type. The command line's `make knot` says more
- * (the mirror image, the invariants) from the same pieces. */
-int tr_knot_start_named(const char *name, int want_link, size_t n, tr_curve *out, tr_error *err);
-
-/* The starts of a braid word (text as tr_braid_parse reads it; a knot or
- * a link) and of a knot's PD code (tr_pd_parse; its planar layout,
- * curve/pd_layout.h), as `make knot --braid / --pd` makes them, for the
- * library; a PD start is checked against the code's own invariants
- * (tr_pd_type_matches). TR_EINVAL for bad notation, TR_EGEOMETRY for a
- * layout not of the code's type. */
-int tr_knot_start_braid_text(const char *text, size_t n, tr_curve *out, tr_error *err);
-int tr_knot_start_pd_text(const char *text, size_t n, tr_curve *out, tr_error *err);
-
 /* What a curve's type came to, and whether it matches an entry's. */
 /* the most components the type check takes (their pairs fill linking[]) */
 #define TR_TYPE_CHECK_MAX_COMPONENTS 5

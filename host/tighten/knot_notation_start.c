@@ -1,0 +1,164 @@
+/* Notation to a checked start (knot_notation_start.h). */
+#include "tighten/knot_notation_start.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "curve/generate.h"
+#include "curve/pd_layout.h"
+#include "tighten/knot_start.h"
+#include "topology/knot_table.h"
+
+/* The unknot's start: a circle of radius 3 (as make circle), 32 vertices
+ * by default; below 19 its edges are longer than 1. */
+#define UNKNOT_RADIUS 3.0
+#define UNKNOT_N 32
+#define UNKNOT_MIN_N 19
+/* samples per crossing of a PD code's planar layout */
+#define PD_LAYOUT_SAMPLES 2000
+
+static const char *kind_word(int want_link)
+{
+    return want_link < 0 ? "knot or link" : want_link ? "link" : "knot";
+}
+
+/* the table's entry for nt->name, or a TR_EINVAL naming the nearest */
+static int find_entry(const tr_knot_table *table, const tr_knot_notation *nt, tr_knot_made *made,
+                      const tr_table_entry **entry, tr_error *err)
+{
+    *entry = tr_knot_table_find(table, nt->name, nt->want_link);
+    if (*entry)
+        return TR_OK;
+    const tr_table_entry *other = nt->want_link < 0 ? NULL : tr_knot_table_find(table, nt->name, !nt->want_link);
+    if (other) {
+        made->other_kind = 1;
+        snprintf(made->other_name, sizeof made->other_name, "%s", other->name);
+        return tr_fail(err, TR_EINVAL, "%s is a %s, not a %s", other->name, nt->want_link ? "knot" : "link",
+                       kind_word(nt->want_link));
+    }
+    char near[256];
+    tr_knot_table_suggest(table, nt->name, nt->want_link, near, sizeof near);
+    return tr_fail(err, TR_EINVAL, "no %s named '%s' in the table (%s); nearest: %s", kind_word(nt->want_link),
+                   nt->name,
+                   nt->want_link == 1 ? "LinkInfo's prime links to 9 crossings, L2a1 ... L9n27"
+                   : nt->want_link == 0
+                       ? "KnotInfo's prime knots to 12 crossings, 0_1, 3_1 ... 10_165, 11a_1 ... 12n_888"
+                       : "KnotInfo's knots to 12 crossings, LinkInfo's links to 9",
+                   near);
+}
+
+/* a braid word's closure, refused when it is not the kind asked for */
+static int from_braid(const tr_braid *b, const tr_knot_notation *nt, int named, tr_curve *out, tr_knot_made *made,
+                      tr_error *err)
+{
+    int nc = tr_braid_components(b, NULL);
+    if (!named && nt->want_link == 0 && nc != 1)
+        return tr_fail(err, TR_EINVAL, "braid word: its closure has %d components, not one (a link)", nc);
+    if (!named && nt->want_link == 1 && nc < 2)
+        return tr_fail(err, TR_EINVAL, "braid word: its closure has one component (a knot, not a link)");
+    if (named) {
+        size_t u = strlen(made->what);
+        snprintf(made->what + u, sizeof made->what - u, ", closure of its %d-strand braid", b->strands);
+    } else {
+        size_t u = (size_t)snprintf(made->what, sizeof made->what, "%s, closure of the braid ", nc > 1 ? "link" : "knot");
+        for (int k = 0; k < b->len && u < sizeof made->what - 16; k++)
+            u += (size_t)snprintf(made->what + u, sizeof made->what - u, "%s%d", k ? "," : "", b->word[k]);
+        if (u >= sizeof made->what - 16)
+            snprintf(made->what + sizeof made->what - 16, 16, "...");
+    }
+    return tr_knot_start_from_braid(b, nt->n, out, &made->thickness, err);
+}
+
+/* The type is checked, never assumed: the invariants of the curve just
+ * made, from its own vertices, against the name's or the PD code's. */
+static int check_type(const tr_curve *c, const tr_table_entry *entry, const tr_pd *pd, tr_knot_made *made,
+                      tr_error *err)
+{
+    tr_type_check tc;
+    int rc = tr_type_check_of(c, &tc, err);
+    if (rc)
+        return tr_fail_wrap(err, rc, "%s: its type could not be checked", made->what);
+    char got[600], why[1024];
+    tr_type_describe(&tc, got, sizeof got);
+    made->is_link = tc.components > 1;
+    if (entry) {
+        if (!tr_type_matches(&tc, entry, why, sizeof why))
+            return tr_fail(err, TR_EGEOMETRY, "%s: the made curve is not %s: %s", made->what, entry->name, why);
+        snprintf(made->check, sizeof made->check, "type checked: %s, as %s's%s", got, entry->name,
+                 tr_type_is_mirror(&tc, entry) ? " mirror image's" : "");
+    } else if (pd) {
+        int m = tr_pd_type_matches(&tc, pd, err);
+        if (m < 0)
+            return TR_EINVAL;
+        if (!m)
+            return tr_fail(err, TR_EGEOMETRY, "%s: the laid-out curve's %s is not the PD code's (its layout went wrong)",
+                           made->what, got);
+        snprintf(made->check, sizeof made->check, "type checked: %s, as the PD code's", got);
+    } else {
+        snprintf(made->check, sizeof made->check, "invariants: %s", got);
+    }
+    return TR_OK;
+}
+
+int tr_knot_start_make(const tr_knot_notation *nt, tr_curve *out, tr_knot_made *made, tr_error *err)
+{
+    memset(out, 0, sizeof *out);
+    memset(made, 0, sizeof *made);
+    made->thickness = NAN;
+    if ((nt->name != NULL) + (nt->braid != NULL) + (nt->pd != NULL) != 1)
+        return tr_fail(err, TR_EINVAL, "a start is made from one of a name, a braid word and a PD code");
+    if (nt->pd && nt->want_link == 1)
+        return tr_fail(err, TR_EINVAL, "a PD code makes knots only (a link: its name or a braid word)");
+    tr_knot_table table = {0};
+    const tr_table_entry *entry = NULL;
+    tr_braid braid = {0};
+    tr_pd pd = {0};
+    int rc = TR_OK;
+    if (nt->name) {
+        if ((rc = tr_knot_table_load(&table, err)) || (rc = find_entry(&table, nt, made, &entry, err)))
+            goto done;
+        made->from_table = 1;
+        snprintf(made->what, sizeof made->what, "%s %s (%s)", entry->is_link ? "link" : "knot", entry->name,
+                 entry->is_link ? "LinkInfo" : "KnotInfo");
+        if (entry->braid.len == 0) {
+            /* the unknot, 0_1: a round circle */
+            size_t nv = nt->n ? nt->n : UNKNOT_N;
+            if (nv < UNKNOT_MIN_N) {
+                rc = tr_fail(err, TR_EINVAL, "%zu vertices make the unknot's edges longer than 1 (at least %d)", nv,
+                             UNKNOT_MIN_N);
+                goto done;
+            }
+            rc = tr_make_circle(out, UNKNOT_RADIUS, nv, err);
+            size_t u = strlen(made->what);
+            snprintf(made->what + u, sizeof made->what - u, ": a circle of radius %g", UNKNOT_RADIUS);
+        } else {
+            rc = from_braid(&entry->braid, nt, 1, out, made, err);
+        }
+    } else if (nt->braid) {
+        if (!(rc = tr_braid_parse(nt->braid, &braid, err)))
+            rc = from_braid(&braid, nt, 0, out, made, err);
+    } else {
+        if ((rc = tr_pd_parse(nt->pd, &pd, err)))
+            goto done;
+        snprintf(made->what, sizeof made->what, "knot from a %d-crossing PD code", pd.n);
+        tr_curve dense;
+        rc = tr_make_pd_layout(&dense, (const int(*)[4])pd.x, pd.n, (size_t)pd.n * PD_LAYOUT_SAMPLES, err);
+        if (rc == TR_OK) {
+            rc = tr_knot_start_from_curve(&dense, nt->n, out, &made->thickness, err);
+            tr_curve_free(&dense);
+        }
+    }
+    /* a construction's message says what it was making */
+    if (rc && rc != TR_ENOMEM && made->what[0] && !made->other_kind)
+        rc = tr_fail_wrap(err, rc, "%s", made->what);
+    if (rc == TR_OK)
+        rc = check_type(out, entry, nt->pd ? &pd : NULL, made, err);
+done:
+    if (rc)
+        tr_curve_free(out);
+    tr_braid_free(&braid);
+    tr_pd_free(&pd);
+    tr_knot_table_free(&table);
+    return rc;
+}
