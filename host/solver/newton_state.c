@@ -11,6 +11,7 @@
  * order marker; the sizes (nv, ncomp, nfixed, nstrut, has_best); the
  * scalars; the arrays; the end marker. */
 #include <math.h>
+#include <stddef.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -236,24 +237,27 @@ static void put_sizes(buf *b, const size_t *v, size_t n)
         put_u64(b, (uint64_t)v[i]);
 }
 
-/* The state's scalars in the file's order, as one list for the writer and
- * the reader (a field added to one and not the other would shift every
- * field after it) */
-#define STATE_DOUBLES 14
-#define STATE_INTS 10
-typedef struct scalar_fields {
-    double *d[STATE_DOUBLES];
-    int *i[STATE_INTS];
-} scalar_fields;
-
-static scalar_fields scalars(tr_newton_state *s)
-{
-    return (scalar_fields){
-        .d = {&s->mu, &s->band, &s->max_bend, &s->guard, &s->viol_tol, &s->warm_residual, &s->omega, &s->prev_viol,
-              &s->lm, &s->prev_len, &s->best_rl, &s->best_viol_edge, &s->best_thickness, &s->seconds},
-        .i = {&s->bend_cap, &s->iter, &s->outer, &s->inner, &s->settled, &s->last_full, &s->moved, &s->stuck,
-              &s->inner_done, &s->best_restored}};
-}
+/* The state's scalars in the file's order, as one list of offsets for the
+ * writer and the reader (a field added to one and not the other would
+ * shift every field after it) */
+static const size_t STATE_DOUBLE_FIELDS[] = {
+    offsetof(tr_newton_state, mu),          offsetof(tr_newton_state, band),
+    offsetof(tr_newton_state, max_bend),    offsetof(tr_newton_state, guard),
+    offsetof(tr_newton_state, viol_tol),    offsetof(tr_newton_state, warm_residual),
+    offsetof(tr_newton_state, omega),       offsetof(tr_newton_state, prev_viol),
+    offsetof(tr_newton_state, lm),          offsetof(tr_newton_state, prev_len),
+    offsetof(tr_newton_state, best_rl),     offsetof(tr_newton_state, best_viol_edge),
+    offsetof(tr_newton_state, best_thickness), offsetof(tr_newton_state, seconds)};
+static const size_t STATE_INT_FIELDS[] = {
+    offsetof(tr_newton_state, bend_cap),   offsetof(tr_newton_state, iter),    offsetof(tr_newton_state, outer),
+    offsetof(tr_newton_state, inner),      offsetof(tr_newton_state, settled), offsetof(tr_newton_state, last_full),
+    offsetof(tr_newton_state, moved),      offsetof(tr_newton_state, stuck),   offsetof(tr_newton_state, inner_done),
+    offsetof(tr_newton_state, best_restored)};
+#define STATE_DOUBLES (sizeof STATE_DOUBLE_FIELDS / sizeof STATE_DOUBLE_FIELDS[0])
+#define STATE_INTS (sizeof STATE_INT_FIELDS / sizeof STATE_INT_FIELDS[0])
+_Static_assert(sizeof STATE_DOUBLE_FIELDS / sizeof STATE_DOUBLE_FIELDS[0] == 14 &&
+                   sizeof STATE_INT_FIELDS / sizeof STATE_INT_FIELDS[0] == 10,
+               "the file's layout: 14 doubles, 10 ints (a change is a new STATE_VERSION)");
 
 int tr_newton_state_write(const char *path, const tr_newton_state *s, tr_error *err)
 {
@@ -267,12 +271,13 @@ int tr_newton_state_write(const char *path, const tr_newton_state *s, tr_error *
     put_i32(&b, s->nfixed);
     put_u64(&b, s->nstrut);
     put_i32(&b, s->has_best);
-    /* read through the list's pointers only */
-    scalar_fields f = scalars((tr_newton_state *)s);
-    for (int k = 0; k < STATE_DOUBLES; k++)
-        put(&b, f.d[k], sizeof(double));
-    for (int k = 0; k < STATE_INTS; k++)
-        put_i32(&b, (int32_t)*f.i[k]);
+    for (size_t k = 0; k < STATE_DOUBLES; k++)
+        put(&b, (const char *)s + STATE_DOUBLE_FIELDS[k], sizeof(double));
+    for (size_t k = 0; k < STATE_INTS; k++) {
+        int v;
+        memcpy(&v, (const char *)s + STATE_INT_FIELDS[k], sizeof v);
+        put_i32(&b, (int32_t)v);
+    }
     put_u64(&b, (uint64_t)s->steps);
     put_sizes(&b, s->fixed, 6);
     put_sizes(&b, s->comp_nv, (size_t)s->ncomp);
@@ -453,11 +458,12 @@ int tr_newton_state_read(const char *path, tr_newton_state *s, tr_error *err)
     s->nfixed = nfixed;
     s->nstrut = (size_t)nstrut;
     s->has_best = has_best;
-    scalar_fields sf = scalars(s);
-    for (int k = 0; k < STATE_DOUBLES; k++)
-        get(&r, sf.d[k], sizeof(double));
-    for (int k = 0; k < STATE_INTS; k++)
-        *sf.i[k] = get_i32(&r);
+    for (size_t k = 0; k < STATE_DOUBLES; k++)
+        get(&r, (char *)s + STATE_DOUBLE_FIELDS[k], sizeof(double));
+    for (size_t k = 0; k < STATE_INTS; k++) {
+        int v = get_i32(&r);
+        memcpy((char *)s + STATE_INT_FIELDS[k], &v, sizeof v);
+    }
     s->steps = (long)get_u64(&r);
     size_t nvv = (size_t)nv, ny = 3 * nvv + (size_t)nc;
     get_sizes(&r, s->fixed, 6);
