@@ -19,6 +19,9 @@ int tr_make_knot_command(int is_link, const char *name, const char *braid_text, 
         if (made.other_kind)
             fprintf(stderr, "tightrope make: %s (tightrope make %s %s)\n", err.msg, is_link ? "knot" : "link",
                     made.other_name);
+        else if (made.braid_components)
+            fprintf(stderr, "tightrope make: %s (a %s: tightrope make %s --braid)\n", err.msg,
+                    made.braid_components > 1 ? "link" : "knot", made.braid_components > 1 ? "link" : "knot");
         else
             fprintf(stderr, "tightrope make: %s%s\n", err.msg, rc == TR_EGEOMETRY ? " (nothing written)" : "");
         /* bad notation and unknown names are the user's to mend (2); a made

@@ -253,6 +253,32 @@ static const size_t STATE_INT_FIELDS[] = {
     offsetof(tr_newton_state, inner),      offsetof(tr_newton_state, settled), offsetof(tr_newton_state, last_full),
     offsetof(tr_newton_state, moved),      offsetof(tr_newton_state, stuck),   offsetof(tr_newton_state, inner_done),
     offsetof(tr_newton_state, best_restored)};
+/* the offsets' fields are what the lists say they are */
+#define STATE_FIELD_IS(f, type) _Static_assert(sizeof(((tr_newton_state *)0)->f) == sizeof(type), #f)
+STATE_FIELD_IS(mu, double);
+STATE_FIELD_IS(band, double);
+STATE_FIELD_IS(max_bend, double);
+STATE_FIELD_IS(guard, double);
+STATE_FIELD_IS(viol_tol, double);
+STATE_FIELD_IS(warm_residual, double);
+STATE_FIELD_IS(omega, double);
+STATE_FIELD_IS(prev_viol, double);
+STATE_FIELD_IS(lm, double);
+STATE_FIELD_IS(prev_len, double);
+STATE_FIELD_IS(best_rl, double);
+STATE_FIELD_IS(best_viol_edge, double);
+STATE_FIELD_IS(best_thickness, double);
+STATE_FIELD_IS(seconds, double);
+STATE_FIELD_IS(bend_cap, int);
+STATE_FIELD_IS(iter, int);
+STATE_FIELD_IS(outer, int);
+STATE_FIELD_IS(inner, int);
+STATE_FIELD_IS(settled, int);
+STATE_FIELD_IS(last_full, int);
+STATE_FIELD_IS(moved, int);
+STATE_FIELD_IS(stuck, int);
+STATE_FIELD_IS(inner_done, int);
+STATE_FIELD_IS(best_restored, int);
 #define STATE_DOUBLES (sizeof STATE_DOUBLE_FIELDS / sizeof STATE_DOUBLE_FIELDS[0])
 #define STATE_INTS (sizeof STATE_INT_FIELDS / sizeof STATE_INT_FIELDS[0])
 _Static_assert(sizeof STATE_DOUBLE_FIELDS / sizeof STATE_DOUBLE_FIELDS[0] == 14 &&

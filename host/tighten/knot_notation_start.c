@@ -53,10 +53,11 @@ static int from_braid(const tr_braid *b, const tr_knot_notation *nt, int named, 
                       tr_error *err)
 {
     int nc = tr_braid_components(b, NULL);
-    if (!named && nt->want_link == 0 && nc != 1)
-        return tr_fail(err, TR_EINVAL, "braid word: its closure has %d components, not one (a link)", nc);
-    if (!named && nt->want_link == 1 && nc < 2)
-        return tr_fail(err, TR_EINVAL, "braid word: its closure has one component (a knot, not a link)");
+    if (!named && ((nt->want_link == 0 && nc != 1) || (nt->want_link == 1 && nc < 2))) {
+        made->braid_components = nc;
+        return nc > 1 ? tr_fail(err, TR_EINVAL, "braid word: its closure has %d components, not one", nc)
+                      : tr_fail(err, TR_EINVAL, "braid word: its closure has one component");
+    }
     if (named) {
         size_t u = strlen(made->what);
         snprintf(made->what + u, sizeof made->what - u, ", closure of its %d-strand braid", b->strands);
@@ -77,11 +78,20 @@ static int check_type(const tr_curve *c, const tr_table_entry *entry, const tr_p
 {
     tr_type_check tc;
     int rc = tr_type_check_of(c, &tc, err);
+    if (rc && rc != TR_ENOMEM && !entry && !pd) {
+        /* a braid word names no type: its invariants are words for the
+         * file, and a closure beyond the exact arithmetic (more than
+         * TR_TYPE_CHECK_MAX_COMPONENTS components, a crowded projection)
+         * is made all the same */
+        snprintf(made->check, sizeof made->check, "invariants not computed: %.900s", err->msg);
+        return TR_OK;
+    }
+    /* a curve of our own making whose type cannot be checked is our
+     * failure, not bad notation */
     if (rc)
-        return tr_fail_wrap(err, rc, "%s: its type could not be checked", made->what);
+        return tr_fail_wrap(err, rc == TR_ENOMEM ? rc : TR_EGEOMETRY, "%s: its type could not be checked", made->what);
     char got[600], why[1024];
     tr_type_describe(&tc, got, sizeof got);
-    made->is_link = tc.components > 1;
     if (entry) {
         if (!tr_type_matches(&tc, entry, why, sizeof why))
             return tr_fail(err, TR_EGEOMETRY, "%s: the made curve is not %s: %s", made->what, entry->name, why);
@@ -92,7 +102,7 @@ static int check_type(const tr_curve *c, const tr_table_entry *entry, const tr_p
         if (m < 0)
             return TR_EINVAL;
         if (!m)
-            return tr_fail(err, TR_EGEOMETRY, "%s: the laid-out curve's %s is not the PD code's (its layout went wrong)",
+            return tr_fail(err, TR_EGEOMETRY, "%s: the laid-out curve's %s is not the PD code's: its layout went wrong",
                            made->what, got);
         snprintf(made->check, sizeof made->check, "type checked: %s, as the PD code's", got);
     } else {

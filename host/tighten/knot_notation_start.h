@@ -31,18 +31,22 @@ typedef struct tr_knot_made {
     char check[1024];
     double thickness;  /* the start's as made (NAN for the unknot's circle) */
     int from_table;    /* the notation is the table's (its source and licence go in the file) */
-    int is_link;       /* what was made: more than one component */
     int other_kind;    /* on TR_EINVAL: the name is in the table, as the other kind */
     char other_name[64]; /* that entry's name */
+    int braid_components; /* on TR_EINVAL: a braid refused for its closure's components, their count */
 } tr_knot_made;
 
 /* Makes the start *nt describes into out (freed on failure), filling
  * *made. TR_EINVAL: bad notation (the parser's message), a name not in the
  * table (the nearest ones named; made->other_kind when it is the other
- * kind's), a braid whose closure is not the kind asked for, a PD code
- * asked for a link; TR_EGEOMETRY: the curve made is not of the notation's
- * type, or the layout cannot be made thick; TR_ENOMEM. The messages are
- * whole sentences that name what was being made. */
+ * kind's), a braid whose closure is not the kind asked for
+ * (made->braid_components), a PD code asked for a link, too few vertices;
+ * TR_EGEOMETRY: the curve made is not of the notation's type, its type
+ * could not be checked, or the layout cannot be made thick; TR_EPARSE or
+ * TR_EIO: the embedded table; TR_ENOMEM. A bare braid word names no type:
+ * its invariants go into made->check where they can be computed, and
+ * nothing is refused where they cannot. The messages are one line each
+ * and name what was being made. */
 int tr_knot_start_make(const tr_knot_notation *nt, tr_curve *out, tr_knot_made *made, tr_error *err);
 
 #endif
