@@ -39,7 +39,7 @@ tr_knot_test(make_knot_braid_empty 2 DIR ${_kn_dir}/bempty ONLY "" ERRMATCH "bra
   CMD ${_tr} make knot --braid "[ ]" -o ${_kn_dir}/bempty/k.vect)
 tr_knot_test(make_knot_braid_zero 2 DIR ${_kn_dir}/bzero ONLY "" ERRMATCH "generator 3 is 0"
   CMD ${_tr} make knot --braid "1,-2,0,-2" -o ${_kn_dir}/bzero/k.vect)
-tr_knot_test(make_knot_braid_link 2 DIR ${_kn_dir}/blink ONLY "" ERRMATCH "closure has 2 components, not one"
+tr_knot_test(make_knot_braid_link 2 DIR ${_kn_dir}/blink ONLY "" ERRMATCH "closure has 2 components, not one [(]a link: tightrope make link --braid[)]"
   CMD ${_tr} make knot --braid "1,1" -o ${_kn_dir}/blink/k.vect)
 tr_knot_test(make_knot_pd_label 2 DIR ${_kn_dir}/pdlabel ONLY "" ERRMATCH "label 5 appears 3 times, not twice"
   CMD ${_tr} make knot --pd "[[1,5,2,4],[3,1,4,6],[5,3,5,2]]" -o ${_kn_dir}/pdlabel/k.vect)

@@ -151,6 +151,13 @@ static void test_errors(void)
     CHECK(c && tightrope_curve_components(c) == 2);
     tightrope_curve_free(c);
     c = NULL;
+    /* a braid word names no type: a closure past the type check's five
+     * components is made all the same (1,1,3,3,5,5 on six strands: three
+     * Hopf links, six components) */
+    CHECK(tightrope_make("braid 1,1,3,3,5,5", 0, &c, &err) == TIGHTROPE_OK);
+    CHECK(c && tightrope_curve_components(c) == 6);
+    tightrope_curve_free(c);
+    c = NULL;
     CHECK(tightrope_make("braid 1,0", 0, &c, &err) == TIGHTROPE_EINVAL && strstr(err.message, "is 0"));
     /* the unknot by name with too few vertices for edges below 1: refused, nothing to free */
     CHECK(tightrope_make("0_1", 10, &c, &err) == TIGHTROPE_EINVAL && strstr(err.message, "at least 19"));
