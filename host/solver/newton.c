@@ -887,7 +887,24 @@ static int start_from_curve(solver *s, const tr_curve *cv, const tr_thickness *t
      * (4.5e-8 at 4800) (bench/notes/2026-11-28-vertex-tight-start.md).
      * A loose start (the wobbled 32-gon) is left as it was. */
     int vertex_tight = prm->vertex_contacts && s->warm_residual < TIGHT_RESIDUAL;
-    if ((overshoot && s->warm_residual < TIGHT_RESIDUAL) || minrad_pressed || vertex_tight) {
+    /* A tight start in Rawdon's model that neither overshoots nor is
+     * pressed, whose conjugate-gradient multipliers hold little of the
+     * tension (start_residual above CAUTIOUS_RESIDUAL) though the damped
+     * ones say it is tight: a solver's iterate rescaled to thickness 1, as
+     * a run stopped without its state leaves it (newton_run's OUT.ckpt).
+     * Restarted at the loose scale, its first steps took MinRad 20 to 30 %
+     * over at N = 38 400 (the checkpoint at step 130 of the rung from the
+     * converged 19 200, 32.7431246 as rescaled: 46 steps later 32.7429295
+     * with MinRad 27 % over at mu 100), as the N = 200 640 rung did for hours;
+     * with the tight start's rule it settled in 205 steps at
+     * 32.7429351282 (the unbroken rung: 32.7429351290). Only there: at
+     * 4800 and 9600 such restarts (start residuals 0.38, 0.37) took 158
+     * and 140 steps at the loose scale, 214 and 71 with the rule, and the
+     * N = 2400 file (0.11) 156 against 240 and 2.5e-8 longer
+     * (bench/notes/2026-11-29-tight-restart.md). */
+    int iterate_tight = !prm->vertex_contacts && !overshoot && !constrained && s->warm_residual < TIGHT_RESIDUAL &&
+                        s->start_residual > CAUTIOUS_RESIDUAL;
+    if ((overshoot && s->warm_residual < TIGHT_RESIDUAL) || minrad_pressed || vertex_tight || iterate_tight) {
         /* a tight start's steps are small: where the multipliers it
          * starts with hold less than a quarter of the tension, the
          * curvature cap holds them to the model (bend.h); a loose
