@@ -135,7 +135,9 @@ typedef enum tr_stop_reason {
     TR_STOP_STEPS,     /* step limit */
     TR_STOP_TIME,      /* wall-time limit */
     TR_STOP_SIGNAL,    /* the stop flag was raised (SIGINT/SIGTERM) */
-    TR_STOP_SOLVED     /* the second-order solver converged or settled at the finest level */
+    TR_STOP_SOLVED,    /* the second-order solver converged or settled at the finest level */
+    TR_STOP_REFINE     /* a refined level could not be settled: the run stopped at the level before it
+                        * (tr_engine_stop_why says why) */
 } tr_stop_reason;
 
 const char *tr_stop_reason_name(tr_stop_reason r);
@@ -216,9 +218,19 @@ int tr_engine_run(tr_engine *e, const tr_engine_limits *lim, tr_stop_reason *why
 /* One step; *accepted tells whether it was kept. */
 int tr_engine_step(tr_engine *e, int *accepted, tr_error *err);
 
-/* Low-pass resample every component to n vertices and re-equalise; fails
- * with TR_ETOPOLOGY rather than produce a curve that overlaps itself. */
+/* Low-pass resample every component to n vertices and re-equalise. Where
+ * the re-equalising (the settle) fails, a clasp's level goes to the
+ * second-order solver from the curve as refined (with the solver and the
+ * polish on; tr_engine_run fails if the solver does not take it); a closed
+ * knot goes back to the coarse level it came from, and the call fails with
+ * TR_EGEOMETRY (nothing lost: the coarse level's curve is the engine's
+ * again). TR_EINTERRUPTED: the bound stopped the settle, back at the
+ * coarse level too. */
 int tr_engine_refine(tr_engine *e, size_t n, tr_error *err);
+
+/* Why the run stopped where it did, in words, for TR_STOP_REFINE ("" for
+ * the other reasons). */
+const char *tr_engine_stop_why(const tr_engine *e);
 
 void tr_engine_get_progress(const tr_engine *e, tr_engine_progress *p);
 const char *tr_engine_device(const tr_engine *e);

@@ -58,6 +58,8 @@ struct tr_engine {
      * fails as it would have (the backend holds the half-settled curve) */
     int refine_unsettled;
     size_t refine_unsettled_n;
+    /* a refinement that could not be settled and went back (TR_STOP_REFINE) */
+    char stop_why[512];
     /* where the second-order solver writes its checkpoints (tr_engine_solve:
      * its arguments; the level loop: its limits) */
     const char *ckpt_path;

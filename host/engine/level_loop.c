@@ -392,7 +392,18 @@ static int run_levels(tr_engine *e, const tr_engine_limits *lim, tr_stop_reason 
             e->coarse_ref = wants_coarse_ref(e, next * (size_t)e->curve.ncomp, is_final_level(lim, next));
             /* a refinement whose settle the bound stopped has gone back
              * to this level: the loop then stops on the bound */
-            if ((rc = tr_engine_refine(e, next, err)) && rc != TR_EINTERRUPTED)
+            rc = tr_engine_refine(e, next, err);
+            if (rc == TR_EGEOMETRY) {
+                /* back at this level, its curve the run's: it stops here */
+                snprintf(e->stop_why, sizeof e->stop_why, "%.500s", err->msg);
+                *why = TR_STOP_REFINE;
+                if (lim->progress)
+                    lim->progress(&p, lim->user);
+                if (lim->checkpoint_path && (rc = checkpoint(e, lim->checkpoint_path, err)))
+                    return rc;
+                return TR_OK;
+            }
+            if (rc && rc != TR_EINTERRUPTED)
                 return rc;
             level_t0 = tr_clock_seconds();
             stall_step = e->steps;

@@ -312,6 +312,11 @@ static int one_road(const tt_opts *o, tr_engine **e, road_result *r, tr_tighten_
     *stage = TR_TIGHTEN_AT_RUN;
     rc = run(o, *e, &r->why, err);
     say_solver_state(o, *e);
+    /* the level it stopped at is the road's result (tighten's refine_short
+     * says so); the note says why it went no further */
+    if (rc == TR_OK && r->why == TR_STOP_REFINE)
+        tt_note(o, TR_TIGHTEN_WARNING, "warning: %s; the run stopped at the level before it",
+                tr_engine_stop_why(*e));
     if (rc) {
         tr_engine_destroy(*e);
         return rc;

@@ -220,7 +220,8 @@ typedef struct tightrope_tighten_result {
     int certified;       /* kkt holds the certificate of the curve */
     tightrope_kkt kkt;
     char stopped[32];    /* why the run stopped: "residual", "jammed", "target", "steps", "time-limit",
-                            "signal" (the cancel flag), "solved" */
+                            "signal" (the cancel flag), "solved", "refine-failed" (a refined level
+                            could not be settled: the curve is the level before it) */
     int interrupted;     /* the cancel flag stopped it */
     int goal_missed;     /* a target or residual asked for and not reached */
     double elapsed;      /* seconds */
