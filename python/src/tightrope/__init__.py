@@ -353,7 +353,7 @@ class TightenResult:
     n: int
     residual: float
     kkt_residual: Optional[float]  # None: not certified
-    stopped: str  # "residual", "jammed", "target", "steps", "time-limit", "signal", "solved"
+    stopped: str  # "residual", "jammed", "target", "steps", "time-limit", "signal", "solved", "refine-failed"
     interrupted: bool
     goal_missed: bool
     elapsed: float
