@@ -895,9 +895,9 @@ static int start_from_curve(solver *s, const tr_curve *cv, const tr_thickness *t
      * Restarted at the loose scale, its first steps took MinRad 20 to 30 %
      * over at N = 38 400 (the checkpoint at step 130 of the rung from the
      * converged 19 200, 32.7431246 as rescaled: 46 steps later 32.7429295
-     * with MinRad 27 % over at mu 100), as the N = 200 640 rung did for hours;
-     * with the tight start's rule it settled in 205 steps at
-     * 32.7429351282 (the unbroken rung: 32.7429351290). Only there: at
+     * with MinRad 27 % over at mu 100); with the tight start's rule it
+     * settled in 205 steps at 32.7429351282 (the unbroken rung:
+     * 32.7429351290). Only there: at
      * 4800 and 9600 such restarts (start residuals 0.38, 0.37) took 158
      * and 140 steps at the loose scale, 214 and 71 with the rule, and the
      * N = 2400 file (0.11) 156 against 240 and 2.5e-8 longer
