@@ -283,6 +283,7 @@ static int run_levels(tr_engine *e, const tr_engine_limits *lim, tr_stop_reason 
     e->ckpt_every = lim->checkpoint_every;
     double time_left_at_level = lim->time_limit > 0 ? lim->time_limit - (e->elapsed_base + tr_clock_seconds() - e->t0) : 0;
     *why = TR_STOP_NONE;
+    e->stop_why[0] = '\0';
     rc = level_backend(e, wants_coarse_ref(e, e->curve.nv, is_final_level(lim, e->curve.nv / (size_t)e->curve.ncomp)),
                        err);
     if (rc)
@@ -300,7 +301,9 @@ static int run_levels(tr_engine *e, const tr_engine_limits *lim, tr_stop_reason 
         }
         int level_done = 0;
         int past = tr_deadline_passed(&e->bound);
-        if (past == 2)
+        if (e->stop_why[0])
+            stop = TR_STOP_REFINE;
+        else if (past == 2)
             stop = TR_STOP_SIGNAL;
         else if (past == 1 || (lim->time_limit > 0 && p.elapsed >= lim->time_limit))
             stop = TR_STOP_TIME;
@@ -394,14 +397,10 @@ static int run_levels(tr_engine *e, const tr_engine_limits *lim, tr_stop_reason 
              * to this level: the loop then stops on the bound */
             rc = tr_engine_refine(e, next, err);
             if (rc == TR_EGEOMETRY) {
-                /* back at this level, its curve the run's: it stops here */
+                /* back at this level, its curve the run's: the next pass
+                 * stops there as on any other stop (TR_STOP_REFINE) */
                 snprintf(e->stop_why, sizeof e->stop_why, "%.500s", err->msg);
-                *why = TR_STOP_REFINE;
-                if (lim->progress)
-                    lim->progress(&p, lim->user);
-                if (lim->checkpoint_path && (rc = checkpoint(e, lim->checkpoint_path, err)))
-                    return rc;
-                return TR_OK;
+                continue;
             }
             if (rc && rc != TR_EINTERRUPTED)
                 return rc;

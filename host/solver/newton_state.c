@@ -237,48 +237,22 @@ static void put_sizes(buf *b, const size_t *v, size_t n)
         put_u64(b, (uint64_t)v[i]);
 }
 
-/* The state's scalars in the file's order, as one list of offsets for the
- * writer and the reader (a field added to one and not the other would
- * shift every field after it) */
-static const size_t STATE_DOUBLE_FIELDS[] = {
-    offsetof(tr_newton_state, mu),          offsetof(tr_newton_state, band),
-    offsetof(tr_newton_state, max_bend),    offsetof(tr_newton_state, guard),
-    offsetof(tr_newton_state, viol_tol),    offsetof(tr_newton_state, warm_residual),
-    offsetof(tr_newton_state, omega),       offsetof(tr_newton_state, prev_viol),
-    offsetof(tr_newton_state, lm),          offsetof(tr_newton_state, prev_len),
-    offsetof(tr_newton_state, best_rl),     offsetof(tr_newton_state, best_viol_edge),
-    offsetof(tr_newton_state, best_thickness), offsetof(tr_newton_state, seconds)};
-static const size_t STATE_INT_FIELDS[] = {
-    offsetof(tr_newton_state, bend_cap),   offsetof(tr_newton_state, iter),    offsetof(tr_newton_state, outer),
-    offsetof(tr_newton_state, inner),      offsetof(tr_newton_state, settled), offsetof(tr_newton_state, last_full),
-    offsetof(tr_newton_state, moved),      offsetof(tr_newton_state, stuck),   offsetof(tr_newton_state, inner_done),
-    offsetof(tr_newton_state, best_restored)};
-/* the offsets' fields are what the lists say they are */
-#define STATE_FIELD_IS(f, type) _Static_assert(sizeof(((tr_newton_state *)0)->f) == sizeof(type), #f)
-STATE_FIELD_IS(mu, double);
-STATE_FIELD_IS(band, double);
-STATE_FIELD_IS(max_bend, double);
-STATE_FIELD_IS(guard, double);
-STATE_FIELD_IS(viol_tol, double);
-STATE_FIELD_IS(warm_residual, double);
-STATE_FIELD_IS(omega, double);
-STATE_FIELD_IS(prev_viol, double);
-STATE_FIELD_IS(lm, double);
-STATE_FIELD_IS(prev_len, double);
-STATE_FIELD_IS(best_rl, double);
-STATE_FIELD_IS(best_viol_edge, double);
-STATE_FIELD_IS(best_thickness, double);
-STATE_FIELD_IS(seconds, double);
-STATE_FIELD_IS(bend_cap, int);
-STATE_FIELD_IS(iter, int);
-STATE_FIELD_IS(outer, int);
-STATE_FIELD_IS(inner, int);
-STATE_FIELD_IS(settled, int);
-STATE_FIELD_IS(last_full, int);
-STATE_FIELD_IS(moved, int);
-STATE_FIELD_IS(stuck, int);
-STATE_FIELD_IS(inner_done, int);
-STATE_FIELD_IS(best_restored, int);
+/* The state's scalars in the file's order, named once for the writer
+ * and the reader (a field added to one and not the other would shift
+ * every field after it): the offsets come from these lists, and each
+ * field's type is checked against its list's */
+#define STATE_DOUBLE_LIST(X)                                                                                     \
+    X(mu) X(band) X(max_bend) X(guard) X(viol_tol) X(warm_residual) X(omega) X(prev_viol) X(lm) X(prev_len)      \
+        X(best_rl) X(best_viol_edge) X(best_thickness) X(seconds)
+#define STATE_INT_LIST(X)                                                                                        \
+    X(bend_cap) X(iter) X(outer) X(inner) X(settled) X(last_full) X(moved) X(stuck) X(inner_done) X(best_restored)
+#define STATE_OFFSET(f) offsetof(tr_newton_state, f),
+#define STATE_IS_DOUBLE(f) _Static_assert(sizeof(((tr_newton_state *)0)->f) == sizeof(double), #f " is a double");
+#define STATE_IS_INT(f) _Static_assert(sizeof(((tr_newton_state *)0)->f) == sizeof(int), #f " is an int");
+static const size_t STATE_DOUBLE_FIELDS[] = {STATE_DOUBLE_LIST(STATE_OFFSET)};
+static const size_t STATE_INT_FIELDS[] = {STATE_INT_LIST(STATE_OFFSET)};
+STATE_DOUBLE_LIST(STATE_IS_DOUBLE)
+STATE_INT_LIST(STATE_IS_INT)
 #define STATE_DOUBLES (sizeof STATE_DOUBLE_FIELDS / sizeof STATE_DOUBLE_FIELDS[0])
 #define STATE_INTS (sizeof STATE_INT_FIELDS / sizeof STATE_INT_FIELDS[0])
 _Static_assert(sizeof STATE_DOUBLE_FIELDS / sizeof STATE_DOUBLE_FIELDS[0] == 14 &&
