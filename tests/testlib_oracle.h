@@ -17,4 +17,14 @@ static inline double tr_test_ropelength(const tr_curve *c)
     return th.ropelength;
 }
 
+/* The curve's thickness as the oracle measures it (NaN where it fails). */
+static inline double tr_test_thickness(const tr_curve *c)
+{
+    tr_thickness th;
+    tr_error err = {0};
+    if (tr_thickness_measure(c, NULL, &th, NULL, &err))
+        return NAN;
+    return th.thickness;
+}
+
 #endif

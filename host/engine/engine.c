@@ -227,6 +227,8 @@ int tr_engine_i_alloc_comp_arrays(tr_engine *e, tr_error *err)
     return TR_OK;
 }
 
+static void coarse_drop(tr_engine *e);
+
 tr_engine *tr_engine_i_new(const char *device, const tr_engine_params *p)
 {
     tr_engine *e = calloc(1, sizeof *e);
@@ -471,6 +473,7 @@ void tr_engine_destroy(tr_engine *e)
     free(e->gap);
     free(e->ebar);
     free(e->polish_x);
+    coarse_drop(e);
     free(e);
 }
 
@@ -591,25 +594,49 @@ int tr_engine_get_curve(tr_engine *e, tr_curve *out, tr_error *err)
     return TR_OK;
 }
 
-/* Goes back from a refined level whose settle the bound stopped to the
- * settled coarse level it came from (coarse, ebar: its curve and edge
- * targets, taken over), with the coarse level's flags (was). */
-static int unrefine(tr_engine *e, tr_curve *coarse, double *ebar, const tr_engine *was, tr_error *err)
+void tr_engine_i_refine_taken(tr_engine *e)
 {
+    e->refine_unsettled = 0;
+    coarse_drop(e);
+}
+
+/* Drops the coarse level tr_engine_refine held (e->coarse). */
+static void coarse_drop(tr_engine *e)
+{
+    if (!e->coarse.held)
+        return;
+    tr_curve_free(&e->coarse.curve);
+    free(e->coarse.ebar);
+    free(e->coarse.polish_x);
+    memset(&e->coarse, 0, sizeof e->coarse);
+}
+
+/* Goes back from a refined level that could not be settled, or that the
+ * solver did not take, to the settled coarse level it came from (held in
+ * e->coarse, taken over), with the coarse level's flags. */
+int tr_engine_i_refine_back(tr_engine *e, tr_error *err)
+{
+    if (!e->coarse.held)
+        return tr_fail(err, TR_EINVAL, "no coarse level to go back to");
+    /* a solver state of the refined level is no state of the coarse one */
+    tr_engine_i_solver_state_drop(e);
     tr_backend_close(&e->be);
     tr_curve_free(&e->curve);
-    e->curve = *coarse;
+    e->curve = e->coarse.curve;
+    double *ebar = e->coarse.ebar;
     int rc = tr_engine_i_alloc_comp_arrays(e, err);
     if (rc == TR_OK)
         rc = tr_engine_i_open_backend(e, &e->curve, err);
     if (rc == TR_OK)
         rc = e->be.ops->upload(e->be.state, e->curve.x, ebar, err);
     free(ebar);
-    e->polished = was->polished;
+    e->polished = e->coarse.polished;
     free(e->polish_x);
-    e->polish_x = was->polish_x; /* the coarse level's polished curve, if it kept one */
-    e->newton_tried = was->newton_tried;
-    e->newton_solved = was->newton_solved;
+    e->polish_x = e->coarse.polish_x; /* the coarse level's polished curve, if it kept one */
+    e->newton_tried = e->coarse.newton_tried;
+    e->newton_solved = e->coarse.newton_solved;
+    memset(&e->coarse, 0, sizeof e->coarse);
+    e->refine_unsettled = 0;
     free(e->presettle_x);
     e->presettle_x = NULL;
     tr_measure m;
@@ -622,6 +649,7 @@ static int unrefine(tr_engine *e, tr_curve *coarse, double *ebar, const tr_engin
 int tr_engine_refine(tr_engine *e, size_t n, tr_error *err)
 {
     tr_engine_i_solver_state_drop(e);
+    coarse_drop(e);
     int rc = e->be.ops->download(e->be.state, e->curve.x, NULL, err);
     if (rc)
         return rc;
@@ -629,40 +657,38 @@ int tr_engine_refine(tr_engine *e, size_t n, tr_error *err)
     rc = tr_refine_lowpass(&e->curve, n, 0.5, 0.5, &fine, err);
     if (rc)
         return rc;
-    /* the settled coarse level, to go back to should the bound stop the
-     * refined level's settle (a run's time is up: its best is the coarse
-     * level, not a half-settled finer one) */
-    tr_curve coarse;
+    /* the settled coarse level, to go back to should the refined level
+     * not be settled (the bound stops its settle: a run's best is then the
+     * coarse level, not a half-settled finer one; its first-order passes
+     * cannot put it on the constraint set; the solver does not take it) */
     double *coarse_ebar = malloc((size_t)e->curve.ncomp * sizeof *coarse_ebar);
-    if (!coarse_ebar || (rc = tr_curve_copy(&coarse, &e->curve, err))) {
+    if (!coarse_ebar || (rc = tr_curve_copy(&e->coarse.curve, &e->curve, err))) {
         free(coarse_ebar);
         tr_curve_free(&fine);
         return coarse_ebar ? rc : tr_fail(err, TR_ENOMEM, "out of memory");
     }
     memcpy(coarse_ebar, e->ebar, (size_t)e->curve.ncomp * sizeof *coarse_ebar);
-    tr_engine was = *e;
+    e->coarse.held = 1;
+    e->coarse.ebar = coarse_ebar;
+    e->coarse.polished = e->polished;
+    e->coarse.polish_x = e->polish_x;
+    e->coarse.newton_tried = e->newton_tried;
+    e->coarse.newton_solved = e->newton_solved;
+    e->polish_x = NULL; /* the coarse level's (e->coarse.polish_x), until the settle is done */
     tr_backend_close(&e->be);
     tr_curve_free(&e->curve);
     e->curve = fine;
-    if ((rc = tr_engine_i_alloc_comp_arrays(e, err)) || (rc = tr_engine_i_open_backend(e, &e->curve, err))) {
-        tr_curve_free(&coarse);
-        free(coarse_ebar);
-        return rc;
-    }
+    if ((rc = tr_engine_i_alloc_comp_arrays(e, err)) || (rc = tr_engine_i_open_backend(e, &e->curve, err)))
+        return rc; /* the engine is unusable; destroy frees what it holds */
     /* resampling may bring strands slightly closer than 2 (never near
      * crossing): the correction pushes them back out */
     e->polished = 0;
-    e->polish_x = NULL; /* the coarse level's (was.polish_x), until the settle is done */
     /* the new level may go to the solver again (level_loop.c,
      * is_solver_level: a clasp's every level) */
     e->newton_tried = 0;
     e->newton_solved = 0;
-    if ((rc = tr_engine_i_keep_presettle(e, err))) {
-        tr_curve_free(&coarse);
-        free(coarse_ebar);
-        free(was.polish_x);
+    if ((rc = tr_engine_i_keep_presettle(e, err)))
         return rc;
-    }
     /* A refined clasp is pressed through itself where strands touch, and
      * its planes forbid scaling it out: the settle's 400 damped passes do
      * not always restore it (the 2 x 800 clasp refined to 2 x 1000), and
@@ -674,8 +700,8 @@ int tr_engine_refine(tr_engine *e, size_t n, tr_error *err)
      * counted as solved (tr_engine_i_newton), went from 74 s to 33.5 s at
      * 2 x 1000 and from 111 s to 25 s at 2 x 2000
      * (bench/notes/2026-11-25-clasps-through-solver.md).
-     * Should the solver not take the level, the refinement fails
-     * (level_loop.c). */
+     * Should the solver not take the level, the engine goes back to the
+     * coarse level, held until then (level_loop.c). */
     int to_solver = e->curve.ncst > 0 && (e->prm.newton || e->prm.newton_tight) && e->prm.polish;
     rc = to_solver ? TR_EGEOMETRY : tr_engine_i_settle(e, "the refined curve", 0.25, err);
     /* A closed knot's refined level that the settle's first-order passes
@@ -692,20 +718,19 @@ int tr_engine_refine(tr_engine *e, size_t n, tr_error *err)
         tr_error e2;
         if (rc == TR_EGEOMETRY)
             tr_fail_wrap(err, rc, "refining to %zu vertices", n);
-        int rc2 = unrefine(e, &coarse, coarse_ebar, &was, &e2);
+        int rc2 = tr_engine_i_refine_back(e, &e2);
         if (rc2)
             *err = e2;
         return rc2 ? rc2 : rc;
     }
-    tr_curve_free(&coarse);
-    free(coarse_ebar);
-    free(was.polish_x);
     e->refine_unsettled = 0;
     if (take) {
+        /* the coarse level stays held until the solver has had the level */
         e->refine_unsettled = 1;
         e->refine_unsettled_n = n;
         rc = TR_OK;
-    }
+    } else
+        coarse_drop(e);
     if (rc)
         return rc;
     e->h = e->ebar[0];

@@ -53,11 +53,20 @@ struct tr_engine {
     /* the solver has had its look at a tight finest level (run, or found
      * the start loose) */
     int newton_tried;
-    /* a refined clasp whose settle failed (engine.c, tr_engine_refine):
-     * the level is the solver's; if it does not take it, the refinement
-     * fails as it would have (the backend holds the half-settled curve) */
+    /* a refined clasp handed to the solver unsettled (engine.c,
+     * tr_engine_refine): the level is the solver's; if it does not take
+     * it, the engine goes back to the coarse level held here (nothing of
+     * the run lost) and the run stops there (TR_STOP_REFINE) */
     int refine_unsettled;
     size_t refine_unsettled_n;
+    struct tr_engine_coarse_level {
+        int held;
+        tr_curve curve;    /* the coarse level, settled, as it was refined */
+        double *ebar;      /* its edge targets */
+        int polished;      /* its polish and solver flags */
+        double *polish_x;  /* its polished curve, if it kept one */
+        int newton_tried, newton_solved;
+    } coarse;
     /* a refinement that could not be settled and went back (TR_STOP_REFINE) */
     char stop_why[512];
     /* where the second-order solver writes its checkpoints (tr_engine_solve:
@@ -111,6 +120,11 @@ int tr_engine_i_settle(tr_engine *e, const char *what, double overlap_ok, tr_err
  * reported as a run). A failure on the geometry is not an error. */
 int tr_engine_i_newton(tr_engine *e, double seconds, int tight_only, volatile sig_atomic_t *stop, int *accepted,
                        tr_error *err);
+/* Goes back from a refined level the solver did not take to the coarse
+ * level e->coarse holds (tr_engine_refine kept it), measured afresh. */
+int tr_engine_i_refine_back(tr_engine *e, tr_error *err);
+/* The solver took the refined level: the coarse one is let go. */
+void tr_engine_i_refine_taken(tr_engine *e);
 /* Writes a checkpoint of e's state with curve c (its edge targets ebar,
  * exclusion gaps gap) in place of e's own (tr_engine_checkpoint_write
  * downloads e's). */

@@ -332,12 +332,30 @@ static int run_levels(tr_engine *e, const tr_engine_limits *lim, tr_stop_reason 
             if ((rc = run_polish(e, lim->time_limit > 0 ? fmax(left, 1e-3) : 0.0, lim->target, 1, 1, lim->stop,
                                  err)))
                 return rc;
-            if (e->refine_unsettled && !(e->newton_ran == 1 && e->polished == 1))
-                return tr_fail(err, TR_ETOPOLOGY,
-                               "refining to %zu vertices: the second-order solver did not take the refined "
-                               "clasp (%s)", e->refine_unsettled_n,
-                               e->newton_why[0] ? e->newton_why : "not run");
-            e->refine_unsettled = 0;
+            if (e->refine_unsettled && !(e->newton_ran == 1 && e->polished == 1)) {
+                /* a refined clasp the solver did not take goes back to its
+                 * coarse level, the run's result, and the run stops there
+                 * (TR_STOP_REFINE), as a closed knot's unsettled level does:
+                 * a rejection here once failed the run with nothing written
+                 * (2 x 48 000 with short ends, at 2 x 6400 after two hours;
+                 * that rejection was the solver's own defect, newton.c,
+                 * has_best) */
+                size_t n = e->refine_unsettled_n;
+                char why[200];
+                snprintf(why, sizeof why, "%.190s", e->newton_why[0] ? e->newton_why : "not run");
+                if ((rc = tr_engine_i_refine_back(e, err)))
+                    return rc;
+                /* a solve the time or a signal stopped: the next pass
+                 * stops on that, not on the refinement */
+                tr_engine_get_progress(e, &p);
+                if (tr_deadline_passed(&e->bound) || (lim->time_limit > 0 && p.elapsed >= lim->time_limit))
+                    continue;
+                snprintf(e->stop_why, sizeof e->stop_why,
+                         "refining to %zu vertices: the second-order solver did not take the refined clasp (%s)", n,
+                         why);
+                continue;
+            }
+            tr_engine_i_refine_taken(e);
             /* a rejected solve leaves the level to the first-order polish,
              * unless it counted as solved (a clasp already at the level's
              * optimum: engine.c, tr_engine_i_newton) */
@@ -375,13 +393,17 @@ static int run_levels(tr_engine *e, const tr_engine_limits *lim, tr_stop_reason 
                 continue;
             }
         }
+        if (stop != TR_STOP_NONE && e->refine_unsettled) {
+            /* stopped before the solver had the refined clasp (a signal, the
+             * time): the run's result is the coarse level it came from */
+            if ((rc = tr_engine_i_refine_back(e, err)))
+                return rc;
+            tr_engine_get_progress(e, &p);
+        }
         if (lim->progress && (stop != TR_STOP_NONE || tr_clock_seconds() - t_last_prog >= lim->progress_every)) {
             lim->progress(&p, lim->user);
             t_last_prog = tr_clock_seconds();
         }
-        if (stop != TR_STOP_NONE && e->refine_unsettled)
-            return tr_fail(err, TR_ETOPOLOGY, "refining to %zu vertices: the refined clasp could not be settled",
-                           e->refine_unsettled_n);
         if (stop != TR_STOP_NONE) {
             *why = stop;
             if (lim->checkpoint_path && (rc = checkpoint(e, lim->checkpoint_path, err)))

@@ -400,10 +400,21 @@ static int ensure_best(solver *s, tr_error *err)
         s->restored = malloc(s->n * sizeof *s->restored);
         if (!s->best_y || !s->restored)
             return tr_fail(err, TR_ENOMEM, "out of memory (Newton solver)");
+        /* no best yet: nothing in best_y is read until consider() has
+         * put an iterate there (has_best) */
         s->best_rl = INFINITY;
+        s->best_viol_edge = INFINITY;
     }
     return TR_OK;
 }
+
+/* Whether best_y holds an iterate. A constrained rope's iterates may all be
+ * a little under thickness 1 (a refined clasp pressed through itself), and
+ * then none is a best: best_y was once read all the same, uninitialised,
+ * as the solver's result and its checkpoints (2 x 3200 and 2 x 6400 clasps
+ * with short ends: a checkpoint of zeros, the result "passes through
+ * itself", the run failed). */
+static int has_best(const solver *s) { return s->best_y && isfinite(s->best_rl); }
 
 /* cand (viol_edge: its edges' violation; restored: a restoration's
  * result) becomes the best if the oracle measures it shorter than the best
@@ -459,7 +470,7 @@ static int keep_best(solver *s, const double *y, double deadline, tr_error *err)
      * thickness 1 (its MinRad and strut rows are met by the rescaling; a
      * constrained rope as it is, within CONSTRAINED_OUT_TOL of it, its
      * planes do not scale) */
-    if (!(s->best_viol_edge <= 1e-7))
+    if (!has_best(s) || !(s->best_viol_edge <= 1e-7))
         return TR_OK;
     memcpy(s->probe.x, s->best_y, 3 * s->nv * sizeof *s->best_y);
     for (size_t i = 0; s->ncv == 0 && i < 3 * s->nv; i++)
@@ -992,13 +1003,13 @@ int tr_newton(tr_curve *cv, const tr_newton_params *prm, tr_newton_stats *st, tr
     /* the last iterate, or the best one the passes met */
     tr_newton_i_al_eval(&s, y, NULL, 0);
     double deadline = prm->time_limit > 0 ? t0 + prm->time_limit : INFINITY;
-    double best_before = s.best_y ? s.best_rl : INFINITY;
+    double best_before = has_best(&s) ? s.best_rl : INFINITY;
     if (s.viol < BEST_VIOL) {
         if ((rc = ensure_best(&s, err)) || (rc = consider(&s, y, s.viol_kind[0], 0, err)) ||
             (rc = consider_restored(&s, y, deadline, err)))
             goto done;
     }
-    if (s.best_y) {
+    if (has_best(&s)) {
         /* the best by the oracle may be an earlier iterate, further over,
          * or a restoration that a second round takes further: restored
          * (again), unless it is the last iterate as it was, restored above */

@@ -14,6 +14,7 @@
 #include "engine/engine.h"
 #include "curve/generate.h"
 #include "testlib.h"
+#include "testlib_oracle.h"
 #include "oracle/thickness.h"
 #include "util/vec3.h"
 
@@ -203,6 +204,69 @@ static void clasp_run(void)
     tr_curve_free(&c);
 }
 
+/* A refined clasp goes to the second-order solver unsettled (its planes
+ * forbid the settle's rescaling): should the run stop before the solver has
+ * it, or the solver not take it, the engine goes back to the coarse level
+ * the refinement came from, which is the run's result. It once failed the
+ * run with nothing kept (2 x 48 000 with short ends, after two hours).
+ * Here the stop flag is raised once the 2 x 40 level is done: the
+ * refinement to 2 x 80 follows, and the run must stop at 2 x 40 with that
+ * level's curve, at thickness 1 (to the solver's 1e-6), its ends on their
+ * planes. */
+typedef struct {
+    volatile sig_atomic_t *flag;
+    double solved_length;
+} clasp_stop;
+
+static void clasp_stop_progress(const tr_engine_progress *p, void *user)
+{
+    clasp_stop *s = user;
+    /* the coarse level done (polished, or the solver's): the refinement
+     * comes next */
+    if (p->n == 80 && (p->polished != 0 || p->newton_ran != 0) && !*s->flag) {
+        *s->flag = 1;
+        s->solved_length = p->length;
+    }
+}
+
+static void clasp_refine_stopped(void)
+{
+    tr_error err;
+    tr_curve c;
+    CHECK_OK(tr_make_clasp(&c, 40, 5.0, &err));
+    tr_engine_params prm;
+    tr_engine_params_default(&prm);
+    prm.newton = 1;
+    prm.polish = 1;
+    tr_engine *e;
+    CHECK_OK(tr_engine_create(&e, &c, "reference", &prm, &err));
+    volatile sig_atomic_t flag = 0;
+    clasp_stop cs = {.flag = &flag, .solved_length = NAN};
+    tr_engine_limits lim = {.refine_to = 80, .stop = &flag, .progress = clasp_stop_progress, .user = &cs};
+    tr_stop_reason why = TR_STOP_NONE;
+    int rc = tr_engine_run(e, &lim, &why, &err);
+    CHECK_OK(rc);
+    tr_engine_progress p;
+    tr_engine_get_progress(e, &p);
+    tr_curve f = {0};
+    CHECK_OK(tr_engine_get_curve(e, &f, &err));
+    double worst = 0.0, th = tr_test_thickness(&f);
+    for (size_t i = 0; i < f.nv; i++)
+        if (f.vcst && f.vcst[i] >= 0)
+            worst = fmax(worst, tr_constraint_violation(&f.cst[f.vcst[i]], f.x + 3 * i));
+    printf("clasp stopped at its refinement: %s, stop %s at N %zu, length %.9f (the solved 2 x 40: %.9f), "
+           "thickness %.9f, worst plane distance %.3g\n", rc ? err.msg : "ok", tr_stop_reason_name(why), p.n,
+           p.length, cs.solved_length, th, worst);
+    CHECK(why == TR_STOP_SIGNAL);
+    CHECK(p.n == 80);
+    CHECK(fabs(p.length - cs.solved_length) < 1e-9 * p.length);
+    CHECK(th > 1.0 - 1e-6);
+    CHECK(worst <= 1e-12);
+    tr_curve_free(&f);
+    tr_engine_destroy(e);
+    tr_curve_free(&c);
+}
+
 static void run_steps(tr_engine *e, int n)
 {
     tr_error err;
@@ -386,6 +450,7 @@ int main(void)
     hopf_run();
     starved_list_run();
     clasp_run();
+    clasp_refine_stopped();
     checkpoint_resume();
     run_loop();
     refused();
