@@ -304,6 +304,7 @@ int tr_engine_i_newton(tr_engine *e, double seconds, int tight_only, volatile si
     tr_newton_stats ns;
     /* tried, whatever comes of it: the level loop must not try again */
     e->newton_tried = 1;
+    e->newton_unfinished = 0;
     /* The solver's strut rows on the run's device (backend.h strut_rows):
      * the open backend, or, for the solve before the settle (tr_engine_solve,
      * before the engine opens one), one opened for the solve on the same
@@ -320,6 +321,8 @@ int tr_engine_i_newton(tr_engine *e, double seconds, int tight_only, volatile si
     np.backend = be && !be->ops->serial ? be : NULL;
     int rc = tr_newton(&e->curve, &np, &ns, err);
     tr_engine_i_solver_state_after(e, rc, &ns);
+    e->newton_unfinished =
+        rc == TR_EINTERRUPTED || (rc == TR_OK && !ns.converged && !ns.settled && !ns.skipped && !ns.loose);
     tr_backend_close(&own);
     snprintf(e->newton_why, sizeof e->newton_why, "%.150s",
              rc ? err->msg : ns.why_rejected ? ns.why_rejected : ns.skipped ? "skipped" : "");
@@ -614,12 +617,14 @@ static void coarse_drop(tr_engine *e)
 /* Goes back from a refined level that could not be settled, or that the
  * solver did not take, to the settled coarse level it came from (held in
  * e->coarse, taken over), with the coarse level's flags. */
-int tr_engine_i_refine_back(tr_engine *e, tr_error *err)
+int tr_engine_i_refine_back(tr_engine *e, int keep_state, tr_error *err)
 {
     if (!e->coarse.held)
         return tr_fail(err, TR_EINVAL, "no coarse level to go back to");
-    /* a solver state of the refined level is no state of the coarse one */
-    tr_engine_i_solver_state_drop(e);
+    /* a solver state of the refined level is no state of the coarse one,
+     * unless the run stops here and its resume goes on with that solve */
+    if (!keep_state)
+        tr_engine_i_solver_state_drop(e);
     tr_backend_close(&e->be);
     tr_curve_free(&e->curve);
     e->curve = e->coarse.curve;
@@ -635,6 +640,10 @@ int tr_engine_i_refine_back(tr_engine *e, tr_error *err)
     e->polish_x = e->coarse.polish_x; /* the coarse level's polished curve, if it kept one */
     e->newton_tried = e->coarse.newton_tried;
     e->newton_solved = e->coarse.newton_solved;
+    e->h = e->coarse.h;
+    e->residual = e->coarse.residual;
+    e->disp_est = e->coarse.disp_est;
+    e->jammed = e->coarse.jammed;
     memset(&e->coarse, 0, sizeof e->coarse);
     e->refine_unsettled = 0;
     free(e->presettle_x);
@@ -674,6 +683,10 @@ int tr_engine_refine(tr_engine *e, size_t n, tr_error *err)
     e->coarse.polish_x = e->polish_x;
     e->coarse.newton_tried = e->newton_tried;
     e->coarse.newton_solved = e->newton_solved;
+    e->coarse.h = e->h;
+    e->coarse.residual = e->residual;
+    e->coarse.disp_est = e->disp_est;
+    e->coarse.jammed = e->jammed;
     e->polish_x = NULL; /* the coarse level's (e->coarse.polish_x), until the settle is done */
     tr_backend_close(&e->be);
     tr_curve_free(&e->curve);
@@ -718,7 +731,7 @@ int tr_engine_refine(tr_engine *e, size_t n, tr_error *err)
         tr_error e2;
         if (rc == TR_EGEOMETRY)
             tr_fail_wrap(err, rc, "refining to %zu vertices", n);
-        int rc2 = tr_engine_i_refine_back(e, &e2);
+        int rc2 = tr_engine_i_refine_back(e, 0, &e2);
         if (rc2)
             *err = e2;
         return rc2 ? rc2 : rc;

@@ -221,8 +221,9 @@ int tr_engine_step(tr_engine *e, int *accepted, tr_error *err);
 /* Low-pass resample every component to n vertices and re-equalise. Where
  * the re-equalising (the settle) fails, a clasp's level goes to the
  * second-order solver from the curve as refined (with the solver and the
- * polish on; tr_engine_run fails if the solver does not take it); any
- * other level goes back to the coarse level it came from, and the call fails with
+ * polish on; should the solver not take it, tr_engine_run goes back to the
+ * coarse level and stops there, TR_STOP_REFINE, or with the time or
+ * signal that stopped the solve); any other level goes back to the coarse level it came from, and the call fails with
  * TR_EGEOMETRY (nothing lost: the coarse level's curve is the engine's
  * again). TR_EINTERRUPTED: the bound stopped the settle, back at the
  * coarse level too. */

@@ -66,7 +66,18 @@ struct tr_engine {
         int polished;      /* its polish and solver flags */
         double *polish_x;  /* its polished curve, if it kept one */
         int newton_tried, newton_solved;
+        double h, residual, disp_est; /* its step figures, for the stop's checkpoint */
+        int jammed;
     } coarse;
+    /* the solver's last call stopped unfinished (its time, a stop, its
+     * step limit), neither converged nor settled nor refused */
+    int newton_unfinished;
+    /* a stop decided inside a pass (a refined clasp's solve stopped by the
+     * run's time or a signal): the next pass stops with it */
+    tr_stop_reason stop_pending;
+    /* the stop writes no checkpoint: the solver's own of a refined clasp,
+     * with its state, is the one a resume goes on from */
+    int ckpt_hold;
     /* a refinement that could not be settled and went back (TR_STOP_REFINE) */
     char stop_why[512];
     /* where the second-order solver writes its checkpoints (tr_engine_solve:
@@ -121,8 +132,10 @@ int tr_engine_i_settle(tr_engine *e, const char *what, double overlap_ok, tr_err
 int tr_engine_i_newton(tr_engine *e, double seconds, int tight_only, volatile sig_atomic_t *stop, int *accepted,
                        tr_error *err);
 /* Goes back from a refined level the solver did not take to the coarse
- * level e->coarse holds (tr_engine_refine kept it), measured afresh. */
-int tr_engine_i_refine_back(tr_engine *e, tr_error *err);
+ * level e->coarse holds (tr_engine_refine kept it), measured afresh.
+ * keep_state: the solver's state of the refined level stays (a solve the
+ * run's time or a signal stopped, for a resume to go on with). */
+int tr_engine_i_refine_back(tr_engine *e, int keep_state, tr_error *err);
 /* The solver took the refined level: the coarse one is let go. */
 void tr_engine_i_refine_taken(tr_engine *e);
 /* Writes a checkpoint of e's state with curve c (its edge targets ebar,

@@ -284,6 +284,8 @@ static int run_levels(tr_engine *e, const tr_engine_limits *lim, tr_stop_reason 
     double time_left_at_level = lim->time_limit > 0 ? lim->time_limit - (e->elapsed_base + tr_clock_seconds() - e->t0) : 0;
     *why = TR_STOP_NONE;
     e->stop_why[0] = '\0';
+    e->stop_pending = TR_STOP_NONE;
+    e->ckpt_hold = 0;
     rc = level_backend(e, wants_coarse_ref(e, e->curve.nv, is_final_level(lim, e->curve.nv / (size_t)e->curve.ncomp)),
                        err);
     if (rc)
@@ -303,17 +305,22 @@ static int run_levels(tr_engine *e, const tr_engine_limits *lim, tr_stop_reason 
         int past = tr_deadline_passed(&e->bound);
         if (e->stop_why[0])
             stop = TR_STOP_REFINE;
+        else if (e->stop_pending != TR_STOP_NONE)
+            stop = e->stop_pending;
         else if (past == 2)
             stop = TR_STOP_SIGNAL;
         else if (past == 1 || (lim->time_limit > 0 && p.elapsed >= lim->time_limit))
             stop = TR_STOP_TIME;
         else if (lim->max_steps > 0 && e->steps >= lim->max_steps)
             stop = TR_STOP_STEPS;
-        else if (final_level && lim->target > 0 && p.ropelength <= lim->target)
+        /* (a refined clasp before the solver has had it has no figures of
+         * its own yet: the coarse level's residual and jam are not its) */
+        else if (final_level && !e->refine_unsettled && lim->target > 0 && p.ropelength <= lim->target)
             stop = TR_STOP_TARGET;
-        else if (final_level && e->steps > 0 && lim->residual > 0 && e->residual < lim->residual)
+        else if (final_level && !e->refine_unsettled && e->steps > 0 && lim->residual > 0 &&
+                 e->residual < lim->residual)
             stop = TR_STOP_RESIDUAL;
-        else if (final_level && e->jammed)
+        else if (final_level && !e->refine_unsettled && e->jammed)
             stop = TR_STOP_JAMMED;
         else if (final_level && e->newton_solved)
             stop = TR_STOP_SOLVED;
@@ -342,14 +349,27 @@ static int run_levels(tr_engine *e, const tr_engine_limits *lim, tr_stop_reason 
                  * has_best) */
                 size_t n = e->refine_unsettled_n;
                 char why[200];
-                snprintf(why, sizeof why, "%.190s", e->newton_why[0] ? e->newton_why : "not run");
-                if ((rc = tr_engine_i_refine_back(e, err)))
+                snprintf(why, sizeof why, "%.190s",
+                         e->newton_why[0]       ? e->newton_why
+                         : e->newton_unfinished ? "it did not finish in the level's share of the time"
+                                                : "not run");
+                /* A solve the run's time or a signal stopped (the solver
+                 * stops a little before its limit, to restore its best,
+                 * so the clock may not show the limit reached yet): the
+                 * run stops on that, its result the coarse level, and the
+                 * solver's own checkpoint and state of the refined level
+                 * stay for a resume to go on with (a long clasp stopped
+                 * at a session's end would otherwise start that level's
+                 * solve again). */
+                int past_now = tr_deadline_passed(&e->bound);
+                int run_time = e->newton_unfinished && (past_now || (final_level && lim->time_limit > 0));
+                if ((rc = tr_engine_i_refine_back(e, run_time, err)))
                     return rc;
-                /* a solve the time or a signal stopped: the next pass
-                 * stops on that, not on the refinement */
-                tr_engine_get_progress(e, &p);
-                if (tr_deadline_passed(&e->bound) || (lim->time_limit > 0 && p.elapsed >= lim->time_limit))
+                if (run_time) {
+                    e->stop_pending = past_now == 2 ? TR_STOP_SIGNAL : TR_STOP_TIME;
+                    e->ckpt_hold = 1;
                     continue;
+                }
                 snprintf(e->stop_why, sizeof e->stop_why,
                          "refining to %zu vertices: the second-order solver did not take the refined clasp (%s)", n,
                          why);
@@ -396,7 +416,7 @@ static int run_levels(tr_engine *e, const tr_engine_limits *lim, tr_stop_reason 
         if (stop != TR_STOP_NONE && e->refine_unsettled) {
             /* stopped before the solver had the refined clasp (a signal, the
              * time): the run's result is the coarse level it came from */
-            if ((rc = tr_engine_i_refine_back(e, err)))
+            if ((rc = tr_engine_i_refine_back(e, 0, err)))
                 return rc;
             tr_engine_get_progress(e, &p);
         }
@@ -406,7 +426,7 @@ static int run_levels(tr_engine *e, const tr_engine_limits *lim, tr_stop_reason 
         }
         if (stop != TR_STOP_NONE) {
             *why = stop;
-            if (lim->checkpoint_path && (rc = checkpoint(e, lim->checkpoint_path, err)))
+            if (lim->checkpoint_path && !e->ckpt_hold && (rc = checkpoint(e, lim->checkpoint_path, err)))
                 return rc;
             return TR_OK;
         }
