@@ -292,7 +292,11 @@ int tr_engine_i_newton(tr_engine *e, double seconds, int tight_only, volatile si
     if (isfinite(left))
         seconds = seconds > 0 ? fmin(seconds, fmax(left, 1e-3)) : fmax(left, 1e-3);
     np.time_limit = seconds;
-    np.tight_only = tight_only;
+    /* A refined clasp has no other road than the solver (its settle is
+     * skipped: engine.c, tr_engine_refine), so it is solved even when the
+     * warm start reads it loose: 2 x 1600 refined to 2 x 3200 on the way
+     * to 2 x 48 000 was read loose, not run, and the refinement failed */
+    np.tight_only = tight_only && !e->refine_unsettled;
     np.stop = stop ? stop : e->bound.stop;
     if (e->ckpt_path && e->ckpt_every > 0) {
         np.checkpoint = newton_checkpoint;

@@ -109,11 +109,23 @@ static int run_polish(tr_engine *e, double seconds, double target, int solver_le
         free(keep);
         return TR_OK;
     }
+    /* a refined clasp's solved curve, should the settle below fail: the
+     * level has no settled state to go back to (keep is the refinement,
+     * pressed through itself), so the solver's curve is the engine's */
+    double *solved = NULL;
+    if (newton && e->refine_unsettled) {
+        if (!(solved = malloc(nx * sizeof *solved))) {
+            free(keep);
+            return tr_fail(err, TR_ENOMEM, "out of memory");
+        }
+        memcpy(solved, e->curve.x, nx * sizeof *solved);
+    }
     if ((rc = e->be.ops->upload(e->be.state, e->curve.x, NULL, err)))
         goto restore;
     e->contacts_valid = 0;
     if ((rc = tr_engine_i_settle(e, "the polished curve", 0.0, err)))
         goto restore;
+    free(solved);
     /* settling moves the polished curve by its own small violations, but
      * where the curvature limit holds along a stretch (132 MinRad rows of
      * the N = 2400 trefoil) it can cost more ropelength than polish gained:
@@ -132,7 +144,32 @@ restore:;
     int rc_settle = rc;
     if (rc == TR_ENOMEM || rc == TR_EOPENCL) {
         free(keep);
+        free(solved);
         return rc;
+    }
+    if (solved) {
+        /* The refined clasp the solver took, which the engine's settle
+         * could not put on its exact edge set (2 x 1600 refined to
+         * 2 x 3200 on the way to 2 x 48 000: solved, accepted, the settle
+         * failed, and the level was lost): the solver's curve, a rope at
+         * thickness 1 to 1e-6 with its ends on their planes and its edges
+         * equal to the solver's tolerance, becomes the engine's state as
+         * it is. A clasp's level is the solver's (first-order steps do not
+         * tighten it), so no step needs the exact edge set after it. */
+        free(keep);
+        memcpy(e->curve.x, solved, nx * sizeof *solved);
+        free(solved);
+        e->contacts_valid = 0;
+        tr_measure m;
+        if ((rc = e->be.ops->upload(e->be.state, e->curve.x, NULL, err)) ||
+            (rc = tr_engine_i_rebuild_contacts(e, 1, NULL, err)) || (rc = tr_engine_i_measure(e, &m, err)))
+            return rc;
+        tr_engine_i_fill_state(e, &m);
+        e->polished = 1;
+        e->polish_why = NULL;
+        e->h = e->ebar[0];
+        e->jammed = 0;
+        return TR_OK;
     }
     /* Stopped by the bound: the polished (or solved) curve is a rope at
      * thickness 1 with its constraints held, only not yet on the engine's
@@ -352,6 +389,7 @@ static int run_levels(tr_engine *e, const tr_engine_limits *lim, tr_stop_reason 
                 snprintf(why, sizeof why, "%.190s",
                          e->newton_why[0]       ? e->newton_why
                          : e->newton_unfinished ? "it did not finish in the level's share of the time"
+                         : e->polish_why        ? e->polish_why
                                                 : "not run");
                 /* A solve the run's time or a signal stopped (the solver
                  * stops a little before its limit, to restore its best,
