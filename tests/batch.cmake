@@ -17,3 +17,9 @@ add_test(NAME cli_batch_gallery
   COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/scripts/gallery_cli.sh $<TARGET_FILE:tightrope> ${CMAKE_SOURCE_DIR}
           ${CMAKE_CURRENT_BINARY_DIR}/batch_gallery)
 set_tests_properties(cli_batch_gallery PROPERTIES ENVIRONMENT "${TR_TEST_ENV}" LABELS cli)
+# the knot table's data release in the repository (data/release/knots-to-8): every curve
+# measured, identified and on the page, independently of the runs that made it
+add_test(NAME release_knots_to_8
+  COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/scripts/release_check.sh $<TARGET_FILE:tightrope>
+          ${CMAKE_SOURCE_DIR}/data/release/knots-to-8 ${CMAKE_CURRENT_BINARY_DIR}/release_knots_to_8)
+set_tests_properties(release_knots_to_8 PROPERTIES ENVIRONMENT "${TR_TEST_ENV}" LABELS cli)
