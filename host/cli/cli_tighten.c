@@ -271,9 +271,9 @@ static int final_status(const tr_cli_tighten *t, const tr_tighten_result *r)
         fprintf(stderr, "tightrope tighten: interrupted; %s%s%swrote %s\n", ckpt ? "checkpoint " : "",
                 ckpt ? ckpt : "", ckpt ? " and " : "", t->out);
     if (r->refine_short) {
-        fprintf(stderr, "tightrope tighten: stopped (%s) at N %zu before reaching the requested --refine-to %ld; "
-                        "wrote %s\n", tr_stop_reason_name(r->stop), r->curve.nv / (size_t)r->curve.ncomp,
-                r->refine_to, t->out);
+        fprintf(stderr, "tightrope tighten: stopped (%s) at N %zu before reaching %s %ld; wrote %s\n",
+                tr_stop_reason_name(r->stop), r->curve.nv / (size_t)r->curve.ncomp,
+                r->refine_implied ? "the start's N" : "the requested --refine-to", r->refine_to, t->out);
         return 1;
     }
     if (r->goal_missed)

@@ -361,6 +361,13 @@ void tt_choose_route(tt_opts *o)
         o->refine_to = (long)nper;
         if (!clasp)
             choose_roads(o);
+        /* the start's N is the run's goal, as if --refine-to N had been
+         * given (usage.md): a clasp of 2 x 3200 whose refinement the
+         * solver did not take came back at 2 x 800 with exit 0, and so
+         * did a loose knot stopped by --steps at its coarse N. The
+         * automatic roads choose their N themselves, from the scouts
+         * (tt_auto_refine_n): a choice, not the caller's goal. */
+        o->refine_given = o->refine_implied = !o->refine_auto;
         if (o->refine_auto) {
             tt_note(o, TR_TIGHTEN_INFO, "%s is loose (%zu struts within 1e-3 of the shortest, %zu vertices)",
                     o->in, sl.n, c.nv);

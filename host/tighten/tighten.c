@@ -398,6 +398,7 @@ static void fill_result(const tt_opts *o, tr_engine *e, road_result *r, tr_tight
     res->checkpoint_failures = r->ckpt_failures;
     snprintf(res->checkpoint_why, sizeof res->checkpoint_why, "%s", r->ckpt_why ? r->ckpt_why : "");
     res->refine_to = o->refine_to;
+    res->refine_implied = o->refine_implied;
     /* a requested ropelength or residual that was not reached is a run that
      * did not reach its goal; so is a refine_to whose N the time did not
      * reach (the best state is kept either way) */

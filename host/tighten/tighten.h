@@ -153,6 +153,7 @@ typedef struct tr_tighten_result {
      * reached (not after an interrupt); goal_target says which */
     int refine_short, goal_missed, goal_target;
     long refine_to;      /* the effective refine_to (a resumed run's from its checkpoint) */
+    int refine_implied;  /* refine_to is the loose start's own N (its route), not given */
     /* the detail the output's comments carry */
     tr_thickness th;
     tr_kkt kkt;

@@ -34,6 +34,7 @@ typedef struct tt_opts {
     double compact_until;
     int residual_given; /* the default residual is a stopping rule, not a goal */
     int refine_given;   /* refine_to given (or taken from a checkpoint): a goal */
+    int refine_implied; /* the goal is the loose start's own N (tt_choose_route) */
     /* subtracted from the start's coordinates (tt_start_shift): a knot far
      * from the origin is tightened about it (0: as it is) */
     double shift[3];

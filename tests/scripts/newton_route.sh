@@ -57,6 +57,15 @@ auto)
   "$tr" tighten "$src/bench/data/trefoil_1600.vect" -o "$work/u.vect" --steps 1 --no-kkt --device reference \
     2>"$work/err2" >/dev/null || fail "tight start: $(cat "$work/err2")"
   grep -q 'is loose' "$work/err2" && fail "a tight start was called loose"
+  # the start's N is that route's goal, as a given --refine-to is: a run
+  # that stops short of it (here after 5 steps at N 64) writes its best
+  # and exits 1, saying so (it exited 0 with a 64-gon for a 240-gon)
+  "$tr" tighten "$work/s.vect" -o "$work/v.vect" --steps 5 --no-kkt --device reference 2>"$work/err3" >/dev/null
+  rc=$?
+  [ $rc = 1 ] || fail "stopped short of the start's N: exit $rc, not 1: $(cat "$work/err3")"
+  grep -q "stopped (steps) at N 64 before reaching the start's N 240; wrote" "$work/err3" ||
+    fail "no message: $(cat "$work/err3")"
+  "$tr" measure "$work/v.vect" | awk '$1 == "curve" { exit !($2 == 64) }' || fail "the coarse level was not written"
   ;;
 *) fail "unknown case $case_" ;;
 esac
