@@ -189,7 +189,9 @@ typedef void (*tightrope_progress_fn)(const tightrope_progress *p, void *user);
 typedef struct tightrope_tighten_options {
     double time_limit;     /* seconds for the whole call (0: none) */
     long n;                /* first resample every component to n vertices (0: no) */
-    long refine_to;        /* tighten, then refine and re-tighten up to this N (0: no) */
+    long refine_to;        /* tighten, then refine and re-tighten up to this N (0: no; with n 0
+                              too, a loose start of N >= 200 a component goes as n N/4,
+                              refine_to N, and N is a goal: goal_missed) */
     double residual;       /* stop below this engine residual (default 1e-4) */
     double target;         /* stop at this ropelength estimate (0: off) */
     long steps;            /* accepted steps in all (0: off) */
@@ -223,7 +225,9 @@ typedef struct tightrope_tighten_result {
                             "signal" (the cancel flag), "solved", "refine-failed" (a refined level
                             could not be settled: the curve is the level before it) */
     int interrupted;     /* the cancel flag stopped it */
-    int goal_missed;     /* a target or residual asked for and not reached */
+    int goal_missed;     /* a goal not reached: a target or residual asked for, refine_to's N, or
+                            (n and refine_to 0, a loose start of 200 or more vertices a
+                            component, no automatic roads) the start's own N */
     double elapsed;      /* seconds */
     long steps, rejected;
     double steps_per_s;
