@@ -22,6 +22,11 @@
  * ropelength is what a result must beat). STATE is read whole at the start
  * and never written (a resumed run writes OUT.state, which must be another
  * file).
+ * --state-end: a solve that converged or settled writes its state to
+ * OUT.state as well (newton.h end_state). --coarse STATE: start from the
+ * multipliers of STATE, the end state of the level IN was solved at, carried
+ * to IN refined to N (newton.h coarse; prolong.c): how a clasp's levels are
+ * measured apart from the engine's route (bench/notes/2026-11-29-clasp-prolongation.md).
  *   newton_run --restore IN.vect OUT.vect
  * the restoration alone (newton.h tr_newton_restore) on IN scaled so that
  * its closest strut is at 2: a checkpoint or result that the rescaling
@@ -117,8 +122,8 @@ int main(int argc, char **argv)
 {
     if (argc == 4 && !strcmp(argv[1], "--restore"))
         return restore_only(argv[2], argv[3]);
-    const char *device = NULL, *resume = NULL;
-    int vertex = 0, keep_state = 0;
+    const char *device = NULL, *resume = NULL, *coarse = NULL;
+    int vertex = 0, keep_state = 0, state_end = 0;
     for (;;) {
         if (argc > 2 && !strcmp(argv[1], "--device")) {
             device = argv[2];
@@ -132,6 +137,16 @@ int main(int argc, char **argv)
             resume = argv[2];
             argv += 2;
             argc -= 2;
+        } else if (argc > 2 && !strcmp(argv[1], "--coarse")) {
+            /* the multipliers of a coarser level's state (newton.h coarse) */
+            coarse = argv[2];
+            argv += 2;
+            argc -= 2;
+        } else if (argc > 1 && !strcmp(argv[1], "--state-end")) {
+            /* a converged or settled solve's state to OUT.state too (newton.h end_state) */
+            keep_state = state_end = 1;
+            argv++;
+            argc--;
         } else if (argc > 1 && !strcmp(argv[1], "--vertex")) {
             /* SP-FEM's vertex contacts (newton.h vertex_contacts) */
             vertex = 1;
@@ -141,7 +156,7 @@ int main(int argc, char **argv)
             break;
     }
     if (argc < 3) {
-        fprintf(stderr, "usage: newton_run [--device SPEC] [--vertex] [--state] [--resume STATE] IN OUT [N | sN] "
+        fprintf(stderr, "usage: newton_run [--device SPEC] [--vertex] [--state] [--state-end] [--resume STATE] [--coarse STATE] IN OUT [N | sN] "
                         "[TIME_LIMIT_S] [CKPT_S]\n"
                         "       newton_run --restore IN OUT\n");
         return 2;
@@ -159,6 +174,11 @@ int main(int argc, char **argv)
     }
     tr_newton_state from = {0};
     if (resume && tr_newton_state_read(resume, &from, &err)) {
+        fprintf(stderr, "newton_run: %s\n", err.msg);
+        return 2;
+    }
+    tr_newton_state coarse_state = {0};
+    if (coarse && tr_newton_state_read(coarse, &coarse_state, &err)) {
         fprintf(stderr, "newton_run: %s\n", err.msg);
         return 2;
     }
@@ -217,6 +237,14 @@ int main(int argc, char **argv)
         tr_cli_catch_interrupts();
         p.stop = tr_cli_interrupt_flag();
     }
+    tr_newton_state end_state = {0};
+    if (state_end)
+        p.end_state = &end_state;
+    if (coarse) {
+        p.coarse = &coarse_state;
+        if (getenv("NEWTON_COARSE_MU"))
+            p.coarse_mu = atof(getenv("NEWTON_COARSE_MU"));
+    }
     if (resume) {
         /* the multipliers by the warm start instead of the state's, for
          * measuring which resumes better */
@@ -254,6 +282,15 @@ int main(int argc, char **argv)
            st.hess_triplets, 24e-6 * (double)st.hess_triplets, st.hess_entries, 20e-6 * (double)st.hess_entries,
            st.factor_entries, 8e-6 * (double)st.factor_entries);
     tr_newton_state_free(&from);
+    tr_newton_state_free(&coarse_state);
+    if (end_state.nv > 0) {
+        if (tr_newton_state_write(state_path, &end_state, &err)) {
+            fprintf(stderr, "newton_run: %s\n", err.msg);
+            return 1;
+        }
+        printf("the end state written to %s\n", state_path);
+        tr_newton_state_free(&end_state);
+    }
     if (tr_cli_interrupted()) {
         fprintf(stderr, "newton_run: stopped by a signal; %s not written, the state is in %s (resume with --resume)\n",
                 argv[2], state_path);

@@ -323,6 +323,22 @@ int tr_engine_i_newton(tr_engine *e, double seconds, int tight_only, volatile si
     }
     const tr_backend *be = e->be.ops ? &e->be : own.ops ? &own : NULL;
     np.backend = be && !be->ops->serial ? be : NULL;
+    /* A clasp's level starts from the multipliers its coarser level's
+     * solve ended with (engine_internal.h lvl; prolong.c says why), and
+     * keeps its own for the next: from 2 x 3200 (walls +-1.5) the warm
+     * start's took MinRad 13 % over in one step and the refinement to
+     * 2 x 6400 failed; carried, 2 x 6400 settled in 280 steps and 2 x 12 800
+     * in 323 (bench/notes/2026-11-29-clasp-prolongation.md). */
+    /* Only an accepted solve's: a rejected one leaves the level's curve as
+     * it was, not where its state's multipliers hold. */
+    tr_newton_state *end = NULL;
+    if (e->curve.ncst > 0) {
+        if (e->lvl_refined && e->lvl && e->lvl->ncomp == e->curve.ncomp && e->lvl->nv < e->curve.nv)
+            np.coarse = e->lvl;
+        if ((end = calloc(1, sizeof *end)))
+            np.end_state = end;
+    }
+    e->lvl_ok = e->lvl_refined = 0;
     int rc = tr_newton(&e->curve, &np, &ns, err);
     tr_engine_i_solver_state_after(e, rc, &ns);
     e->newton_unfinished =
@@ -333,6 +349,10 @@ int tr_engine_i_newton(tr_engine *e, double seconds, int tight_only, volatile si
     /* a solve the bound stopped before its first step (the strut list of
      * an absurd N) has nothing to keep: the engine goes on, and stops on
      * the bound itself */
+    if (rc || ns.loose) {
+        tr_newton_state_free(end);
+        free(end);
+    }
     if (rc)
         return rc == TR_EGEOMETRY || rc == TR_EINTERRUPTED ? TR_OK : rc;
     if (ns.loose)
@@ -350,6 +370,15 @@ int tr_engine_i_newton(tr_engine *e, double seconds, int tight_only, volatile si
      * refinement). A closed knot's rejected solve leaves the level to the
      * first-order steps as before. */
     e->newton_solved = (ns.converged || ns.settled) && (ns.accepted || e->curve.ncst > 0);
+    if (end && ns.accepted && e->newton_solved && end->nv > 0) {
+        tr_newton_state_free(e->lvl);
+        free(e->lvl);
+        e->lvl = end;
+        end = NULL;
+        e->lvl_ok = 1;
+    }
+    tr_newton_state_free(end);
+    free(end);
     *accepted = ns.accepted;
     return TR_OK;
 }
@@ -475,6 +504,8 @@ void tr_engine_destroy(tr_engine *e)
         return;
     free(e->presettle_x);
     tr_engine_i_solver_state_free(e);
+    tr_newton_state_free(e->lvl);
+    free(e->lvl);
     tr_backend_close(&e->be);
     tr_curve_free(&e->curve);
     free(e->gap);
@@ -502,8 +533,9 @@ int tr_engine_step(tr_engine *e, int *accepted, tr_error *err)
     int rc;
     *accepted = 0;
     /* the engine moves past a stopped solve: its state no longer goes
-     * with the engine's curve */
+     * with the engine's curve, nor a solved level's */
     tr_engine_i_solver_state_drop(e);
+    e->lvl_ok = 0;
     if (!e->contacts_valid && (rc = tr_engine_i_rebuild_contacts(e, 1, NULL, err)))
         return rc;
     tr_tension_params tp = {.h = e->h, .max_move = e->prm.max_move, .smooth_passes = e->prm.smooth_passes,
@@ -650,6 +682,7 @@ int tr_engine_i_refine_back(tr_engine *e, int keep_state, tr_error *err)
     e->jammed = e->coarse.jammed;
     memset(&e->coarse, 0, sizeof e->coarse);
     e->refine_unsettled = 0;
+    e->lvl_ok = e->lvl_refined = 0;
     free(e->presettle_x);
     e->presettle_x = NULL;
     tr_measure m;
@@ -662,6 +695,9 @@ int tr_engine_i_refine_back(tr_engine *e, int keep_state, tr_error *err)
 int tr_engine_refine(tr_engine *e, size_t n, tr_error *err)
 {
     tr_engine_i_solver_state_drop(e);
+    /* the solved level's state goes with its refinement */
+    e->lvl_refined = e->lvl_ok;
+    e->lvl_ok = 0;
     coarse_drop(e);
     int rc = e->be.ops->download(e->be.state, e->curve.x, NULL, err);
     if (rc)

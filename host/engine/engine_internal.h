@@ -69,6 +69,14 @@ struct tr_engine {
         double h, residual, disp_est; /* its step figures, for the stop's checkpoint */
         int jammed;
     } coarse;
+    /* A clasp's solved level carried to the next (newton.h coarse,
+     * prolong.c): the state its solve converged or settled with, the
+     * multipliers a refined level starts from instead of the warm start's.
+     * lvl_ok: it is the state of the engine's curve (set by a solve that
+     * was accepted or counted as solved, cleared by any other step);
+     * lvl_refined: the curve is the refinement of that level's. */
+    struct tr_newton_state *lvl;
+    int lvl_ok, lvl_refined;
     /* the solver's last call stopped unfinished (its time, a stop, its
      * step limit), neither converged nor settled nor refused */
     int newton_unfinished;

@@ -84,8 +84,10 @@ static int run_polish(tr_engine *e, double seconds, double target, int solver_le
         e->polish_seconds = e->newton_seconds;
         e->polish_why = nacc ? NULL : "the second-order solver's result is not shorter";
     } else {
-        /* the polish moves past a stopped solve (its state is dropped) */
+        /* the polish moves past a stopped solve (its state is dropped),
+         * and past a solved level's */
         tr_engine_i_solver_state_drop(e);
+        e->lvl_ok = 0;
         tr_polish_params pp;
         tr_polish_params_default(&pp);
         pp.time_limit = seconds;

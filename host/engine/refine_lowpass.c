@@ -1,6 +1,8 @@
-/* This file contains the refinement's resampler: equal arclength, then a Fourier low-pass
+/* This file contains the refinement's resampler: equal arclength, then a Fourier low-pass for closed components
  * (refine_lowpass.h). */
 #include "engine/refine_lowpass.h"
+
+#include "engine/refine_arcs.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -68,9 +70,9 @@ int tr_refine_lowpass(const tr_curve *in, size_t n, double cut, double taper_fro
         size_t nold = tr_comp_nv(in, k);
         double *y = out->x + 3 * out->start[k];
         if (!in->closed[k]) {
-            if (linear_resample(in, k, n, y) != TR_OK) {
+            if ((rc = tr_refine_arcs_open(in, k, n, y, err)) != TR_OK) {
                 tr_curve_free(out);
-                return tr_fail(err, TR_ENOMEM, "out of memory resampling");
+                return rc;
             }
             continue;
         }

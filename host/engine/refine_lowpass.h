@@ -10,9 +10,10 @@
  * Closed components: the coordinates, sampled at equal arclength, are
  * Fourier-transformed, modes above cut * (n_old / 2) are removed with a
  * raised-cosine taper starting at taper_from * cut * (n_old/2), and the
- * series is evaluated at the n new points. Open components: linear
- * interpolation at equal arclength, end vertices (and their constraints)
- * kept. Constraints on other vertices are dropped. */
+ * series is evaluated at the n new points. Open components: equal
+ * arclength along arcs inscribed at the vertices (refine_arcs.h: no new
+ * vertex more curved than the old ones beside it), end vertices (and their
+ * constraints) kept. Constraints on other vertices are dropped. */
 int tr_refine_lowpass(const tr_curve *in, size_t n, double cut, double taper_from, tr_curve *out,
                        tr_error *err);
 

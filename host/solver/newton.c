@@ -502,6 +502,23 @@ static void give_state(solver *s, const double *y, const tr_newton_loop *lp, con
         p->state(p->user, &s->out, &se);
 }
 
+/* p->end_state (its old content freed) the solver's state at y: moved
+ * there from s->out, which a next fill allocates again. A failure leaves
+ * it empty (the next level then starts as without it). */
+static void keep_end_state(solver *s, const double *y, const tr_newton_loop *lp, const tr_newton_stats *st, double t0)
+{
+    const tr_newton_params *p = s->p;
+    long steps = st->iters + (p->resume ? p->resume->steps : 0);
+    double seconds = tr_clock_seconds() - t0 + (p->resume ? p->resume->seconds : 0.0);
+    tr_error se = {0};
+    tr_newton_state_free(p->end_state);
+    memset(p->end_state, 0, sizeof *p->end_state);
+    if (tr_newton_i_state_fill(s, y, lp, steps, seconds, &se) == TR_OK) {
+        *p->end_state = s->out;
+        memset(&s->out, 0, sizeof s->out);
+    }
+}
+
 /* The minimisation itself, on y (3 nv + ncomp); resumed: the loop's
  * variables go on from *resumed (s->mu and s->band set from the state). */
 static int minimise(solver *s, double *y, tr_newton_stats *st, double t0, const tr_newton_loop *resumed,
@@ -522,8 +539,10 @@ static int minimise(solver *s, double *y, tr_newton_stats *st, double t0, const 
         if (s->fixed[k] < 3 * nv)
             held[s->fixed[k] / 3] = 1;
     if (!resumed) {
-        s->mu = p->mu0 / s->l0min;
-        s->band = 1.0;
+        /* a coarse level's penalty (prolong.c), or the first */
+        if (!(s->mu > 0.0))
+            s->mu = p->mu0 / s->l0min;
+        s->band = fmin(1.0, p->mu0 / (s->mu * s->l0min));
     }
     s->t_ckpt = s->t_state = t0;
     double deadline = p->time_limit > 0 ? t0 + p->time_limit : INFINITY;
@@ -749,6 +768,9 @@ static int minimise(solver *s, double *y, tr_newton_stats *st, double t0, const 
      * stopped, before the end's restorations, which take the best */
     if (p->state && !st->converged && !st->settled)
         give_state(s, y, &LOOP_NOW, st, t0);
+    /* a finished solve's state, for the level refined from it */
+    if (p->end_state && (st->converged || st->settled))
+        keep_end_state(s, y, &LOOP_NOW, st, t0);
 #undef LOOP_NOW
 done:
     free(grad);
@@ -936,6 +958,19 @@ static int start_from_curve(solver *s, const tr_curve *cv, const tr_thickness *t
             s->scale_m[k] *= f;
         for (size_t i = 0; i < s->nv; i++)
             s->lam_m[i] *= f;
+    }
+    /* a coarse level's multipliers, at the rows' final scale */
+    /* a coarse state that is not of this curve's coarser level (another
+     * curve, fewer components) is left out: the warm start's stay */
+    if (prm->coarse) {
+        tr_error e2;
+        rc = tr_newton_i_prolong(s, prm->coarse, *y, &e2);
+        if (rc && rc != TR_EINVAL) {
+            *err = e2;
+            return rc;
+        }
+        st->coarse = rc == TR_OK;
+        rc = TR_OK;
     }
     return TR_OK;
 }

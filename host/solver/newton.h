@@ -58,7 +58,10 @@
  * keeps them from the first step instead of shrinking through them while
  * the multipliers build up from 0. What they leave unbalanced says whether
  * the start is tight (under 0.7 of the tension's force): tight_only gives up
- * on a loose start at once, for the engine's first-order route.
+ * on a loose start at once, for the engine's first-order route. A refined
+ * level may start from its coarser level's own multipliers instead
+ * (coarse, prolong.c): the engine does so for a clasp, whose tip is held by
+ * MinRad multipliers that the least squares' damping takes away.
  *
  * Unit: thickness 1, except for a tight start that a spline through a
  * converged polygon left with MinRad a little under its struts' half
@@ -244,6 +247,18 @@ typedef struct tr_newton_params {
     /* with resume: the multipliers from the warm start (warm_start.c) at the
      * resumed iterate instead of the state's (measuring which works) */
     int resume_warm;
+    /* Not NULL (and no resume): the state a solve of the curve this one was
+     * refined from ended with (the same components, fewer vertices: the
+     * engine's refinement, which keeps each component's first vertex): its
+     * multipliers, carried along arclength and rescaled to the finer edges
+     * (prolong.c), replace the warm start's; the first penalty is mu0, or
+     * coarse_mu where that is > 0 (in units of 1 / l0) */
+    const tr_newton_state *coarse;
+    double coarse_mu;
+    /* Not NULL: a solve that converged or settled leaves its state here
+     * (what was there freed first; tr_newton_state_free frees it): what the
+     * level refined from it starts from, as coarse */
+    tr_newton_state *end_state;
 } tr_newton_params;
 
 void tr_newton_params_default(tr_newton_params *p);
@@ -258,6 +273,7 @@ typedef struct tr_newton_stats {
     double ropelength_before, ropelength_after;
     double max_viol, stat;
     double warm_residual; /* the tension the warm start's multipliers leave unbalanced (relative) */
+    int coarse;   /* the start's multipliers were the coarse state's (params coarse) */
     size_t struts, active;
     /* where the time went */
     double t_eval, t_factor, t_solve, t_search, t_rebuild, seconds;

@@ -194,6 +194,12 @@ int tr_newton_i_state_apply(solver *s, const tr_newton_state *r, int warm, doubl
 /* the component's exclusion gaps from s->l0 (as solver_init sets them) */
 void tr_newton_i_set_gaps(solver *s);
 
+/* ---- a coarser level's multipliers (prolong.c) ---- */
+
+/* s->lam_e, s->lam_m, the listed struts' multipliers and s->mu from the
+ * state r of a solve of the curve s's was refined from, at iterate y */
+int tr_newton_i_prolong(solver *s, const tr_newton_state *r, const double *y, tr_error *err);
+
 /* ---- the warm start (warm_start.c) ---- */
 
 /* the first multipliers (s->lam_m, s->sp[].lam) that best balance the unit
