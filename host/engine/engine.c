@@ -327,8 +327,9 @@ int tr_engine_i_newton(tr_engine *e, double seconds, int tight_only, volatile si
      * solve ended with (engine_internal.h lvl; prolong.c says why), and
      * keeps its own for the next: from 2 x 3200 (walls +-1.5) the warm
      * start's took MinRad 13 % over in one step and the refinement to
-     * 2 x 6400 failed; carried, 2 x 6400 settled in 280 steps and 2 x 12 800
-     * in 323 (bench/notes/2026-11-29-clasp-prolongation.md). */
+     * 2 x 6400 failed; carried, the route reaches 2 x 6400 in one command
+     * (its levels 62 to 1388 steps), and 2 x 12 800's level still runs out
+     * of the solver's iterations (bench/notes/2026-11-29-clasp-prolongation.md). */
     /* Only an accepted solve's: a rejected one leaves the level's curve as
      * it was, not where its state's multipliers hold. */
     tr_newton_state *end = NULL;
@@ -535,7 +536,7 @@ int tr_engine_step(tr_engine *e, int *accepted, tr_error *err)
     /* the engine moves past a stopped solve: its state no longer goes
      * with the engine's curve, nor a solved level's */
     tr_engine_i_solver_state_drop(e);
-    e->lvl_ok = 0;
+    e->lvl_ok = e->lvl_refined = 0;
     if (!e->contacts_valid && (rc = tr_engine_i_rebuild_contacts(e, 1, NULL, err)))
         return rc;
     tr_tension_params tp = {.h = e->h, .max_move = e->prm.max_move, .smooth_passes = e->prm.smooth_passes,

@@ -73,7 +73,8 @@ struct tr_engine {
      * prolong.c): the state its solve converged or settled with, the
      * multipliers a refined level starts from instead of the warm start's.
      * lvl_ok: it is the state of the engine's curve (set by a solve that
-     * was accepted or counted as solved, cleared by any other step);
+     * was accepted and converged or settled, cleared by any other step or
+     * a roll-back);
      * lvl_refined: the curve is the refinement of that level's. */
     struct tr_newton_state *lvl;
     int lvl_ok, lvl_refined;

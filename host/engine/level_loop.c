@@ -87,7 +87,7 @@ static int run_polish(tr_engine *e, double seconds, double target, int solver_le
         /* the polish moves past a stopped solve (its state is dropped),
          * and past a solved level's */
         tr_engine_i_solver_state_drop(e);
-        e->lvl_ok = 0;
+        e->lvl_ok = e->lvl_refined = 0;
         tr_polish_params pp;
         tr_polish_params_default(&pp);
         pp.time_limit = seconds;
@@ -185,6 +185,8 @@ restore:;
             memcpy(polished_x, e->curve.x, 3 * e->curve.nv * sizeof *polished_x);
     }
     memcpy(e->curve.x, keep, 3 * e->curve.nv * sizeof *keep);
+    /* the solve's state is not the state of this curve */
+    e->lvl_ok = e->lvl_refined = 0;
     rc = e->be.ops->upload(e->be.state, keep, keep + 3 * e->curve.nv, err);
     free(keep);
     tr_measure m;

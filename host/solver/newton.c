@@ -540,9 +540,12 @@ static int minimise(solver *s, double *y, tr_newton_stats *st, double t0, const 
             held[s->fixed[k] / 3] = 1;
     if (!resumed) {
         /* a coarse level's penalty (prolong.c), or the first */
-        if (!(s->mu > 0.0))
+        if (s->mu > 0.0)
+            s->band = fmin(1.0, p->mu0 / (s->mu * s->l0min));
+        else {
             s->mu = p->mu0 / s->l0min;
-        s->band = fmin(1.0, p->mu0 / (s->mu * s->l0min));
+            s->band = 1.0;
+        }
     }
     s->t_ckpt = s->t_state = t0;
     double deadline = p->time_limit > 0 ? t0 + p->time_limit : INFINITY;

@@ -248,7 +248,8 @@ typedef struct tr_newton_params {
      * resumed iterate instead of the state's (measuring which works) */
     int resume_warm;
     /* Not NULL (and no resume): the state a solve of the curve this one was
-     * refined from ended with (the same components, fewer vertices: the
+     * refined from ended with (the same components, as many vertices or
+     * fewer: the
      * engine's refinement, which keeps each component's first vertex): its
      * multipliers, carried along arclength and rescaled to the finer edges
      * (prolong.c), replace the warm start's; the first penalty is mu0, or

@@ -92,12 +92,10 @@ int tr_newton_i_prolong(solver *s, const tr_newton_state *r, const double *y, tr
         return tr_fail(err, TR_EINVAL, "newton: the coarse state's components do not add up to its vertices");
     }
     size_t nv = s->nv;
-    /* each fine edge's coarse edge (global index by first vertex), for the struts */
-    size_t *parent = malloc(nv * sizeof *parent);
     double *tc = malloc((r->nv + (size_t)nc) * sizeof *tc), *tf = malloc((nv + (size_t)nc) * sizeof *tf);
     double *lam_m = malloc(nv * sizeof *lam_m), *lam_e = malloc(nv * sizeof *lam_e);
     int rc = TR_OK;
-    if (!parent || !tc || !tf || !lam_m || !lam_e) {
+    if (!tc || !tf || !lam_m || !lam_e) {
         rc = tr_fail(err, TR_ENOMEM, "out of memory (coarse multipliers)");
         goto done;
     }
@@ -126,15 +124,14 @@ int tr_newton_i_prolong(solver *s, const tr_newton_state *r, const double *y, tr
             double p[3];
             for (int d = 0; d < 3; d++)
                 p[d] = (1.0 - frac) * r->y[3 * a + d] + frac * r->y[3 * b + d];
-            worst_gap = fmax(worst_gap, sqrt(v3_dist2(p, y + 3 * (sf + j))) / lc);
+            double gap = sqrt(v3_dist2(p, y + 3 * (sf + j))) / lc;
+            worst_gap = isnan(gap) ? INFINITY : fmax(worst_gap, gap);
             lam_m[sf + j] = fm * ((1.0 - frac) * r->lam_m[a] + frac * r->lam_m[b]);
             if (j < nfe) {
                 double mid = 0.5 * (tfk[j] + tfk[j + 1]);
                 size_t em = locate(tck, nce, mid, &frac);
-                parent[sf + j] = sc + em;
                 lam_e[sf + j] = r->lam_e[sc + em];
             } else {
-                parent[sf + j] = SIZE_MAX;
                 lam_e[sf + j] = s->lam_e[sf + j];
             }
         }
@@ -177,11 +174,10 @@ int tr_newton_i_prolong(solver *s, const tr_newton_state *r, const double *y, tr
         tr_segment_distance(r->y + 3 * A, r->y + 3 * nxt[0], r->y + 3 * B, r->y + 3 * nxt[1], &st[0], &st[1]);
         for (int h = 0; h < 2; h++) {
             int k = kk[h];
-            size_t j = ends[h] - cstart[k], ncv = r->comp_nv[k], nfv = tr_comp_nv(&s->w, k);
+            size_t j = ends[h] - cstart[k], nfv = tr_comp_nv(&s->w, k);
             const double *tck = tc + cstart[k] + (size_t)k, *tfk = tf + s->w.start[k] + (size_t)k;
             double u = tck[j] + st[h] * (tck[j + 1] - tck[j]), frac;
             size_t nfe = s->w.closed[k] ? nfv : nfv - 1;
-            (void)ncv;
             fe[h] = s->w.start[k] + locate(tfk, nfe, u, &frac);
         }
         tr_strut_pair key = {.a = fe[0] < fe[1] ? fe[0] : fe[1], .b = fe[0] < fe[1] ? fe[1] : fe[0]};
@@ -215,7 +211,6 @@ int tr_newton_i_prolong(solver *s, const tr_newton_state *r, const double *y, tr
     }
 done:
     free(cstart);
-    free(parent);
     free(tc);
     free(tf);
     free(lam_m);

@@ -116,8 +116,9 @@ static void test_clasp_prolong(void)
     double stat_warm, stat_carried, stat_wrong;
     solve(&warm, NULL, NULL, 1, &stat_warm, &st);
     tr_curve_free(&warm);
-    /* the wrong variant: the coarse MinRad multipliers as if the edge had
-     * not changed (scale_m halved: lambda / S then doubles, not 8 times) */
+    /* the wrong variant: the coarse state's MinRad rows read 4 times
+     * stiffer than they were, so the carried MinRad multipliers come out 4
+     * times too small */
     tr_newton_state wrong = s100;
     double scale_wrong[2] = {4.0 * s100.scale_m[0], 4.0 * s100.scale_m[1]};
     wrong.scale_m = scale_wrong;
