@@ -30,6 +30,7 @@
 #include "oracle/thickness.h"
 #include "solver/newton.h"
 #include "rope_curvature.h"
+#include "clasp_route.h"
 #include "testlib.h"
 #include "util/vec3.h"
 
@@ -40,20 +41,8 @@
 static void test_clasp_newton(void)
 {
     tr_error err;
-    tr_curve s, coarse, f;
-    REQUIRE_OK(tr_make_clasp(&s, NCOARSE, HEIGHT, &err));
-    tr_engine *e;
-    tr_engine_params ep;
-    tr_engine_params_default(&ep);
-    ep.newton_tight = 0; /* the coarse start by the first-order route alone */
-    REQUIRE_OK(tr_engine_create(&e, &s, "reference", &ep, &err));
-    tr_engine_limits lim = {.residual = 1e-4, .max_steps = 50000};
-    tr_stop_reason why;
-    CHECK_OK(tr_engine_run(e, &lim, &why, &err));
-    int got = tr_engine_get_curve(e, &coarse, &err);
-    tr_engine_destroy(e);
-    tr_curve_free(&s);
-    REQUIRE_OK(got);
+    tr_curve coarse, f;
+    REQUIRE_OK(clasp_first_order(NCOARSE, HEIGHT, &coarse, &err));
     REQUIRE_OK(tr_refine_lowpass(&coarse, NPER, 0.5, 0.5, &f, &err));
     tr_curve_free(&coarse);
 

@@ -31,6 +31,7 @@
 #include "oracle/kkt.h"
 #include "oracle/thickness.h"
 #include "solver/newton.h"
+#include "clasp_route.h"
 #include "testlib.h"
 
 #define HEIGHT 1.5
@@ -67,20 +68,8 @@ static void solve(tr_curve *c, const tr_newton_state *coarse, tr_newton_state *e
 static void test_clasp_prolong(void)
 {
     tr_error err;
-    tr_curve s, c50, c100, c200;
-    REQUIRE_OK(tr_make_clasp(&s, 50, HEIGHT, &err));
-    tr_engine *e;
-    tr_engine_params ep;
-    tr_engine_params_default(&ep);
-    ep.newton_tight = 0; /* the coarse start by the first-order route alone */
-    REQUIRE_OK(tr_engine_create(&e, &s, "reference", &ep, &err));
-    tr_engine_limits lim = {.residual = 1e-4, .max_steps = 50000};
-    tr_stop_reason why;
-    CHECK_OK(tr_engine_run(e, &lim, &why, &err));
-    int got = tr_engine_get_curve(e, &c50, &err);
-    tr_engine_destroy(e);
-    tr_curve_free(&s);
-    REQUIRE_OK(got);
+    tr_curve c50, c100, c200;
+    REQUIRE_OK(clasp_first_order(50, HEIGHT, &c50, &err));
     REQUIRE_OK(tr_refine_lowpass(&c50, NC, 0.5, 0.5, &c100, &err));
     tr_curve_free(&c50);
 
