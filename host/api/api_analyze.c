@@ -47,6 +47,10 @@ static int component_alone(const tr_curve *c, int k, int no_scale, double strut_
     if (rc)
         return rc;
     memcpy(one->x, c->x + 3 * c->start[k], 3 * nv * sizeof *one->x);
+    if (c->lo && (rc = tr_curve_want_lo(one, e)))
+        return rc;
+    if (c->lo)
+        memcpy(one->lo, c->lo + 3 * c->start[k], 3 * nv * sizeof *one->lo);
     *scale = 1.0;
     if ((rc = tr_thickness_measure(one, NULL, th, NULL, e)))
         return rc;
@@ -57,8 +61,7 @@ static int component_alone(const tr_curve *c, int k, int no_scale, double strut_
         if (!(th->thickness > 0) || !isfinite(th->thickness))
             return tr_fail(e, TR_EGEOMETRY, "component %d has no finite thickness", k);
         *scale = 1.0 / th->thickness;
-        for (size_t i = 0; i < 3 * nv; i++)
-            one->x[i] *= *scale;
+        tr_curve_scale_by(one, *scale);
     }
     tr_thickness_opts to = {.strut_rel_tol = strut_tol};
     return tr_thickness_measure(one, &to, th, sl, e);

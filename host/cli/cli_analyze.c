@@ -167,6 +167,13 @@ static int analyse_component(const tr_curve *c, int k, const char *in, const cli
         return 1;
     }
     memcpy(r->one.x, c->x + 3 * c->start[k], 3 * nv * sizeof *r->one.x);
+    if (c->lo && tr_curve_want_lo(&r->one, &err) != TR_OK) {
+        fprintf(stderr, "tightrope analyze: %s\n", err.msg);
+        tr_curve_free(&r->one);
+        return 1;
+    }
+    if (c->lo)
+        memcpy(r->one.lo, c->lo + 3 * c->start[k], 3 * nv * sizeof *r->one.lo);
     int status = 1, rc;
     tr_strut_list sl = {0};
     if ((rc = tr_thickness_measure(&r->one, NULL, &r->th, NULL, &err)) != TR_OK) {
@@ -189,8 +196,7 @@ static int analyse_component(const tr_curve *c, int k, const char *in, const cli
             goto fail;
         }
         r->scale = 1.0 / r->th.thickness;
-        for (size_t i = 0; i < 3 * nv; i++)
-            r->one.x[i] *= r->scale;
+        tr_curve_scale_by(&r->one, r->scale);
     }
     tr_thickness_opts to = {.strut_rel_tol = o->strut_tol};
     if ((rc = tr_thickness_measure(&r->one, &to, &r->th, &sl, &err)) != TR_OK) {

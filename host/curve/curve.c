@@ -52,7 +52,39 @@ void tr_curve_free(tr_curve *c)
     free(c->closed);
     free(c->vcst);
     free(c->cst);
+    free(c->lo);
     memset(c, 0, sizeof *c);
+}
+
+int tr_curve_want_lo(tr_curve *c, tr_error *err)
+{
+    if (c->lo)
+        return TR_OK;
+    c->lo = calloc(c->nv ? 3 * c->nv : 3, sizeof *c->lo);
+    return c->lo ? TR_OK : tr_fail(err, TR_ENOMEM, "out of memory (a curve's low parts)");
+}
+
+void tr_curve_drop_lo(tr_curve *c)
+{
+    free(c->lo);
+    c->lo = NULL;
+}
+
+void tr_split_long_double(long double v, double *hi, double *lo)
+{
+    *hi = (double)v;
+    *lo = (double)(v - (long double)*hi);
+}
+
+void tr_curve_scale_by(tr_curve *c, double f)
+{
+    if (!c->lo) {
+        for (size_t i = 0; i < 3 * c->nv; i++)
+            c->x[i] *= f;
+        return;
+    }
+    for (size_t i = 0; i < 3 * c->nv; i++)
+        tr_split_long_double(((long double)c->x[i] + c->lo[i]) * f, &c->x[i], &c->lo[i]);
 }
 
 int tr_curve_copy(tr_curve *dst, const tr_curve *src, tr_error *err)
@@ -78,6 +110,13 @@ int tr_curve_copy(tr_curve *dst, const tr_curve *src, tr_error *err)
         memcpy(dst->cst, src->cst, (size_t)src->ncst * sizeof *dst->cst);
         memcpy(dst->vcst, src->vcst, src->nv * sizeof *dst->vcst);
         dst->ncst = src->ncst;
+    }
+    if (src->lo) {
+        if ((rc = tr_curve_want_lo(dst, err))) {
+            tr_curve_free(dst);
+            return rc;
+        }
+        memcpy(dst->lo, src->lo, 3 * src->nv * sizeof *src->lo);
     }
     return TR_OK;
 }
@@ -164,9 +203,9 @@ double tr_comp_length(const tr_curve *c, int k)
     size_t s = c->start[k], n = tr_comp_nv(c, k), ne = tr_comp_ne(c, k);
     tr_csum sum = {0.0, 0.0};
     for (size_t j = 0; j < ne; j++) {
-        const double *a = c->x + 3 * (s + j);
-        const double *b = c->x + 3 * (s + (j + 1) % n);
-        tr_csum_add(&sum, sqrt(v3_dist2(a, b)));
+        double e[3];
+        tr_curve_edge(c, s + j, s + (j + 1) % n, e);
+        tr_csum_add(&sum, v3_norm(e));
     }
     return tr_csum_value(&sum);
 }
@@ -246,9 +285,15 @@ int tr_curve_to_frame(tr_curve *dst, const tr_curve *c, const tr_curve_frame *f,
     int rc = tr_curve_copy(dst, c, err);
     if (rc)
         return rc;
+    /* with low parts, the translation's rounding goes into them */
     for (size_t i = 0; i < dst->nv; i++)
-        for (int a = 0; a < 3; a++)
-            dst->x[3 * i + a] -= f->centre[a];
+        for (int a = 0; a < 3; a++) {
+            size_t q = 3 * i + (size_t)a;
+            if (dst->lo)
+                tr_split_long_double((long double)dst->x[q] - f->centre[a] + dst->lo[q], &dst->x[q], &dst->lo[q]);
+            else
+                dst->x[q] -= f->centre[a];
+        }
     for (int q = 0; q < dst->ncst; q++) {
         tr_constraint *k = &dst->cst[q];
         if (k->kind == TR_CST_PLANE)
@@ -349,8 +394,11 @@ int tr_curve_check_resolution(const tr_curve *c, size_t *vertex, tr_error *err)
 
 void tr_curve_scale_pow2(tr_curve *c, int e)
 {
-    for (size_t i = 0; i < 3 * c->nv; i++)
+    for (size_t i = 0; i < 3 * c->nv; i++) {
         c->x[i] = ldexp(c->x[i], e);
+        if (c->lo)
+            c->lo[i] = ldexp(c->lo[i], e);
+    }
     for (int q = 0; q < c->ncst; q++) {
         for (int a = 0; a < 3; a++)
             c->cst[q].p[a] = ldexp(c->cst[q].p[a], e);

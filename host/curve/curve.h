@@ -35,6 +35,18 @@ typedef struct tr_curve {
     int *vcst;              /* nv entries (index into cst or -1); NULL if ncst == 0 */
     int ncst;
     tr_constraint *cst;
+    /* NULL, or 3*nv low parts: vertex i is at x + lo exactly (|lo| at most
+     * half a step of the doubles at x). Why: a vertex in doubles is known
+     * to eps R, and a turning angle of size l0 to eps R / l0, so at
+     * N = 200 640 the MinRad rows of a polygon stored in doubles carry
+     * noise of 1e-8 a vertex and 1e-7 at the worst (the written trefoil
+     * paid 5e-6 of ropelength for it); stored to 21 digits (long double)
+     * the polygon's thickness is exact to 1e-11 there. Set by the readers
+     * when a file carries more digits than a double holds, and by the
+     * second-order solver's end game (newton.h); the oracles form edges
+     * from x + lo, the writers print it. Anything that moves vertices
+     * without knowing of lo drops it first (tr_curve_drop_lo). */
+    double *lo;
 } tr_curve;
 
 /* Allocates a curve with the given component sizes and closure flags;
@@ -43,6 +55,31 @@ int tr_curve_alloc(tr_curve *c, int ncomp, const size_t *nv, const unsigned char
                    tr_error *err);
 void tr_curve_free(tr_curve *c);
 int tr_curve_copy(tr_curve *dst, const tr_curve *src, tr_error *err);
+
+/* The low parts: tr_curve_want_lo gives c zeroed ones where it has none;
+ * tr_curve_drop_lo forgets them (the vertices are then x, rounded). */
+int tr_curve_want_lo(tr_curve *c, tr_error *err);
+void tr_curve_drop_lo(tr_curve *c);
+
+/* The edge vector from vertex a to vertex b, from x + lo: the difference
+ * of the doubles is exact where the coordinates are within a factor 2 of
+ * each other (Sterbenz), so the low parts' difference adds what they hold. */
+static inline void tr_curve_edge(const tr_curve *c, size_t a, size_t b, double out[3])
+{
+    for (int d = 0; d < 3; d++) {
+        out[d] = c->x[3 * b + (size_t)d] - c->x[3 * a + (size_t)d];
+        if (c->lo)
+            out[d] += c->lo[3 * b + (size_t)d] - c->lo[3 * a + (size_t)d];
+    }
+}
+
+/* Multiplies every vertex (x + lo, in long double) by f; constraints are
+ * left as they are. */
+void tr_curve_scale_by(tr_curve *c, double f);
+
+/* v = hi + lo split into the double nearest v and the rest (exact where
+ * long double is wider than double; else lo = 0). */
+void tr_split_long_double(long double v, double *hi, double *lo);
 
 /* Adds a constraint table entry; returns its index or a negative status. */
 int tr_curve_add_constraint(tr_curve *c, const tr_constraint *k, tr_error *err);

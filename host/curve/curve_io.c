@@ -60,6 +60,56 @@ int tr_curve_io_token_double(const char *p, size_t n, double *out)
     return 0;
 }
 
+/* The digits of a decimal token's mantissa, leading zeros not counted. */
+static int significant_digits(const char *s)
+{
+    int n = 0, lead = 1;
+    for (; *s && *s != 'e' && *s != 'E'; s++) {
+        if (*s < '0' || *s > '9')
+            continue;
+        if (lead && *s == '0')
+            continue;
+        lead = 0;
+        n++;
+    }
+    return n;
+}
+
+int tr_curve_io_token_split(const char *p, size_t n, double *hi, double *lo)
+{
+    int r = tr_curve_io_token_double(p, n, hi);
+    *lo = 0.0;
+    if (r)
+        return r;
+    /* A token of at most 17 digits is the double strtod makes of it, as
+     * before low parts existed (every file a double prints); one with
+     * more carries the rest in lo (curve.h) */
+    char buf[128];
+    memcpy(buf, p, n);
+    buf[n] = '\0';
+    if (significant_digits(buf) <= 17)
+        return 0;
+    long double v = strtold(buf, NULL);
+    if (isfinite(v))
+        *lo = (double)(v - (long double)*hi);
+    return 0;
+}
+
+void tr_curve_io_vertex(tr_text *b, const tr_curve *c, size_t i, const char *sep)
+{
+    for (int a = 0; a < 3; a++) {
+        size_t q = 3 * i + (size_t)a;
+        if (a)
+            tr_text_printf(b, "%s", sep);
+        /* 17 digits hold a double; 21 a long double (x + lo, as wide as
+         * this machine's long double keeps it) */
+        if (c->lo && c->lo[q] != 0.0)
+            tr_text_printf(b, "%.21Lg", (long double)c->x[q] + (long double)c->lo[q]);
+        else
+            tr_text_printf(b, "%.17g", c->x[q]);
+    }
+}
+
 int tr_curve_io_parse_fail(tr_error *err, const char *name, size_t line, const char *fmt, ...)
 {
     if (err) {

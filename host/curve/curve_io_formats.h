@@ -21,6 +21,9 @@ const char *tr_curve_io_quote(char *buf, size_t bufn, const char *p, size_t n);
 /* Parses a whole token as a finite decimal double: 0 ok, 1 not a number,
  * 2 not finite. */
 int tr_curve_io_token_double(const char *p, size_t n, double *out);
+/* The same, with what a token of more than 17 significant digits holds
+ * beyond *hi in *lo (read as a long double; 0 for a shorter token). */
+int tr_curve_io_token_split(const char *p, size_t n, double *hi, double *lo);
 /* Fails with TR_EPARSE as "NAME:LINE: what". */
 int tr_curve_io_parse_fail(tr_error *err, const char *name, size_t line, const char *fmt, ...)
 #if defined(__GNUC__)
@@ -43,6 +46,9 @@ void tr_curve_io_comments(tr_text *b, const char *comments);
 int tr_vect_sniff(const char *name, const char *text, size_t len);
 int tr_vect_parse(const char *name, const char *text, size_t len, tr_curve *out, tr_error *err);
 void tr_vect_format(tr_text *b, const tr_curve *c, const char *comments);
+/* Vertex i's three coordinates, sep between them: each to 17 digits, or
+ * to 21 where it has a low part (curve.h). */
+void tr_curve_io_vertex(tr_text *b, const tr_curve *c, size_t i, const char *sep);
 
 /* --- TSV and KnotPlot lists (point_list.c) */
 

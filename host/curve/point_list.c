@@ -19,7 +19,8 @@
 int tr_point_list_parse(const char *name, const char *text, size_t len, int multi, tr_curve *out,
                        tr_error *err)
 {
-    double *x = NULL;
+    double *x = NULL, *xl = NULL; /* coordinates and their low parts (curve.h) */
+    int any_lo = 0;
     size_t *vline = NULL, nx = 0, capx = 0;
     size_t *nv = NULL, ncomp = 0, capc = 0;
     size_t compline = 0; /* first line of the current component */
@@ -64,6 +65,12 @@ int tr_point_list_parse(const char *name, const char *text, size_t len, int mult
                 goto done;
             }
             x = g;
+            double *gx = realloc(xl, 3 * cap * sizeof *gx);
+            if (!gx) {
+                rc = tr_fail(err, TR_ENOMEM, "out of memory reading %s", name);
+                goto done;
+            }
+            xl = gx;
             size_t *gl = realloc(vline, cap * sizeof *gl);
             if (!gl) {
                 rc = tr_fail(err, TR_ENOMEM, "out of memory reading %s", name);
@@ -73,7 +80,8 @@ int tr_point_list_parse(const char *name, const char *text, size_t len, int mult
             capx = cap;
         }
         for (int a = 0; a < 3; a++) {
-            int r = tr_curve_io_token_double(w[a], wn[a], &x[3 * nx + (size_t)a]);
+            int r = tr_curve_io_token_split(w[a], wn[a], &x[3 * nx + (size_t)a], &xl[3 * nx + (size_t)a]);
+            any_lo |= xl[3 * nx + (size_t)a] != 0.0;
             if (r) {
                 rc = tr_curve_io_parse_fail(err, name, line, "%s: '%s'", r == 2 ? "not a finite number" : "not a number",
                                 tr_curve_io_quote(q, sizeof q, w[a], wn[a]));
@@ -111,12 +119,17 @@ int tr_point_list_parse(const char *name, const char *text, size_t len, int mult
     if ((rc = tr_curve_alloc(out, (int)ncomp, nv, NULL, err)))
         goto done;
     memcpy(out->x, x, 3 * nx * sizeof *x);
+    if (any_lo && (rc = tr_curve_want_lo(out, err)))
+        goto done;
+    if (any_lo)
+        memcpy(out->lo, xl, 3 * nx * sizeof *xl);
     rc = tr_curve_io_check_edges(out, vline, name, err);
 
 done:
     if (rc)
         tr_curve_free(out);
     free(x);
+    free(xl);
     free(vline);
     free(nv);
     return rc;
@@ -131,8 +144,8 @@ void tr_point_list_format(tr_text *b, const tr_curve *c, const char *comments)
         if (k)
             tr_text_printf(b, "\n");
         for (size_t i = c->start[k]; i < c->start[k + 1]; i++) {
-            const double *v = c->x + 3 * i;
-            tr_text_printf(b, "%.17g\t%.17g\t%.17g\n", v[0], v[1], v[2]);
+            tr_curve_io_vertex(b, c, i, "\t");
+            tr_text_printf(b, "\n");
         }
     }
 }

@@ -283,8 +283,8 @@ static int vect_int(vect_state *st, const char *what, long lo, long *v, size_t *
 }
 
 /* what is "vertex" or "colour", index its number (named only in a message). */
-static int vect_double(vect_state *st, const char *what, size_t index, double *v, size_t *line, long *cst,
-                       size_t *cstline)
+static int vect_double(vect_state *st, const char *what, size_t index, double *v, double *vlo, size_t *line,
+                       long *cst, size_t *cstline)
 {
     item it;
     int rc = vect_token(st, &it, cst, cstline);
@@ -294,7 +294,8 @@ static int vect_double(vect_state *st, const char *what, size_t index, double *v
     char q[64];
     if (it.kind == IT_END)
         return tr_curve_io_parse_fail(st->err, st->lx.name, it.line, "file ends where %s %zu was expected", what, index);
-    int r = tr_curve_io_token_double(it.p, it.n, v);
+    double lo_dummy;
+    int r = tr_curve_io_token_split(it.p, it.n, v, vlo ? vlo : &lo_dummy);
     if (r)
         return tr_curve_io_parse_fail(st->err, st->lx.name, it.line, "%s in %s %zu: '%s'",
                           r == 2 ? "not a finite number" : "not a number", what, index,
@@ -435,9 +436,14 @@ int tr_vect_parse(const char *name, const char *text, size_t len, tr_curve *out,
     for (size_t i = 0; i < out->nv; i++) {
         size_t cl[3];
         for (int a = 0; a < 3; a++) {
-            if ((rc = vect_double(&st, "vertex", i, &out->x[3 * i + a], &cl[a], a == 0 ? pending : NULL,
+            double lo;
+            if ((rc = vect_double(&st, "vertex", i, &out->x[3 * i + a], &lo, &cl[a], a == 0 ? pending : NULL,
                                   pending_line)))
                 goto done;
+            if (lo != 0.0 && (rc = tr_curve_want_lo(out, err)))
+                goto done;
+            if (out->lo)
+                out->lo[3 * i + a] = lo;
             if (a == 0)
                 vline[i] = cl[0];
         }
@@ -462,7 +468,7 @@ int tr_vect_parse(const char *name, const char *text, size_t len, tr_curve *out,
         for (int a = 0; a < 4; a++) {
             double v;
             size_t line;
-            if ((rc = vect_double(&st, "colour", (size_t)j, &v, &line, (j == 0 && a == 0) ? pending : NULL, pending_line)))
+            if ((rc = vect_double(&st, "colour", (size_t)j, &v, NULL, &line, (j == 0 && a == 0) ? pending : NULL, pending_line)))
                 goto done;
         }
     }
@@ -585,11 +591,11 @@ void tr_vect_format(tr_text *b, const tr_curve *c, const char *comments)
     for (int k = 0; k < c->ncomp; k++) {
         tr_text_printf(b, "# component %d\n", k);
         for (size_t i = c->start[k]; i < c->start[k + 1]; i++) {
-            const double *v = c->x + 3 * i;
+            tr_curve_io_vertex(b, c, i, " ");
             if (c->vcst && c->vcst[i] >= 0)
-                tr_text_printf(b, "%.17g %.17g %.17g # Cst: %d\n", v[0], v[1], v[2], cst_number(c, c->vcst[i], keep));
+                tr_text_printf(b, " # Cst: %d\n", cst_number(c, c->vcst[i], keep));
             else
-                tr_text_printf(b, "%.17g %.17g %.17g\n", v[0], v[1], v[2]);
+                tr_text_printf(b, "\n");
         }
     }
 }

@@ -341,6 +341,17 @@ int tr_engine_i_newton(tr_engine *e, double seconds, int tight_only, volatile si
     }
     e->lvl_ok = e->lvl_refined = 0;
     int rc = tr_newton(&e->curve, &np, &ns, err);
+    /* the result's low parts, kept beside it (engine_internal.h newton_lo) */
+    free(e->newton_x);
+    free(e->newton_lo);
+    e->newton_x = e->newton_lo = NULL;
+    if (rc == TR_OK && ns.accepted && e->curve.lo && (e->newton_x = malloc(3 * e->curve.nv * sizeof *e->newton_x))) {
+        memcpy(e->newton_x, e->curve.x, 3 * e->curve.nv * sizeof *e->newton_x);
+        e->newton_nv = e->curve.nv;
+        e->newton_lo = e->curve.lo;
+        e->curve.lo = NULL;
+    }
+    tr_curve_drop_lo(&e->curve);
     tr_engine_i_solver_state_after(e, rc, &ns);
     e->newton_unfinished =
         rc == TR_EINTERRUPTED || (rc == TR_OK && !ns.converged && !ns.settled && !ns.skipped && !ns.loose);
@@ -457,6 +468,9 @@ int tr_engine_open(tr_engine **out, const tr_curve *c, const char *device, const
     if (!e)
         return tr_fail(err, TR_ENOMEM, "out of memory");
     int rc = tr_curve_copy(&e->curve, c, err);
+    /* the engine's steps move vertices in doubles: a start's low parts
+     * (curve.h) would no longer be its vertices' */
+    tr_curve_drop_lo(&e->curve);
     if (!rc)
         rc = tr_engine_i_alloc_comp_arrays(e, err);
     if (rc) {
@@ -512,6 +526,8 @@ void tr_engine_destroy(tr_engine *e)
     free(e->gap);
     free(e->ebar);
     free(e->polish_x);
+    free(e->newton_x);
+    free(e->newton_lo);
     coarse_drop(e);
     free(e);
 }
@@ -629,8 +645,17 @@ int tr_engine_get_curve(tr_engine *e, tr_curve *out, tr_error *err)
         return rc;
     if ((rc = tr_curve_copy(out, &e->curve, err)))
         return rc;
-    if (e->polish_x && e->steps == e->polish_steps)
+    if (e->polish_x && e->steps == e->polish_steps) {
+        tr_curve_drop_lo(out);
         memcpy(out->x, e->polish_x, 3 * out->nv * sizeof *out->x);
+    }
+    if (e->newton_lo && e->newton_nv == out->nv && !memcmp(out->x, e->newton_x, 3 * out->nv * sizeof *out->x)) {
+        if ((rc = tr_curve_want_lo(out, err))) {
+            tr_curve_free(out);
+            return rc;
+        }
+        memcpy(out->lo, e->newton_lo, 3 * out->nv * sizeof *out->lo);
+    }
     return TR_OK;
 }
 

@@ -42,6 +42,13 @@ struct tr_engine {
      * constraint set cost ropelength (the oracle's, which is scale free):
      * until the engine takes another step it is the curve handed out. */
     double *polish_x;
+    /* The second-order solver's last accepted result and its low parts
+     * (curve.h; the solver's end game holds the iterate in extended
+     * precision): the engine's steps move vertices in doubles, so the low
+     * parts go out with the curve only while the curve handed out is that
+     * result to the bit (tr_engine_get_curve). NULL when it had none. */
+    double *newton_x, *newton_lo;
+    size_t newton_nv; /* their vertices */
     /* the level's curve as it came, before the settle put it on the
      * engine's constraint set: the second-order solver starts from it at
      * the finest level (a spline through a tight knot overshoots MinRad

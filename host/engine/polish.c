@@ -323,6 +323,7 @@ static int polish_once(tr_curve *cv, const tr_polish_params *prm, tr_polish_stat
     c.p = prm;
     if ((rc = tr_curve_copy(&c.w, cv, err)))
         return rc;
+    tr_curve_drop_lo(&c.w); /* the polish moves vertices in doubles */
     if (!constrained)
         scale(&c.w, 1.0 / th0.thickness);
     size_t nv = c.nv = c.w.nv;
@@ -465,6 +466,7 @@ static int polish_once(tr_curve *cv, const tr_polish_params *prm, tr_polish_stat
         st->why_rejected = "the polished curve is not shorter";
         goto done;
     }
+    tr_curve_drop_lo(cv);
     memcpy(cv->x, c.w.x, 3 * nv * sizeof *x);
     st->accepted = 1;
     st->ropelength_after = th.ropelength;

@@ -294,8 +294,12 @@ static void component_lengths(const tr_curve *c, int k, comp_lengths *out)
     out->minrad_vertex = v0;
     tr_csum len = {0, 0};
     double emin = INFINITY, emax = 0.0;
+    /* edges from x + lo (curve.h): exact to eps l0, where the coordinates
+     * themselves are known to eps R only when there are no low parts */
     for (size_t j = 0; j < ne; j++) {
-        double l = sqrt(v3_dist2(c->x + 3 * (v0 + j), c->x + 3 * (v0 + (j + 1) % n)));
+        double e[3];
+        tr_curve_edge(c, v0 + j, v0 + (j + 1) % n, e);
+        double l = v3_norm(e);
         tr_csum_add(&len, l);
         emin = fmin(emin, l);
         emax = fmax(emax, l);
@@ -306,12 +310,9 @@ static void component_lengths(const tr_curve *c, int k, comp_lengths *out)
     size_t first = closed ? 0 : 1, end = closed ? n : (n >= 2 ? n - 1 : 0);
     tr_csum arcs = {0, 0};
     for (size_t j = first; j < end; j++) {
-        const double *p = c->x + 3 * (v0 + (j + n - 1) % n);
-        const double *v = c->x + 3 * (v0 + j);
-        const double *q = c->x + 3 * (v0 + (j + 1) % n);
         double in[3], o[3], cr[3];
-        v3_sub(in, v, p);
-        v3_sub(o, q, v);
+        tr_curve_edge(c, v0 + (j + n - 1) % n, v0 + j, in);
+        tr_curve_edge(c, v0 + j, v0 + (j + 1) % n, o);
         double normin = v3_norm(in), normout = v3_norm(o);
         double dot = v3_dot(in, o);
         v3_cross(cr, in, o);
@@ -341,9 +342,11 @@ static void component_lengths(const tr_curve *c, int k, comp_lengths *out)
             /* Straight pieces between consecutive arcs: |e_j| - t_j - t_{j+1};
              * zero for an equilateral polygon. */
             for (size_t j = 0; j < ne; j++) {
-                double lp = sqrt(v3_dist2(c->x + 3 * (v0 + (j + n - 1) % n), c->x + 3 * (v0 + j)));
-                double l = sqrt(v3_dist2(c->x + 3 * (v0 + j), c->x + 3 * (v0 + (j + 1) % n)));
-                double ln = sqrt(v3_dist2(c->x + 3 * (v0 + (j + 1) % n), c->x + 3 * (v0 + (j + 2) % n)));
+                double ep[3], e[3], en[3];
+                tr_curve_edge(c, v0 + (j + n - 1) % n, v0 + j, ep);
+                tr_curve_edge(c, v0 + j, v0 + (j + 1) % n, e);
+                tr_curve_edge(c, v0 + (j + 1) % n, v0 + (j + 2) % n, en);
+                double lp = v3_norm(ep), l = v3_norm(e), ln = v3_norm(en);
                 double piece = l - 0.5 * fmin(lp, l) - 0.5 * fmin(l, ln);
                 tr_csum_add(&arcs, piece);
             }
@@ -552,7 +555,10 @@ int tr_thickness_measure_component(const tr_curve *c, int k, tr_thickness *out, 
     if (rc)
         return rc;
     memcpy(one.x, c->x + 3 * c->start[k], 3 * n * sizeof *one.x);
-    rc = tr_thickness_measure(&one, NULL, out, NULL, err);
+    if (c->lo && !(rc = tr_curve_want_lo(&one, err)))
+        memcpy(one.lo, c->lo + 3 * c->start[k], 3 * n * sizeof *one.lo);
+    if (!rc)
+        rc = tr_thickness_measure(&one, NULL, out, NULL, err);
     tr_curve_free(&one);
     if (rc == TR_OK) {
         /* Report indices in the whole curve's numbering. */

@@ -97,12 +97,16 @@ static void slab_lean(const tr_curve *c, double *du_max, double *e_max)
     for (int k = 0; k < c->ncomp; k++) {
         size_t v0 = c->start[k], n = tr_comp_nv(c, k), ne = tr_comp_ne(c, k);
         for (size_t l = 0; l < ne; l++)
-            *e_max = fmax(*e_max, sqrt(v3_dist2(c->x + 3 * (v0 + l), c->x + 3 * (v0 + (l + 1) % n))));
+        {
+            double e[3];
+            tr_curve_edge(c, v0 + l, v0 + (l + 1) % n, e);
+            *e_max = fmax(*e_max, v3_norm(e));
+        }
         size_t first = c->closed[k] ? 0 : 1, end = c->closed[k] ? n : n - 1;
         for (size_t l = first; l < end; l++) {
             double a[3], b[3], du[3];
-            v3_sub(a, c->x + 3 * (v0 + l), c->x + 3 * (v0 + (l + n - 1) % n));
-            v3_sub(b, c->x + 3 * (v0 + (l + 1) % n), c->x + 3 * (v0 + l));
+            tr_curve_edge(c, v0 + (l + n - 1) % n, v0 + l, a);
+            tr_curve_edge(c, v0 + l, v0 + (l + 1) % n, b);
             double la = v3_norm(a), lb = v3_norm(b);
             for (int q = 0; q < 3; q++)
                 du[q] = b[q] / lb - a[q] / la;

@@ -12,7 +12,7 @@ static int second_difference(const tr_bend_chain *c, const double *x, size_t i, 
     if (ip == TR_BEND_NONE || in == TR_BEND_NONE)
         return 0;
     for (int d = 0; d < 3; d++)
-        w[d] = x[3 * in + (size_t)d] - 2.0 * x[3 * i + (size_t)d] + x[3 * ip + (size_t)d];
+        w[d] = (x[3 * in + (size_t)d] - x[3 * i + (size_t)d]) - (x[3 * i + (size_t)d] - x[3 * ip + (size_t)d]);
     return 1;
 }
 

@@ -201,6 +201,10 @@ static void solver_free(solver *s)
     free(s->pat_p);
     free(s->best_y);
     free(s->restored);
+    free(s->ylo);
+    free(s->ytlo);
+    free(s->best_lo);
+    free(s->restored_lo);
     free(s->cv);
     tr_curve_free(&s->probe);
     tr_newton_state_free(&s->out);
@@ -234,6 +238,9 @@ static int solver_init(solver *s, const tr_curve *cv, double scale, tr_error *er
     int rc = tr_curve_copy(&s->w, cv, err);
     if (rc)
         return rc;
+    /* the iterate is held in doubles; the end game gives the result its
+     * low parts again (newton.h) */
+    tr_curve_drop_lo(&s->w);
     for (size_t i = 0; i < 3 * s->w.nv; i++)
         s->w.x[i] *= scale;
     size_t nv = s->nv = s->w.nv;
@@ -373,10 +380,19 @@ static int has_constrained_vertex(const tr_curve *c)
     return 0;
 }
 
-/* y's ropelength as the oracle measures it (*th), at thickness 1 */
-static int measure_iterate(solver *s, const double *y, double *rl, tr_thickness *th, tr_error *err)
+/* y's ropelength as the oracle measures it (*th), at thickness 1; at
+ * y + ylo where ylo (low parts, curve.h) is not NULL */
+static int measure_iterate_lo(solver *s, const double *y, const double *ylo, double *rl, tr_thickness *th,
+                              tr_error *err)
 {
     memcpy(s->probe.x, y, 3 * s->nv * sizeof *y);
+    tr_curve_drop_lo(&s->probe);
+    if (ylo) {
+        int rc = tr_curve_want_lo(&s->probe, err);
+        if (rc)
+            return rc;
+        memcpy(s->probe.lo, ylo, 3 * s->nv * sizeof *ylo);
+    }
     int rc = tr_newton_i_model_thickness(s->p, &s->probe, NULL, th, err);
     if (rc)
         return rc;
@@ -386,6 +402,55 @@ static int measure_iterate(solver *s, const double *y, double *rl, tr_thickness 
     if (!(th->thickness > 0))
         *rl = INFINITY;
     return TR_OK;
+}
+
+static int measure_iterate(solver *s, const double *y, double *rl, tr_thickness *th, tr_error *err)
+{
+    return measure_iterate_lo(s, y, NULL, rl, th, err);
+}
+
+/* The end game in extended precision. A vertex held in doubles is known
+ * to eps R, so a MinRad row (a second difference of size l0^2) carries
+ * rounding of eps R / l0^2 of itself: 1e-8 a vertex at N = 200 640, and
+ * the restoration in doubles left the settled trefoil's worst row 1.9e-7
+ * over, which the rescaling to thickness 1 charged as 5e-6 of its
+ * ropelength (bench/notes/2026-11-29-n200640-settles.md). Restored once
+ * more on y + ylo, the positions with low parts (curve.h), its rows are
+ * evaluated from edges exact to eps l0 and the correction lands below the
+ * step between doubles: the rows close to the restoration's own accuracy.
+ * *ylo is the low parts where the oracle measures y + ylo shorter than y
+ * (rl_y), else NULL. Not for a constrained rope (the restoration leaves
+ * it as it is). */
+static int extended_end(solver *s, double *y, const double *lo_in, double rl_y, double deadline, double **ylo,
+                        tr_error *err)
+{
+    *ylo = NULL;
+    if (s->ncv > 0 || LDBL_MANT_DIG <= DBL_MANT_DIG)
+        return TR_OK;
+    size_t n = s->n, n3 = 3 * s->nv;
+    double *yx = malloc(n * sizeof *yx), *lo = calloc(n3, sizeof *lo);
+    int rc = TR_OK;
+    if (!yx || !lo) {
+        rc = tr_fail(err, TR_ENOMEM, "out of memory (extended restoration)");
+        goto done;
+    }
+    memcpy(yx, y, n * sizeof *y);
+    if (lo_in)
+        memcpy(lo, lo_in, n3 * sizeof *lo);
+    double rv, rv_edge, rl;
+    tr_thickness th;
+    if ((rc = tr_newton_i_restore_lo(s, yx, lo, deadline, &rv, &rv_edge, err)) ||
+        (rc = measure_iterate_lo(s, yx, lo, &rl, &th, err)))
+        goto done;
+    if (rl < rl_y) {
+        memcpy(y, yx, n * sizeof *y);
+        *ylo = lo;
+        lo = NULL;
+    }
+done:
+    free(yx);
+    free(lo);
+    return rc;
 }
 
 static int ensure_best(solver *s, tr_error *err)
@@ -405,6 +470,14 @@ static int ensure_best(solver *s, tr_error *err)
         s->best_rl = INFINITY;
         s->best_viol_edge = INFINITY;
     }
+    /* the low parts' too, once the iterate has them (a best taken before
+     * was a double iterate: its low parts are 0) */
+    if (s->ylo && !s->best_lo) {
+        s->best_lo = calloc(3 * s->nv, sizeof *s->best_lo);
+        s->restored_lo = calloc(3 * s->nv, sizeof *s->restored_lo);
+        if (!s->best_lo || !s->restored_lo)
+            return tr_fail(err, TR_ENOMEM, "out of memory (Newton solver)");
+    }
     return TR_OK;
 }
 
@@ -419,11 +492,12 @@ static int has_best(const solver *s) { return s->best_y && isfinite(s->best_rl);
 /* cand (viol_edge: its edges' violation; restored: a restoration's
  * result) becomes the best if the oracle measures it shorter than the best
  * yet */
-static int consider(solver *s, const double *cand, double viol_edge, int restored, tr_error *err)
+static int consider(solver *s, const double *cand, const double *candlo, double viol_edge, int restored,
+                    tr_error *err)
 {
     tr_thickness th;
     double rl;
-    int rc = measure_iterate(s, cand, &rl, &th, err);
+    int rc = measure_iterate_lo(s, cand, candlo, &rl, &th, err);
     if (rc)
         return rc;
     if (isfinite(rl) && rl < s->best_rl) {
@@ -432,22 +506,35 @@ static int consider(solver *s, const double *cand, double viol_edge, int restore
         s->best_thickness = th.thickness;
         s->best_restored = restored;
         memcpy(s->best_y, cand, s->n * sizeof *cand);
+        if (s->best_lo) {
+            if (candlo)
+                memcpy(s->best_lo, candlo, 3 * s->nv * sizeof *candlo);
+            else
+                memset(s->best_lo, 0, 3 * s->nv * sizeof *s->best_lo);
+        }
     }
     return TR_OK;
 }
 
 /* y restored onto its rows (restore.c) as a candidate for the best: it is
  * one wherever a row of y is over by more than rounding */
-static int consider_restored(solver *s, const double *y, double deadline, tr_error *err)
+static int consider_restored(solver *s, const double *y, const double *ylo, double deadline, tr_error *err)
 {
     if (s->ncv > 0)
         return TR_OK;
     double rv, rv_edge;
     memcpy(s->restored, y, s->n * sizeof *y);
-    int rc = tr_newton_i_restore(s, s->restored, deadline, &rv, &rv_edge, err);
+    double *rlo = s->restored_lo;
+    if (rlo) {
+        if (ylo)
+            memcpy(rlo, ylo, 3 * s->nv * sizeof *ylo);
+        else
+            memset(rlo, 0, 3 * s->nv * sizeof *rlo);
+    }
+    int rc = tr_newton_i_restore_lo(s, s->restored, rlo, deadline, &rv, &rv_edge, err);
     if (rc)
         return rc;
-    return consider(s, s->restored, rv_edge, 1, err);
+    return consider(s, s->restored, rlo, rv_edge, 1, err);
 }
 
 static int keep_best(solver *s, const double *y, double deadline, tr_error *err)
@@ -456,13 +543,13 @@ static int keep_best(solver *s, const double *y, double deadline, tr_error *err)
         return TR_OK;
     int rc = ensure_best(s, err);
     if (!rc)
-        rc = consider(s, y, s->viol_kind[0], 0, err);
+        rc = consider(s, y, s->ylo, s->viol_kind[0], 0, err);
     const tr_newton_params *p = s->p;
     if (rc || !p->checkpoint || !(p->checkpoint_every > 0) || tr_clock_seconds() - s->t_ckpt < p->checkpoint_every)
         return rc;
     /* a checkpoint is due: the iterate restored (a few factorizations, so
      * only here and at the end, not at every pass) */
-    if ((rc = consider_restored(s, y, deadline, err)))
+    if ((rc = consider_restored(s, y, s->ylo, deadline, err)))
         return rc;
     s->t_ckpt = tr_clock_seconds();
     /* a checkpoint is a valid rope (equal edges to 1e-6, as --resume
@@ -530,8 +617,14 @@ static int minimise(solver *s, double *y, tr_newton_stats *st, double t0, const 
     /* the gauge's vertices stay where they are when bends are taken back */
     unsigned char *held = calloc(nv ? nv : 1, 1);
     tr_bend_chain chain = {.nv = nv, .prev = s->prev, .next = s->next, .comp = s->comp, .l0 = s->l0, .held = held};
+    /* the iterate's low parts (newton_internal.h ylo): a resumed state's,
+     * else from zero (the start is the doubles it was given) */
+    if (!s->ylo)
+        s->ylo = calloc(3 * nv + 1, sizeof *s->ylo);
+    free(s->ytlo);
+    s->ytlo = calloc(3 * nv + 1, sizeof *s->ytlo);
     int rc = TR_OK;
-    if (!grad || !dir || !yt || !held) {
+    if (!grad || !dir || !yt || !held || !s->ylo || !s->ytlo) {
         rc = tr_fail(err, TR_ENOMEM, "out of memory (Newton solver)");
         goto done;
     }
@@ -549,15 +642,14 @@ static int minimise(solver *s, double *y, tr_newton_stats *st, double t0, const 
     }
     s->t_ckpt = s->t_state = t0;
     double deadline = p->time_limit > 0 ? t0 + p->time_limit : INFINITY;
-    /* A MinRad row's second difference w ~ l0^2 kappa is computed from
-     * coordinates of size R, so its relative violation carries rounding of
-     * ~eps R / l0^2 (1e-11 at N = 9600): asking for less only drives mu up
-     * against rounding, and the Levenberg shift that mu brings with it
-     * stalls the steps. */
-    double reach = 0.0;
-    for (size_t i = 0; i < 3 * nv; i++)
-        reach = fmax(reach, fabs(y[i]));
-    double viol_tol = fmax(p->viol_tol, 16.0 * DBL_EPSILON * reach / (s->l0min * s->l0min));
+    /* A MinRad row's second difference w ~ l0^2 kappa carries the rounding
+     * of the edges it is formed from: eps l0 with the iterate's low parts
+     * (ylo), so its relative violation is known to ~eps / l0 (2e-12 at
+     * N = 200 640), and asking for less only drives mu up against rounding,
+     * and the Levenberg shift that mu brings with it stalls the steps. In
+     * doubles alone it was eps R / l0^2 (R the coordinates' size: 1e-11 at
+     * N = 9600, 5e-7 at 200 640), the floor this was before the low parts. */
+    double viol_tol = fmax(p->viol_tol, 16.0 * DBL_EPSILON / s->l0min);
     double omega = 1e-2, prev_viol = INFINITY, lm = 0.0, prev_len = INFINITY;
     int inner = 0, settled = 0, last_full = 0, moved = 0, stuck = 0, inner_done = 0;
     /* a resumed run's iterations go on counting from the stopped run's:
@@ -598,7 +690,7 @@ static int minimise(solver *s, double *y, tr_newton_stats *st, double t0, const 
             give_state(s, y, &LOOP_NOW, st, t0);
         double te = tr_clock_seconds();
         s->oom = 0;
-        double f = tr_newton_i_al_eval(s, y, grad, 1);
+        double f = tr_newton_i_al_eval_lo(s, y, s->ylo, grad, 1);
         /* the line search's trial evaluations overwrite these */
         double len_y = s->length, viol_y = s->viol, vk[3] = {s->viol_kind[0], s->viol_kind[1], s->viol_kind[2]};
         size_t worst_m = s->worst_m;
@@ -705,11 +797,10 @@ static int minimise(solver *s, double *y, tr_newton_stats *st, double t0, const 
                 slope += grad[k] * dir[k];
             alpha = cap;
             for (int ls = 0; ls < 20 && slope < 0.0; ls++) {
-                for (size_t k = 0; k < n; k++)
-                    yt[k] = y[k] + alpha * dir[k];
+                tr_newton_i_add_step(3 * nv, n, y, s->ylo, alpha, dir, yt, s->ytlo);
                 if (isfinite(s->max_bend) && !s->bend_cap)
                     tr_bend_take_back(&chain, y, yt, s->max_bend);
-                ft = tr_newton_i_al_eval(s, yt, NULL, 0);
+                ft = tr_newton_i_al_eval_lo(s, yt, s->ytlo, NULL, 0);
                 double dlen = 0.0;
                 for (int k = 0; k < s->nc; k++)
                     dlen += (double)s->ne[k] * (yt[3 * nv + (size_t)k] - y[3 * nv + (size_t)k]);
@@ -758,6 +849,7 @@ static int minimise(solver *s, double *y, tr_newton_stats *st, double t0, const 
             inner_done = 1;
         moved = 1;
         memcpy(y, yt, n * sizeof *y);
+        memcpy(s->ylo, s->ytlo, 3 * nv * sizeof *y);
         /* the strut list is good while no vertex has moved skin / 4 */
         if (moved_since_build(s, y) > fmin(0.25 * p->skin, 0.5 * s->l0min)) {
             double tr = tr_clock_seconds();
@@ -832,6 +924,8 @@ static int resume_from_state(solver *s, const tr_curve *cv, double **y, tr_newto
         if ((rc = ensure_best(s, err)))
             return rc;
         memcpy(s->best_y, r->best_y, s->n * sizeof *s->best_y);
+        if (s->best_lo && r->has_lo && r->best_lo)
+            memcpy(s->best_lo, r->best_lo, 3 * s->nv * sizeof *s->best_lo);
         s->best_rl = r->best_rl;
         s->best_viol_edge = r->best_viol_edge;
         s->best_thickness = r->best_thickness;
@@ -1025,7 +1119,7 @@ int tr_newton(tr_curve *cv, const tr_newton_params *prm, tr_newton_stats *st, tr
      * vertices: N^2 pairs within the cutoff), before any step: it stops at
      * the time limit or a signal (strut_list.c) */
     s.first_bound = (tr_deadline){.at = prm->time_limit > 0 ? t0 + prm->time_limit : 0, .stop = prm->stop};
-    double *y = NULL;
+    double *y = NULL, *ylo = NULL; /* ylo: the result's low parts (extended_end) */
     tr_newton_loop resumed;
     if (prm->resume) {
         if ((rc = resume_from_state(&s, cv, &y, &resumed, err)))
@@ -1039,12 +1133,12 @@ int tr_newton(tr_curve *cv, const tr_newton_params *prm, tr_newton_stats *st, tr
     if ((rc = minimise(&s, y, st, t0, prm->resume ? &resumed : NULL, err)))
         goto done;
     /* the last iterate, or the best one the passes met */
-    tr_newton_i_al_eval(&s, y, NULL, 0);
+    tr_newton_i_al_eval_lo(&s, y, s.ylo, NULL, 0);
     double deadline = prm->time_limit > 0 ? t0 + prm->time_limit : INFINITY;
     double best_before = has_best(&s) ? s.best_rl : INFINITY;
     if (s.viol < BEST_VIOL) {
-        if ((rc = ensure_best(&s, err)) || (rc = consider(&s, y, s.viol_kind[0], 0, err)) ||
-            (rc = consider_restored(&s, y, deadline, err)))
+        if ((rc = ensure_best(&s, err)) || (rc = consider(&s, y, s.ylo, s.viol_kind[0], 0, err)) ||
+            (rc = consider_restored(&s, y, s.ylo, deadline, err)))
             goto done;
     }
     if (has_best(&s)) {
@@ -1053,14 +1147,34 @@ int tr_newton(tr_curve *cv, const tr_newton_params *prm, tr_newton_stats *st, tr
          * (again), unless it is the last iterate as it was, restored above */
         if (!(s.best_rl < best_before && !s.best_restored)) {
             memcpy(y, s.best_y, s.n * sizeof *y);
-            if ((rc = consider_restored(&s, y, deadline, err)))
+            if ((rc = consider_restored(&s, y, s.best_lo, deadline, err)))
                 goto done;
         }
         memcpy(y, s.best_y, s.n * sizeof *y);
+        if (s.best_lo) {
+            if (!(ylo = malloc(3 * s.nv * sizeof *ylo))) {
+                rc = tr_fail(err, TR_ENOMEM, "out of memory (Newton solver)");
+                goto done;
+            }
+            memcpy(ylo, s.best_lo, 3 * s.nv * sizeof *ylo);
+        }
+        /* and once more in extended precision (extended_end) */
+        double *ext = NULL;
+        if ((rc = extended_end(&s, y, ylo, s.best_rl, deadline, &ext, err)))
+            goto done;
+        if (ext) {
+            free(ylo);
+            ylo = ext;
+        }
     }
     /* the oracle decides: rescale to thickness 1 (a constrained curve:
      * its vertices exactly on their constraints instead), keep if shorter */
     memcpy(s.w.x, y, 3 * s.nv * sizeof *y);
+    if (ylo) {
+        if ((rc = tr_curve_want_lo(&s.w, err)))
+            goto done;
+        memcpy(s.w.lo, ylo, 3 * s.nv * sizeof *ylo);
+    }
     for (size_t q = 0; q < s.ncv; q++)
         tr_constraint_project(tr_newton_i_vertex_cst(&s, s.cv[q]), s.w.x + 3 * s.cv[q]);
     tr_thickness th;
@@ -1071,8 +1185,11 @@ int tr_newton(tr_curve *cv, const tr_newton_params *prm, tr_newton_stats *st, tr
         goto done;
     }
     if (!constrained) {
-        for (size_t i = 0; i < 3 * s.nv; i++)
-            s.w.x[i] /= th.thickness;
+        if (s.w.lo)
+            tr_curve_scale_by(&s.w, 1.0 / th.thickness);
+        else
+            for (size_t i = 0; i < 3 * s.nv; i++)
+                s.w.x[i] /= th.thickness;
         if ((rc = tr_newton_i_model_thickness(prm, &s.w, NULL, &th, err)))
             goto done;
     }
@@ -1089,7 +1206,13 @@ int tr_newton(tr_curve *cv, const tr_newton_params *prm, tr_newton_stats *st, tr
         st->why_rejected = "the result is not shorter";
         goto done;
     }
+    tr_curve_drop_lo(cv);
     memcpy(cv->x, s.w.x, 3 * s.nv * sizeof *y);
+    if (s.w.lo) {
+        if ((rc = tr_curve_want_lo(cv, err)))
+            goto done;
+        memcpy(cv->lo, s.w.lo, 3 * s.nv * sizeof *s.w.lo);
+    }
     st->accepted = 1;
     st->ropelength_after = rl;
 done:
@@ -1097,6 +1220,7 @@ done:
     st->t_rows = s.t_rows;
     st->t_value = s.t_value;
     free(y);
+    free(ylo);
     solver_free(&s);
     return rc;
 }
@@ -1128,7 +1252,7 @@ int tr_newton_restore(tr_curve *cv, const tr_newton_params *prm, double *before,
     solver s;
     memset(&s, 0, sizeof s);
     s.p = &p;
-    double *y = NULL;
+    double *y = NULL, *ylo = NULL;
     tr_newton_stats st;
     memset(&st, 0, sizeof st);
     if ((rc = prepare(&s, cv, 1.0, &y, &st, err)))
@@ -1141,14 +1265,27 @@ int tr_newton_restore(tr_curve *cv, const tr_newton_params *prm, double *before,
         goto done;
     tr_thickness th;
     double rl;
-    if ((rc = measure_iterate(&s, y, &rl, &th, err)))
+    if ((rc = measure_iterate(&s, y, &rl, &th, err)) || (rc = extended_end(&s, y, NULL, rl, INFINITY, &ylo, err)) ||
+        (ylo && (rc = measure_iterate_lo(&s, y, ylo, &rl, &th, err))))
         goto done;
+    if (ylo) {
+        tr_newton_i_al_eval_lo(&s, y, ylo, NULL, 0);
+        *after = s.viol;
+    }
     /* kept where the oracle measures it shorter than the curve rescaled */
-    if (rl < th0.ropelength)
-        for (size_t i = 0; i < 3 * s.nv; i++)
-            cv->x[i] = y[i] / th.thickness;
+    if (rl < th0.ropelength) {
+        tr_curve_drop_lo(cv);
+        memcpy(cv->x, y, 3 * s.nv * sizeof *y);
+        if (ylo) {
+            if ((rc = tr_curve_want_lo(cv, err)))
+                goto done;
+            memcpy(cv->lo, ylo, 3 * s.nv * sizeof *ylo);
+        }
+        tr_curve_scale_by(cv, 1.0 / th.thickness);
+    }
 done:
     free(y);
+    free(ylo);
     solver_free(&s);
     return rc;
 }

@@ -171,6 +171,10 @@ typedef struct tr_newton_state {
     int has_best, best_restored;
     double *best_y; /* 3 nv + ncomp */
     double best_rl, best_viol_edge, best_thickness;
+    /* the iterate's and the best's low parts (3 nv each; newton_internal.h
+     * ylo), or NULL (a state of file version 1) */
+    int has_lo;
+    double *ylo, *best_lo;
     /* the runs so far, together: Newton steps and seconds (for the log) */
     long steps;
     double seconds;

@@ -47,6 +47,16 @@ typedef struct solver {
     double best_viol_edge, best_thickness; /* the best's edge violation and thickness */
     int best_restored;                     /* the best is a restoration's result */
     double *restored; /* scratch: the iterate restored (restore.c) */
+    /* The iterate's low parts (curve.h), 3 nv, or NULL: the positions are
+     * y + ylo. A vertex held in doubles alone is known to eps R, so a
+     * MinRad row (a second difference of size l0^2) would carry rounding
+     * of eps R / l0^2 of itself (1e-8 a vertex at N = 200 640) and the
+     * iterate would settle with its worst rows that far over; with the low
+     * parts the rows are evaluated from edges exact to eps l0, and a step
+     * far below the step between doubles at the coordinates still moves
+     * the vertex. ytlo: the line search's trial's; best_lo, restored_lo:
+     * best_y's and restored's. */
+    double *ylo, *ytlo, *best_lo, *restored_lo;
     double t_ckpt; /* when the last checkpoint went out (or the solve began) */
     double t_state; /* when the last state went out (or the solve began) */
     tr_newton_state out; /* the state handed to p->state (newton_state.c fills it) */
@@ -128,12 +138,19 @@ void tr_newton_i_set_gauge(solver *s);
  * end of an open rope (no row) */
 int tr_newton_i_minrad_row(const solver *s, const double *x, const double *l, size_t i, double w[3],
                            double *c, double *dc, double *d2c);
+/* the same at x + xlo (xlo: the positions' low parts, curve.h; NULL none) */
+int tr_newton_i_minrad_row_lo(const solver *s, const double *x, const double *xlo, const double *l, size_t i,
+                              double w[3], double *c, double *dc, double *d2c);
 /* appends v at (i, j) of the Hessian's upper triangle */
 void tr_newton_i_tri_push(solver *s, size_t i, size_t j, double v);
 /* L_A at y less its length term; with grad its gradient and the multiplier
  * estimates, with hess the Hessian's triplets; sets viol, dmin, length,
  * active */
 double tr_newton_i_al_eval(solver *s, const double *y, double *grad, int hess);
+/* the same at the positions y + ylo (ylo: 3 nv low parts, curve.h, or
+ * NULL): the edge and MinRad rows from them, the struts from y alone (a
+ * strut's distance of 2 carries rounding of 1e-16 of itself either way) */
+double tr_newton_i_al_eval_lo(solver *s, const double *y, const double *ylo, double *grad, int hess);
 
 /* ---- the Newton direction (newton.c) ---- */
 
@@ -148,6 +165,16 @@ int tr_newton_i_dir(solver *s, const double *grad, double *dir, double *lm, tr_n
  * stop is asked for; *viol the violation left (as al_eval measures it),
  * *viol_edge its edges' part. A constrained rope is left as it is. */
 int tr_newton_i_restore(solver *s, double *y, double deadline, double *viol, double *viol_edge, tr_error *err);
+/* the same on the positions y + ylo (ylo: 3 nv low parts, curve.h, which
+ * the correction moves; NULL: tr_newton_i_restore) */
+int tr_newton_i_restore_lo(solver *s, double *y, double *ylo, double deadline, double *viol, double *viol_edge,
+                           tr_error *err);
+/* yt = y + alpha dir over the n variables; the first n3 (positions) with
+ * low parts when ylo is not NULL: the sum's rounding goes into ytlo
+ * (two-sum), so that a step below the step between doubles still moves
+ * the vertex */
+void tr_newton_i_add_step(size_t n3, size_t n, const double *y, const double *ylo, double alpha, const double *dir,
+                          double *yt, double *ytlo);
 
 /* ---- the strut list (strut_list.c) ---- */
 

@@ -23,12 +23,27 @@ static void minrad_c(double l, double *c, double *dc, double *d2c)
 int tr_newton_i_minrad_row(const solver *s, const double *x, const double *l, size_t i, double w[3],
                            double *c, double *dc, double *d2c)
 {
+    return tr_newton_i_minrad_row_lo(s, x, NULL, l, i, w, c, dc, d2c);
+}
+
+int tr_newton_i_minrad_row_lo(const solver *s, const double *x, const double *xlo, const double *l, size_t i,
+                              double w[3], double *c, double *dc, double *d2c)
+{
     size_t ip = s->prev[i], in = s->next[i];
     if (ip == NONE || in == NONE)
         return 0;
     minrad_c(l[s->comp[i]], c, dc, d2c);
-    for (int d = 0; d < 3; d++)
-        w[d] = x[3 * in + d] - 2.0 * x[3 * i + d] + x[3 * ip + d];
+    /* as the difference of the two edges: each edge is exact where its
+     * end points' coordinates are within a factor 2 of each other
+     * (Sterbenz), so w carries rounding of eps l0 only, where
+     * x_{i+1} - 2 x_i + x_{i-1} carried eps R from its first sum, the
+     * same size as the coordinates' own rounding and of the row's noise
+     * floor (newton.c, viol_tol) */
+    for (int d = 0; d < 3; d++) {
+        w[d] = (x[3 * in + d] - x[3 * i + d]) - (x[3 * i + d] - x[3 * ip + d]);
+        if (xlo)
+            w[d] += (xlo[3 * in + d] - xlo[3 * i + d]) - (xlo[3 * i + d] - xlo[3 * ip + d]);
+    }
     return 1;
 }
 
@@ -155,6 +170,11 @@ static double ineq_term(double g, double lam, double mu, double *pi)
  * Hessian's triplets. Sets viol, dmin, length, active. */
 double tr_newton_i_al_eval(solver *s, const double *y, double *grad, int hess)
 {
+    return tr_newton_i_al_eval_lo(s, y, NULL, grad, hess);
+}
+
+double tr_newton_i_al_eval_lo(solver *s, const double *y, const double *ylo, double *grad, int hess)
+{
     size_t nv = s->nv;
     const double *x = y, *l = y + 3 * nv;
     size_t wm = 0;
@@ -179,6 +199,8 @@ double tr_newton_i_al_eval(solver *s, const double *y, double *grad, int hess)
         int k = s->comp[a];
         double u[3];
         v3_sub(u, x + 3 * b, x + 3 * a);
+        for (int d = 0; ylo && d < 3; d++)
+            u[d] += ylo[3 * b + (size_t)d] - ylo[3 * a + (size_t)d];
         double el = v3_norm(u);
         len += el;
         double h = el - l[k];
@@ -206,7 +228,7 @@ double tr_newton_i_al_eval(solver *s, const double *y, double *grad, int hess)
     double eta = s->guard * s->band, lam_bar = hess && eta > 0.0 ? minrad_guard_lambda(s) : 0.0;
     for (size_t i = 0; i < nv; i++) {
         double c, dc, d2c, w[3];
-        if (!tr_newton_i_minrad_row(s, x, l, i, w, &c, &dc, &d2c))
+        if (!tr_newton_i_minrad_row_lo(s, x, ylo, l, i, w, &c, &dc, &d2c))
             continue;
         size_t ip = s->prev[i], in = s->next[i];
         int k = s->comp[i];

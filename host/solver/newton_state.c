@@ -21,7 +21,8 @@
 #include "util/text_file.h"
 
 #define STATE_MAGIC "tightrope-newton-state\n"
-#define STATE_VERSION 1u
+/* 2: the low parts (has_lo, ylo, best_lo); version 1 is read as well */
+#define STATE_VERSION 2u
 #define STATE_ORDER 0x01020304u
 #define STATE_END 0x454e4421u /* "END!" */
 
@@ -40,6 +41,8 @@ void tr_newton_state_free(tr_newton_state *s)
     free(s->l0);
     free(s->scale_m);
     free(s->best_y);
+    free(s->ylo);
+    free(s->best_lo);
     memset(s, 0, sizeof *s);
 }
 
@@ -89,6 +92,20 @@ int tr_newton_i_state_fill(solver *s, const double *y, const tr_newton_loop *lp,
     for (int k = 0; k < nc; k++)
         o->comp_nv[k] = tr_comp_nv(&s->w, k);
     memcpy(o->y, y, n * sizeof *y);
+    o->has_lo = s->ylo != NULL;
+    if (o->has_lo) {
+        if (!o->ylo)
+            o->ylo = malloc(3 * nv * sizeof *o->ylo);
+        if (!o->best_lo)
+            o->best_lo = calloc(3 * nv, sizeof *o->best_lo);
+        if (!o->ylo || !o->best_lo) {
+            tr_newton_state_free(o);
+            return tr_fail(err, TR_ENOMEM, "out of memory (Newton state, %zu vertices)", nv);
+        }
+        memcpy(o->ylo, s->ylo, 3 * nv * sizeof *o->ylo);
+        if (s->best_lo)
+            memcpy(o->best_lo, s->best_lo, 3 * nv * sizeof *o->best_lo);
+    }
     memcpy(o->build, s->w.x, 3 * nv * sizeof *o->build);
     memcpy(o->lam_e, s->lam_e, nv * sizeof *o->lam_e);
     memcpy(o->lam_m, s->lam_m, nv * sizeof *o->lam_m);
@@ -169,6 +186,14 @@ int tr_newton_i_state_apply(solver *s, const tr_newton_state *r, int warm, doubl
     s->bend_cap = r->bend_cap;
     s->warm_residual = s->start_residual = r->warm_residual;
     memcpy(y, r->y, s->n * sizeof *y);
+    /* the low parts with them (minimise keeps them); none from version 1 */
+    free(s->ylo);
+    s->ylo = NULL;
+    if (r->has_lo && r->ylo) {
+        if (!(s->ylo = malloc(3 * nv * sizeof *s->ylo)))
+            return tr_fail(err, TR_ENOMEM, "out of memory (Newton state, %zu vertices)", nv);
+        memcpy(s->ylo, r->ylo, 3 * nv * sizeof *s->ylo);
+    }
     /* the list where the stopped run built it: the same pairs, so its
      * multipliers go back pair by pair, and the next rebuild comes when
      * it would have */
@@ -271,6 +296,7 @@ int tr_newton_state_write(const char *path, const tr_newton_state *s, tr_error *
     put_i32(&b, s->nfixed);
     put_u64(&b, s->nstrut);
     put_i32(&b, s->has_best);
+    put_i32(&b, s->has_lo);
     for (size_t k = 0; k < STATE_DOUBLES; k++)
         put(&b, (const char *)s + STATE_DOUBLE_FIELDS[k], sizeof(double));
     for (size_t k = 0; k < STATE_INTS; k++) {
@@ -292,6 +318,10 @@ int tr_newton_state_write(const char *path, const tr_newton_state *s, tr_error *
     put(&b, s->strut_lam, s->nstrut * sizeof(double));
     if (s->has_best)
         put(&b, s->best_y, n * sizeof(double));
+    if (s->has_lo) {
+        put(&b, s->ylo, 3 * nv * sizeof(double));
+        put(&b, s->best_lo, 3 * nv * sizeof(double));
+    }
     uint32_t end = STATE_END;
     put(&b, &end, sizeof end);
     if (b.oom) {
@@ -417,8 +447,8 @@ int tr_newton_state_read(const char *path, tr_newton_state *s, tr_error *err)
         rc = tr_fail(err, TR_EPARSE, "%s: a Newton state of another byte order (byte %zu)", path, r.at - 4);
         goto out;
     }
-    if (!r.bad && head[0] != STATE_VERSION) {
-        rc = tr_fail(err, TR_EPARSE, "%s: a Newton state of version %u, this build reads %u (byte %zu)", path,
+    if (!r.bad && head[0] != STATE_VERSION && head[0] != 1u) {
+        rc = tr_fail(err, TR_EPARSE, "%s: a Newton state of version %u, this build reads 1 and %u (byte %zu)", path,
                      head[0], STATE_VERSION, r.at - 8);
         goto out;
     }
@@ -426,13 +456,14 @@ int tr_newton_state_read(const char *path, tr_newton_state *s, tr_error *err)
     int32_t nc = get_i32(&r), nfixed = get_i32(&r);
     uint64_t nstrut = get_u64(&r);
     int32_t has_best = get_i32(&r);
+    int32_t has_lo = head[0] >= 2u ? get_i32(&r) : 0;
     /* the sizes must be possible, and the file as long as they say,
      * before anything is allocated for them */
     size_t sizes_at = r.at;
     if (r.bad)
         goto cut;
     if (nv == 0 || nv > ((uint64_t)1 << 40) || nc < 1 || (uint64_t)nc > nv || nfixed < 0 || nfixed > 6 ||
-        nstrut > ((uint64_t)1 << 40) || (has_best != 0 && has_best != 1)) {
+        nstrut > ((uint64_t)1 << 40) || (has_best != 0 && has_best != 1) || (has_lo != 0 && has_lo != 1)) {
         rc = tr_fail(err, TR_EPARSE, "%s: impossible sizes before byte %zu (%llu vertices, %d components, %d gauge "
                      "coordinates, %llu strut rows)", path, sizes_at, (unsigned long long)nv, (int)nc, (int)nfixed,
                      (unsigned long long)nstrut);
@@ -441,7 +472,7 @@ int tr_newton_state_read(const char *path, tr_newton_state *s, tr_error *err)
     {
         uint64_t ny = 3 * nv + (uint64_t)nc;
         uint64_t need = (uint64_t)r.at + STATE_DOUBLES * 8 + STATE_INTS * 4 + 8 + 6 * 8 + (uint64_t)nc * 24 + ny * 8 +
-                        5 * nv * 8 + nstrut * 24 + (has_best ? ny * 8 : 0) + 4;
+                        5 * nv * 8 + nstrut * 24 + (has_best ? ny * 8 : 0) + (has_lo ? 6 * nv * 8 : 0) + 4;
         if ((uint64_t)r.n < need) {
             rc = tr_fail(err, TR_EPARSE, "%s: cut short at byte %zu (its sizes, %llu vertices and %llu strut rows, "
                          "need %llu bytes)", path, r.n, (unsigned long long)nv, (unsigned long long)nstrut,
@@ -449,7 +480,8 @@ int tr_newton_state_read(const char *path, tr_newton_state *s, tr_error *err)
             goto out;
         }
     }
-    if (!alloc_state(s, (size_t)nv, nc, (size_t)nstrut, has_best)) {
+    if (!alloc_state(s, (size_t)nv, nc, (size_t)nstrut, has_best) ||
+        (has_lo && (!(s->ylo = malloc(3 * nv * sizeof *s->ylo)) || !(s->best_lo = malloc(3 * nv * sizeof *s->best_lo))))) {
         rc = tr_fail(err, TR_ENOMEM, "out of memory (reading %s, %llu vertices)", path, (unsigned long long)nv);
         goto out;
     }
@@ -458,6 +490,7 @@ int tr_newton_state_read(const char *path, tr_newton_state *s, tr_error *err)
     s->nfixed = nfixed;
     s->nstrut = (size_t)nstrut;
     s->has_best = has_best;
+    s->has_lo = has_lo;
     for (size_t k = 0; k < STATE_DOUBLES; k++)
         get(&r, (char *)s + STATE_DOUBLE_FIELDS[k], sizeof(double));
     for (size_t k = 0; k < STATE_INTS; k++) {
@@ -479,6 +512,10 @@ int tr_newton_state_read(const char *path, tr_newton_state *s, tr_error *err)
     get(&r, s->strut_lam, s->nstrut * sizeof(double));
     if (has_best)
         get(&r, s->best_y, ny * sizeof(double));
+    if (has_lo) {
+        get(&r, s->ylo, 3 * nvv * sizeof(double));
+        get(&r, s->best_lo, 3 * nvv * sizeof(double));
+    }
     uint32_t end = 0;
     get(&r, &end, sizeof end);
     if (r.bad)

@@ -56,7 +56,28 @@ typedef struct {
     size_t worst_m, active;
 } saved_state;
 
+void tr_newton_i_add_step(size_t n3, size_t n, const double *y, const double *ylo, double alpha, const double *dir,
+                          double *yt, double *ytlo)
+{
+    for (size_t i = 0; i < n; i++) {
+        double a = alpha * dir[i];
+        if (!ylo || i >= n3) {
+            yt[i] = y[i] + a;
+            continue;
+        }
+        double t = y[i] + a, bb = t - y[i], e = (y[i] - (t - bb)) + (a - bb), lo = ylo[i] + e;
+        yt[i] = t + lo;
+        ytlo[i] = lo - (yt[i] - t);
+    }
+}
+
 int tr_newton_i_restore(solver *s, double *y, double deadline, double *viol, double *viol_edge, tr_error *err)
+{
+    return tr_newton_i_restore_lo(s, y, NULL, deadline, viol, viol_edge, err);
+}
+
+int tr_newton_i_restore_lo(solver *s, double *y, double *ylo, double deadline, double *viol, double *viol_edge,
+                           tr_error *err)
 {
     size_t nv = s->nv, n = s->n;
     *viol = s->viol;
@@ -69,8 +90,9 @@ int tr_newton_i_restore(solver *s, double *y, double deadline, double *viol, dou
     size_t nsave = 4 * nv + 2 * s->nsp;
     double *keep = malloc(nsave * sizeof *keep), *y0 = malloc(n * sizeof *y0), *grad = malloc(n * sizeof *grad),
            *dir = malloc(n * sizeof *dir), *yt = malloc(n * sizeof *yt);
+    double *y0lo = ylo ? malloc(3 * nv * sizeof *y0lo) : NULL, *ytlo = ylo ? malloc(3 * nv * sizeof *ytlo) : NULL;
     int rc = TR_OK;
-    if (!keep || !y0 || !grad || !dir || !yt) {
+    if (!keep || !y0 || !grad || !dir || !yt || (ylo && (!y0lo || !ytlo))) {
         rc = tr_fail(err, TR_ENOMEM, "out of memory (restoration)");
         goto done;
     }
@@ -91,13 +113,15 @@ int tr_newton_i_restore(solver *s, double *y, double deadline, double *viol, dou
     s->band = RESTORE_BAND;
     double rho = 1.0 / s->l0min;
     memcpy(y0, y, n * sizeof *y);
+    if (ylo)
+        memcpy(y0lo, ylo, 3 * nv * sizeof *ylo);
     tr_newton_stats st;
     memset(&st, 0, sizeof st);
     double v0 = INFINITY;
     for (int step = 0; step < RESTORE_STEPS; step++) {
         if (tr_clock_seconds() > deadline || (s->p->stop && *s->p->stop))
             break;
-        double f = tr_newton_i_al_eval(s, y, grad, 1), prox = 0.0;
+        double f = tr_newton_i_al_eval_lo(s, y, ylo, grad, 1), prox = 0.0;
         if (s->oom) {
             rc = tr_fail(err, TR_ENOMEM, "out of memory (restoration)");
             goto done;
@@ -117,7 +141,7 @@ int tr_newton_i_restore(solver *s, double *y, double deadline, double *viol, dou
         for (int k = 0; k < s->nc; k++)
             grad[3 * nv + (size_t)k] -= (double)s->ne[k];
         for (size_t i = 0; i < n; i++) {
-            double d = y[i] - y0[i];
+            double d = y[i] - y0[i] + (ylo && i < 3 * nv ? ylo[i] - y0lo[i] : 0.0);
             grad[i] += rho * d;
             prox += 0.5 * rho * d * d;
         }
@@ -134,20 +158,22 @@ int tr_newton_i_restore(solver *s, double *y, double deadline, double *viol, dou
         int ok = 0;
         for (double alpha = 1.0; alpha > 1e-6 && !ok; alpha *= 0.5) {
             double pt = 0.0;
+            tr_newton_i_add_step(3 * nv, n, y, ylo, alpha, dir, yt, ytlo);
             for (size_t i = 0; i < n; i++) {
-                yt[i] = y[i] + alpha * dir[i];
-                double d = yt[i] - y0[i];
+                double d = yt[i] - y0[i] + (ylo && i < 3 * nv ? ytlo[i] - y0lo[i] : 0.0);
                 pt += 0.5 * rho * d * d;
             }
-            double ft = tr_newton_i_al_eval(s, yt, NULL, 0);
+            double ft = tr_newton_i_al_eval_lo(s, yt, ytlo, NULL, 0);
             if ((ft + pt) - (f + prox) <= 1e-4 * alpha * slope)
                 ok = 1;
         }
         if (!ok)
             break;
         memcpy(y, yt, n * sizeof *y);
+        if (ylo)
+            memcpy(ylo, ytlo, 3 * nv * sizeof *ylo);
     }
-    tr_newton_i_al_eval(s, y, NULL, 0);
+    tr_newton_i_al_eval_lo(s, y, ylo, NULL, 0);
     *viol = s->viol;
     *viol_edge = s->viol_kind[0];
 done:
@@ -175,5 +201,7 @@ done:
     free(grad);
     free(dir);
     free(yt);
+    free(y0lo);
+    free(ytlo);
     return rc;
 }

@@ -37,7 +37,8 @@ int tt_other_road(const tt_opts *o, tr_curve *c, tr_error *err)
     for (int attempt = 0; attempt < 6; attempt++, amp *= 0.5) {
         tr_curve_free(&moved);
         uint64_t seed = (uint64_t)o->seed * 1000003u + (uint64_t)o->try_index;
-        if ((rc = tr_curve_copy(&moved, c, err)) || (rc = tr_curve_perturb(&moved, amp * t0.thickness, seed, err)) ||
+        if ((rc = tr_curve_copy(&moved, c, err)) || (tr_curve_drop_lo(&moved), 0) ||
+            (rc = tr_curve_perturb(&moved, amp * t0.thickness, seed, err)) ||
             (rc = tr_thickness_measure(&moved, NULL, &t1, NULL, err))) {
             tr_curve_free(&moved);
             return rc;

@@ -20,6 +20,7 @@
 #include <math.h>
 #include <stdio.h>
 
+#include "curve/curve_io.h"
 #include "curve/generate.h"
 #include "oracle/thickness.h"
 #include "solver/newton.h"
@@ -64,6 +65,37 @@ static void test_unknot(size_t n, double radius, int max_steps)
      * bench/notes/2026-11-25-converged-last-digits.md) */
     CHECK(st.iters < max_steps);
     tr_curve_free(&c);
+}
+
+/* The same trefoil (bench/data, N = 1600) solved where it lies and moved
+ * 8192 along x. A vertex there is held in doubles to 1.8e-12, and a
+ * MinRad row (a second difference of size l0^2 = 4e-4) computed from such
+ * coordinates carries rounding of 4e-9 of itself: before the low parts
+ * (main at bcfd796) the solve far away settled with its rows that far
+ * over and was rejected as not shorter than its start, which stayed
+ * 3.2e-6 of the ropelength from the solve at the origin. With the
+ * iterate's low parts (newton_internal.h ylo) the rows come from edges
+ * exact to eps l0 wherever the curve lies, and the two solves agree to
+ * 1e-10; the result far away carries its low parts. */
+static void test_far_from_origin(void)
+{
+    tr_curve c0 = {0}, c1 = {0};
+    tr_error err = {0};
+    REQUIRE_OK(tr_curve_read(TR_SOURCE_DIR "/bench/data/trefoil_1600.vect", TR_FORMAT_AUTO, &c0, &err));
+    REQUIRE_OK(tr_curve_copy(&c1, &c0, &err));
+    for (size_t i = 0; i < c1.nv; i++)
+        c1.x[3 * i] += 8192.0;
+    tr_newton_stats s0, s1;
+    const char *h0 = solve(&c0, &s0), *h1 = solve(&c1, &s1);
+    double l0 = tr_test_ropelength(&c0), l1 = tr_test_ropelength(&c1);
+    printf("trefoil N=1600 at the origin %.13f (%d steps, %s), 8192 away %.13f (%d steps, %s, low parts %s): %.2e "
+           "apart\n",
+           l0, s0.iters, h0, l1, s1.iters, h1, c1.lo ? "kept" : "none", l1 / l0 - 1.0);
+    CHECK(s0.accepted && s1.accepted);
+    CHECK_NEAR(l1 / l0, 1.0, 1e-10);
+    CHECK(c1.lo != NULL);
+    tr_curve_free(&c0);
+    tr_curve_free(&c1);
 }
 
 static void test_hopf(size_t n)
@@ -181,6 +213,7 @@ int main(void)
 {
     test_unknot(32, 1.6, 200);
     test_unknot(64, 1.1, 2000);
+    test_far_from_origin();
     test_hopf(40);
     test_clasp_no_best();
     return tr_test_finish("test_newton");

@@ -103,9 +103,37 @@ static void test_hopf(size_t n)
     tr_curve_free(&c);
 }
 
+/* The nudged n-gon 8192 away along x: held in doubles, a vertex there is
+ * known to 9e-13, and a MinRad row (a second difference of size l0^2 =
+ * 9.6e-3) to 1e-10 of itself, so a restoration in doubles leaves its rows
+ * about that far over and the rescaling charges it (the thickness check
+ * below, at 1e-12); the restoration's last pass on the positions with low
+ * parts (curve.h) closes them as at the origin, and the result carries its
+ * low parts. (Farther away the start's own rounding, which no restoration
+ * undoes, and the long double's 64 bits at the coordinates take over.) */
+static void test_ngon_far(size_t n)
+{
+    tr_curve c = {0};
+    tr_error err = {0};
+    size_t sizes[1] = {n};
+    REQUIRE_OK(tr_curve_alloc(&c, 1, sizes, NULL, &err));
+    double R = 1.0 / cos(M_PI / (double)n);
+    for (size_t i = 0; i < n; i++) {
+        double t = 2.0 * M_PI * (double)i / (double)n;
+        c.x[3 * i] = 8192.0 + R * cos(t);
+        c.x[3 * i + 1] = R * sin(t);
+    }
+    c.x[3 * 5] += 1e-8;
+    c.x[3 * 20 + 1] -= 1e-8;
+    check_restore("n-gon far away", &c, 2.0 * (double)n * tan(M_PI / (double)n));
+    CHECK(c.lo != NULL);
+    tr_curve_free(&c);
+}
+
 int main(void)
 {
     test_ngon(64);
+    test_ngon_far(64);
     test_hopf(40);
     return tr_test_finish("test_restore");
 }
