@@ -100,8 +100,7 @@ static int restore_only(const char *in, const char *out)
     }
     if (isfinite(th0.dcsd)) {
         double f = 2.0 / th0.dcsd;
-        for (size_t i = 0; i < 3 * c.nv; i++)
-            c.x[i] *= f;
+        tr_curve_scale_by(&c, f);
     }
     double before, after;
     if (tr_newton_restore(&c, NULL, &before, &after, &err) || tr_thickness_measure(&c, NULL, &th1, NULL, &err)) {

@@ -22,6 +22,7 @@ int tr_curve_perturb(tr_curve *c, double amplitude, uint64_t seed, tr_error *err
 {
     if (!(amplitude >= 0.0) || !isfinite(amplitude))
         return tr_fail(err, TR_EINVAL, "perturbation amplitude %g", amplitude);
+    tr_curve_drop_lo(c); /* the vertices move in doubles */
     uint64_t state = seed;
     for (int k = 0; k < c->ncomp; k++) {
         if (!c->closed[k])

@@ -559,8 +559,15 @@ static int keep_best(solver *s, const double *y, double deadline, tr_error *err)
      * planes do not scale) */
     if (!has_best(s) || !(s->best_viol_edge <= 1e-7))
         return TR_OK;
+    /* the best with its own low parts (probe's are the last measured
+     * candidate's), scaled with them */
     memcpy(s->probe.x, s->best_y, 3 * s->nv * sizeof *s->best_y);
-    for (size_t i = 0; s->ncv == 0 && i < 3 * s->nv; i++)
+    tr_curve_drop_lo(&s->probe);
+    if (s->best_lo && s->ncv == 0 && tr_curve_want_lo(&s->probe, &(tr_error){0}) == TR_OK)
+        memcpy(s->probe.lo, s->best_lo, 3 * s->nv * sizeof *s->best_lo);
+    if (s->ncv == 0 && s->probe.lo)
+        tr_curve_scale_by(&s->probe, 1.0 / s->best_thickness);
+    for (size_t i = 0; s->ncv == 0 && !s->probe.lo && i < 3 * s->nv; i++)
         s->probe.x[i] /= s->best_thickness;
     tr_error ce = {0};
     p->checkpoint(p->user, &s->probe, &ce);
@@ -649,7 +656,11 @@ static int minimise(solver *s, double *y, tr_newton_stats *st, double t0, const 
      * and the Levenberg shift that mu brings with it stalls the steps. In
      * doubles alone it was eps R / l0^2 (R the coordinates' size: 1e-11 at
      * N = 9600, 5e-7 at 200 640), the floor this was before the low parts. */
-    double viol_tol = fmax(p->viol_tol, 16.0 * DBL_EPSILON / s->l0min);
+    double reach = 0.0;
+    for (size_t i = 0; i < 3 * nv; i++)
+        reach = fmax(reach, fabs(y[i]));
+    /* (the strut rows' distances of 2 come from the doubles alone: eps R) */
+    double viol_tol = fmax(p->viol_tol, fmax(16.0 * DBL_EPSILON / s->l0min, 4.0 * DBL_EPSILON * reach));
     double omega = 1e-2, prev_viol = INFINITY, lm = 0.0, prev_len = INFINITY;
     int inner = 0, settled = 0, last_full = 0, moved = 0, stuck = 0, inner_done = 0;
     /* a resumed run's iterations go on counting from the stopped run's:
@@ -1175,8 +1186,13 @@ int tr_newton(tr_curve *cv, const tr_newton_params *prm, tr_newton_stats *st, tr
             goto done;
         memcpy(s.w.lo, ylo, 3 * s.nv * sizeof *ylo);
     }
-    for (size_t q = 0; q < s.ncv; q++)
+    /* a constrained vertex exactly on its constraint: x projected, no low
+     * part (x + lo would be off it by lo) */
+    for (size_t q = 0; q < s.ncv; q++) {
         tr_constraint_project(tr_newton_i_vertex_cst(&s, s.cv[q]), s.w.x + 3 * s.cv[q]);
+        if (s.w.lo)
+            memset(s.w.lo + 3 * s.cv[q], 0, 3 * sizeof *s.w.lo);
+    }
     tr_thickness th;
     if ((rc = tr_newton_i_model_thickness(prm, &s.w, NULL, &th, err)))
         goto done;
@@ -1207,12 +1223,12 @@ int tr_newton(tr_curve *cv, const tr_newton_params *prm, tr_newton_stats *st, tr
         goto done;
     }
     tr_curve_drop_lo(cv);
+    /* the low parts' room first: a failure leaves cv as it was */
+    if (s.w.lo && (rc = tr_curve_want_lo(cv, err)))
+        goto done;
     memcpy(cv->x, s.w.x, 3 * s.nv * sizeof *y);
-    if (s.w.lo) {
-        if ((rc = tr_curve_want_lo(cv, err)))
-            goto done;
+    if (s.w.lo)
         memcpy(cv->lo, s.w.lo, 3 * s.nv * sizeof *s.w.lo);
-    }
     st->accepted = 1;
     st->ropelength_after = rl;
 done:
@@ -1275,12 +1291,11 @@ int tr_newton_restore(tr_curve *cv, const tr_newton_params *prm, double *before,
     /* kept where the oracle measures it shorter than the curve rescaled */
     if (rl < th0.ropelength) {
         tr_curve_drop_lo(cv);
+        if (ylo && (rc = tr_curve_want_lo(cv, err)))
+            goto done;
         memcpy(cv->x, y, 3 * s.nv * sizeof *y);
-        if (ylo) {
-            if ((rc = tr_curve_want_lo(cv, err)))
-                goto done;
+        if (ylo)
             memcpy(cv->lo, ylo, 3 * s.nv * sizeof *ylo);
-        }
         tr_curve_scale_by(cv, 1.0 / th.thickness);
     }
 done:

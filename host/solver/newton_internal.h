@@ -149,7 +149,7 @@ void tr_newton_i_tri_push(solver *s, size_t i, size_t j, double v);
 double tr_newton_i_al_eval(solver *s, const double *y, double *grad, int hess);
 /* the same at the positions y + ylo (ylo: 3 nv low parts, curve.h, or
  * NULL): the edge and MinRad rows from them, the struts from y alone (a
- * strut's distance of 2 carries rounding of 1e-16 of itself either way) */
+ * strut's distance of 2 carries rounding of eps R, not eps R / l0^2, either way) */
 double tr_newton_i_al_eval_lo(solver *s, const double *y, const double *ylo, double *grad, int hess);
 
 /* ---- the Newton direction (newton.c) ---- */

@@ -91,7 +91,7 @@ int tr_newton_i_restore_lo(solver *s, double *y, double *ylo, double deadline, d
     double *keep = malloc(nsave * sizeof *keep), *y0 = malloc(n * sizeof *y0), *grad = malloc(n * sizeof *grad),
            *dir = malloc(n * sizeof *dir), *yt = malloc(n * sizeof *yt);
     double *y0lo = ylo ? malloc(3 * nv * sizeof *y0lo) : NULL, *ytlo = ylo ? malloc(3 * nv * sizeof *ytlo) : NULL;
-    int rc = TR_OK;
+    int rc = TR_OK, kept = 0; /* kept: keep holds the multipliers */
     if (!keep || !y0 || !grad || !dir || !yt || (ylo && (!y0lo || !ytlo))) {
         rc = tr_fail(err, TR_ENOMEM, "out of memory (restoration)");
         goto done;
@@ -105,6 +105,7 @@ int tr_newton_i_restore_lo(solver *s, double *y, double *ylo, double deadline, d
         keep[4 * nv + 2 * r + 1] = s->pi_s[r];
         s->sp[r].lam = 0.0;
     }
+    kept = 1;
     memset(s->lam_e, 0, nv * sizeof *s->lam_e);
     memset(s->lam_m, 0, nv * sizeof *s->lam_m);
     s->mu = RESTORE_PENALTY / s->l0min;
@@ -177,7 +178,7 @@ int tr_newton_i_restore_lo(solver *s, double *y, double *ylo, double deadline, d
     *viol = s->viol;
     *viol_edge = s->viol_kind[0];
 done:
-    if (keep) {
+    if (kept) {
         memcpy(s->lam_e, keep, nv * sizeof *keep);
         memcpy(s->lam_m, keep + nv, nv * sizeof *keep);
         memcpy(s->pi_e, keep + 2 * nv, nv * sizeof *keep);

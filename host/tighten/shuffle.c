@@ -18,6 +18,7 @@ static double thickness_of(const tr_curve *c, double *x, tr_error *err, int *rc)
 {
     tr_curve v = *c;
     v.x = x;
+    v.lo = NULL; /* (c has none: tr_curve_shuffle drops them) */
     tr_thickness t;
     *rc = tr_thickness_measure(&v, NULL, &t, NULL, err);
     return *rc ? 0.0 : t.thickness;
@@ -55,6 +56,7 @@ int tr_curve_shuffle(tr_curve *c, long moves, double gate, double ratchet, uint6
     for (int k = 0; k < c->ncomp; k++)
         if (!c->closed[k] || tr_comp_nv(c, k) < 4)
             return tr_fail(err, TR_EINVAL, "shuffle: component %d is open or has fewer than 4 vertices", k);
+    tr_curve_drop_lo(c); /* the moves are in doubles */
     int rc = TR_OK;
     double t = thickness_of(c, c->x, err, &rc);
     if (rc)
