@@ -652,15 +652,20 @@ static int minimise(solver *s, double *y, tr_newton_stats *st, double t0, const 
     /* A MinRad row's second difference w ~ l0^2 kappa carries the rounding
      * of the edges it is formed from: eps l0 with the iterate's low parts
      * (ylo), so its relative violation is known to ~eps / l0 (2e-12 at
-     * N = 200 640), and asking for less only drives mu up against rounding,
-     * and the Levenberg shift that mu brings with it stalls the steps. In
-     * doubles alone it was eps R / l0^2 (R the coordinates' size: 1e-11 at
-     * N = 9600, 5e-7 at 200 640), the floor this was before the low parts. */
+     * N = 200 640; the struts', from the doubles alone, to eps R), and
+     * asking for less only drives mu up against rounding, and the
+     * Levenberg shift that mu brings with it stalls the steps. In doubles
+     * alone it was 16 eps R / l0^2 (R the coordinates' size: 1e-11 at
+     * N = 9600, 5e-7 at 200 640), the floor this was before the low parts;
+     * it stays where it is below 1e-9 (the small N's solves as they were),
+     * and is 1e-9 above: asked for 1e-11, the 2 x 6400 clasp had its
+     * length to 1e-10 at step 216 and then spent 800 more with its tip's
+     * MinRad rows going between 1e-9 and 4e-8 over (2026-11-29). */
     double reach = 0.0;
     for (size_t i = 0; i < 3 * nv; i++)
         reach = fmax(reach, fabs(y[i]));
-    /* (the strut rows' distances of 2 come from the doubles alone: eps R) */
-    double viol_tol = fmax(p->viol_tol, fmax(16.0 * DBL_EPSILON / s->l0min, 4.0 * DBL_EPSILON * reach));
+    double floor_doubles = fmin(16.0 * DBL_EPSILON * reach / (s->l0min * s->l0min), 1e-9);
+    double viol_tol = fmax(fmax(p->viol_tol, floor_doubles), fmax(16.0 * DBL_EPSILON / s->l0min, 4.0 * DBL_EPSILON * reach));
     double omega = 1e-2, prev_viol = INFINITY, lm = 0.0, prev_len = INFINITY;
     int inner = 0, settled = 0, last_full = 0, moved = 0, stuck = 0, inner_done = 0;
     /* a resumed run's iterations go on counting from the stopped run's:
