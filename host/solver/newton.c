@@ -419,13 +419,12 @@ static int measure_iterate(solver *s, const double *y, double *rl, tr_thickness 
  * evaluated from edges exact to eps l0 and the correction lands below the
  * step between doubles: the rows close to the restoration's own accuracy.
  * *ylo is the low parts where the oracle measures y + ylo shorter than y
- * (rl_y), else NULL. Not for a constrained rope (the restoration leaves
- * it as it is). */
+ * (rl_y), else NULL. */
 static int extended_end(solver *s, double *y, const double *lo_in, double rl_y, double deadline, double **ylo,
                         tr_error *err)
 {
     *ylo = NULL;
-    if (s->ncv > 0 || LDBL_MANT_DIG <= DBL_MANT_DIG)
+    if (LDBL_MANT_DIG <= DBL_MANT_DIG)
         return TR_OK;
     size_t n = s->n, n3 = 3 * s->nv;
     double *yx = malloc(n * sizeof *yx), *lo = calloc(n3, sizeof *lo);
@@ -520,8 +519,6 @@ static int consider(solver *s, const double *cand, const double *candlo, double 
  * one wherever a row of y is over by more than rounding */
 static int consider_restored(solver *s, const double *y, const double *ylo, double deadline, tr_error *err)
 {
-    if (s->ncv > 0)
-        return TR_OK;
     double rv, rv_edge;
     memcpy(s->restored, y, s->n * sizeof *y);
     double *rlo = s->restored_lo;

@@ -163,7 +163,10 @@ int tr_newton_i_dir(solver *s, const double *grad, double *dir, double *lm, tr_n
 /* y moved onto the rows it violates by a small correction (the proximal
  * penalty projection of restore.c), until the clock passes deadline or a
  * stop is asked for; *viol the violation left (as al_eval measures it),
- * *viol_edge its edges' part. A constrained rope is left as it is. */
+ * *viol_edge its edges' part. A constrained vertex moves along its
+ * constraint only (the rows' projection, as in a Newton step); with exact
+ * rows (low parts) a clasp's few rows over at its tip are closed by it
+ * instead of being charged as length / thickness. */
 int tr_newton_i_restore(solver *s, double *y, double deadline, double *viol, double *viol_edge, tr_error *err);
 /* the same on the positions y + ylo (ylo: 3 nv low parts, curve.h, which
  * the correction moves; NULL: tr_newton_i_restore) */

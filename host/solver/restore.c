@@ -82,8 +82,6 @@ int tr_newton_i_restore_lo(solver *s, double *y, double *ylo, double deadline, d
     size_t nv = s->nv, n = s->n;
     *viol = s->viol;
     *viol_edge = s->viol_kind[0];
-    if (s->ncv > 0)
-        return TR_OK;
     saved_state sv = {s->mu, s->band, s->guard, s->viol, s->dmin, s->length, {s->viol_kind[0], s->viol_kind[1],
                       s->viol_kind[2]}, s->worst_m, s->active};
     /* the multipliers and their estimates, which the passes go on with */
