@@ -211,7 +211,8 @@ int main(int argc, char **argv)
     if (argc > 4)
         p.time_limit = atof(argv[4]);
     /* the bend cap and the pass's end, for measuring them (newton.h
-     * max_bend, inner_decrement, minrad_guard; 0 turns the latter two off) */
+     * max_bend, inner_decrement, minrad_guard; 0 turns the latter two off;
+     * NEWTON_MU_MAX the penalty's cap, mu_max) */
     if (getenv("NEWTON_MINRAD_GUARD"))
         p.minrad_guard = atof(getenv("NEWTON_MINRAD_GUARD"));
     if (getenv("NEWTON_MAX_BEND"))
@@ -219,6 +220,8 @@ int main(int argc, char **argv)
     /* loop iterations (Newton steps and multiplier updates) from the
      * solve's start (a resumed run's count goes on from its state's): a
      * stop at a given step, for measuring a resume */
+    if (getenv("NEWTON_MU_MAX"))
+        p.mu_max = atof(getenv("NEWTON_MU_MAX"));
     if (getenv("NEWTON_MAX_ITER"))
         p.max_iter = atoi(getenv("NEWTON_MAX_ITER"));
     if (getenv("NEWTON_INNER_DECREMENT"))
