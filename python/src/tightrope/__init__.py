@@ -458,6 +458,14 @@ def tighten(curve: CurveLike, time_limit: Optional[float] = None, progress: Opti
         while not done.is_set():
             try:
                 done.wait(0.05)
+                # a SIGINT whose handler has not run: CPython 3.11 lets a
+                # thread that cannot handle signals (the run's, in the
+                # progress callback) clear the interpreter's eval breaker,
+                # and the main thread then missed the signal for a whole
+                # run (the CI's test_ctrl_c_keeps_the_best_state: signal
+                # sent, run solved 31 s later); PyErr_CheckSignals runs the
+                # handler here, and ctypes raises what it raised
+                ctypes.pythonapi.PyErr_CheckSignals()
             except KeyboardInterrupt:
                 interrupted = True
                 cancel.value = 1
