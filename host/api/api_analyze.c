@@ -41,16 +41,9 @@ void tightrope_analysis_free(tightrope_analysis *a)
 static int component_alone(const tr_curve *c, int k, int no_scale, double strut_tol, tr_curve *one, double *scale,
                            tr_thickness *th, tr_strut_list *sl, tr_error *e)
 {
-    size_t nv = tr_comp_nv(c, k);
-    unsigned char closed = c->closed[k] ? 1 : 0;
-    int rc = tr_curve_alloc(one, 1, &nv, &closed, e);
+    int rc = tr_curve_component(one, c, k, e);
     if (rc)
         return rc;
-    memcpy(one->x, c->x + 3 * c->start[k], 3 * nv * sizeof *one->x);
-    if (c->lo && (rc = tr_curve_want_lo(one, e)))
-        return rc;
-    if (c->lo)
-        memcpy(one->lo, c->lo + 3 * c->start[k], 3 * nv * sizeof *one->lo);
     *scale = 1.0;
     if ((rc = tr_thickness_measure(one, NULL, th, NULL, e)))
         return rc;

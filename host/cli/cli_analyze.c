@@ -160,20 +160,11 @@ static int analyse_component(const tr_curve *c, int k, const char *in, const cli
     r->k = k;
     r->scale = 1.0;
     size_t nv = tr_comp_nv(c, k);
-    unsigned char closed = c->closed[k] ? 1 : 0;
-    r->open = !closed;
-    if (tr_curve_alloc(&r->one, 1, &nv, &closed, &err) != TR_OK) {
+    r->open = !c->closed[k];
+    if (tr_curve_component(&r->one, c, k, &err) != TR_OK) {
         fprintf(stderr, "tightrope analyze: %s\n", err.msg);
         return 1;
     }
-    memcpy(r->one.x, c->x + 3 * c->start[k], 3 * nv * sizeof *r->one.x);
-    if (c->lo && tr_curve_want_lo(&r->one, &err) != TR_OK) {
-        fprintf(stderr, "tightrope analyze: %s\n", err.msg);
-        tr_curve_free(&r->one);
-        return 1;
-    }
-    if (c->lo)
-        memcpy(r->one.lo, c->lo + 3 * c->start[k], 3 * nv * sizeof *r->one.lo);
     int status = 1, rc;
     tr_strut_list sl = {0};
     if ((rc = tr_thickness_measure(&r->one, NULL, &r->th, NULL, &err)) != TR_OK) {

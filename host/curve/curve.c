@@ -87,6 +87,24 @@ void tr_curve_scale_by(tr_curve *c, double f)
         tr_split_long_double(((long double)c->x[i] + c->lo[i]) * f, &c->x[i], &c->lo[i]);
 }
 
+int tr_curve_component(tr_curve *one, const tr_curve *c, int k, tr_error *err)
+{
+    size_t nv = tr_comp_nv(c, k);
+    unsigned char closed = c->closed[k] ? 1 : 0;
+    int rc = tr_curve_alloc(one, 1, &nv, &closed, err);
+    if (rc)
+        return rc;
+    memcpy(one->x, c->x + 3 * c->start[k], 3 * nv * sizeof *one->x);
+    if (c->lo) {
+        if ((rc = tr_curve_want_lo(one, err))) {
+            tr_curve_free(one);
+            return rc;
+        }
+        memcpy(one->lo, c->lo + 3 * c->start[k], 3 * nv * sizeof *one->lo);
+    }
+    return TR_OK;
+}
+
 int tr_curve_copy(tr_curve *dst, const tr_curve *src, tr_error *err)
 {
     memset(dst, 0, sizeof *dst); /* a failed copy leaves a curve that tr_curve_free accepts */

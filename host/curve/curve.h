@@ -55,6 +55,9 @@ int tr_curve_alloc(tr_curve *c, int ncomp, const size_t *nv, const unsigned char
                    tr_error *err);
 void tr_curve_free(tr_curve *c);
 int tr_curve_copy(tr_curve *dst, const tr_curve *src, tr_error *err);
+/* one: component k of c alone (its vertices and low parts, its closure; no
+ * constraints). */
+int tr_curve_component(tr_curve *one, const tr_curve *c, int k, tr_error *err);
 
 /* The low parts: tr_curve_want_lo gives c zeroed ones where it has none;
  * tr_curve_drop_lo forgets them (the vertices are then x, rounded). */

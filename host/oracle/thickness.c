@@ -548,17 +548,11 @@ int tr_thickness_measure_component(const tr_curve *c, int k, tr_thickness *out, 
 {
     if (k < 0 || k >= c->ncomp)
         return tr_fail(err, TR_EINVAL, "no component %d (the curve has %d)", k, c->ncomp);
-    size_t n = tr_comp_nv(c, k);
-    unsigned char closed = c->closed[k];
     tr_curve one;
-    int rc = tr_curve_alloc(&one, 1, &n, &closed, err);
+    int rc = tr_curve_component(&one, c, k, err);
     if (rc)
         return rc;
-    memcpy(one.x, c->x + 3 * c->start[k], 3 * n * sizeof *one.x);
-    if (c->lo && !(rc = tr_curve_want_lo(&one, err)))
-        memcpy(one.lo, c->lo + 3 * c->start[k], 3 * n * sizeof *one.lo);
-    if (!rc)
-        rc = tr_thickness_measure(&one, NULL, out, NULL, err);
+    rc = tr_thickness_measure(&one, NULL, out, NULL, err);
     tr_curve_free(&one);
     if (rc == TR_OK) {
         /* Report indices in the whole curve's numbering. */
