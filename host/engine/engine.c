@@ -645,10 +645,9 @@ int tr_engine_get_curve(tr_engine *e, tr_curve *out, tr_error *err)
         return rc;
     if ((rc = tr_curve_copy(out, &e->curve, err)))
         return rc;
-    if (e->polish_x && e->steps == e->polish_steps) {
-        tr_curve_drop_lo(out);
+    /* (e->curve holds no low parts: tr_engine_open and the solve drop them) */
+    if (e->polish_x && e->steps == e->polish_steps)
         memcpy(out->x, e->polish_x, 3 * out->nv * sizeof *out->x);
-    }
     if (e->newton_lo && e->newton_nv == out->nv && !memcmp(out->x, e->newton_x, 3 * out->nv * sizeof *out->x)) {
         if ((rc = tr_curve_want_lo(out, err))) {
             tr_curve_free(out);

@@ -419,9 +419,10 @@ static int measure_iterate(solver *s, const double *y, double *rl, tr_thickness 
  * evaluated from edges exact to eps l0 and the correction lands below the
  * step between doubles: the rows close to the restoration's own accuracy.
  * *ylo is the low parts where the oracle measures y + ylo shorter than y
- * (rl_y), else NULL. */
+ * (rl_y), else NULL; then *rl_out and *th_out (when not NULL) are that
+ * measurement. */
 static int extended_end(solver *s, double *y, const double *lo_in, double rl_y, double deadline, double **ylo,
-                        tr_error *err)
+                        double *rl_out, tr_thickness *th_out, tr_error *err)
 {
     *ylo = NULL;
     if (LDBL_MANT_DIG <= DBL_MANT_DIG)
@@ -445,6 +446,10 @@ static int extended_end(solver *s, double *y, const double *lo_in, double rl_y, 
         memcpy(y, yx, n * sizeof *y);
         *ylo = lo;
         lo = NULL;
+        if (rl_out)
+            *rl_out = rl;
+        if (th_out)
+            *th_out = th;
     }
 done:
     free(yx);
@@ -1173,7 +1178,7 @@ int tr_newton(tr_curve *cv, const tr_newton_params *prm, tr_newton_stats *st, tr
         }
         /* and once more in extended precision (extended_end) */
         double *ext = NULL;
-        if ((rc = extended_end(&s, y, ylo, s.best_rl, deadline, &ext, err)))
+        if ((rc = extended_end(&s, y, ylo, s.best_rl, deadline, &ext, NULL, NULL, err)))
             goto done;
         if (ext) {
             free(ylo);
@@ -1283,8 +1288,8 @@ int tr_newton_restore(tr_curve *cv, const tr_newton_params *prm, double *before,
         goto done;
     tr_thickness th;
     double rl;
-    if ((rc = measure_iterate(&s, y, &rl, &th, err)) || (rc = extended_end(&s, y, NULL, rl, INFINITY, &ylo, err)) ||
-        (ylo && (rc = measure_iterate_lo(&s, y, ylo, &rl, &th, err))))
+    if ((rc = measure_iterate(&s, y, &rl, &th, err)) ||
+        (rc = extended_end(&s, y, NULL, rl, INFINITY, &ylo, &rl, &th, err)))
         goto done;
     if (ylo) {
         tr_newton_i_al_eval_lo(&s, y, ylo, NULL, 0);
