@@ -273,12 +273,6 @@ static void ctx_free(ctx *c)
     free(c->sp);
 }
 
-static void scale(tr_curve *c, double f)
-{
-    for (size_t i = 0; i < 3 * c->nv; i++)
-        c->x[i] *= f;
-}
-
 /* Shortest segment distance over non-excluded pairs (below 2 + skin; else
  * 2 + skin), Rawdon MinRad, relative edge deviation: at c->w.x. */
 static int final_geometry(ctx *c, double *dmin, double *minrad, double *edge_dev, tr_error *err)
@@ -325,7 +319,7 @@ static int polish_once(tr_curve *cv, const tr_polish_params *prm, tr_polish_stat
         return rc;
     tr_curve_drop_lo(&c.w); /* the polish moves vertices in doubles */
     if (!constrained)
-        scale(&c.w, 1.0 / th0.thickness);
+        tr_curve_scale_by(&c.w, 1.0 / th0.thickness);
     size_t nv = c.nv = c.w.nv;
     int nc = c.w.ncomp;
     c.next = malloc(nv * sizeof *c.next);
@@ -458,7 +452,7 @@ static int polish_once(tr_curve *cv, const tr_polish_params *prm, tr_polish_stat
         goto done;
     }
     if (!constrained) {
-        scale(&c.w, 1.0 / thick);
+        tr_curve_scale_by(&c.w, 1.0 / thick);
         if ((rc = tr_thickness_measure(&c.w, NULL, &th, NULL, err)))
             goto done;
     }

@@ -20,12 +20,6 @@
 #define DENSE_SAMPLES 48
 #define MIN_PER_COMPONENT 8
 
-static void scale_curve(tr_curve *c, double f)
-{
-    for (size_t i = 0; i < 3 * c->nv; i++)
-        c->x[i] *= f;
-}
-
 int tr_knot_start_from_braid(const tr_braid *b, size_t n, tr_curve *out, double *thickness, tr_error *err)
 {
     memset(out, 0, sizeof *out);
@@ -92,7 +86,7 @@ static int start_once(const tr_curve *dense, size_t n, tr_curve *out, double *th
     if (rc == 0 && !(m.thickness > 0))
         rc = tr_fail(err, TR_EINVAL, "%zu vertices are too few for this braid: the polygon has thickness 0", n);
     if (rc == 0) {
-        scale_curve(out, TR_KNOT_START_THICKNESS / m.thickness);
+        tr_curve_scale_by(out, TR_KNOT_START_THICKNESS / m.thickness);
         rc = tr_thickness_measure(out, &opts, &m, NULL, err);
     }
     if (rc == 0 && !(m.thickness >= 1.0))
