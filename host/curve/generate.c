@@ -9,6 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "util/clock.h"
 #include "util/compensated_sum.h"
 #include "util/vec3.h"
 
@@ -26,9 +27,11 @@ typedef void (*curve_eval)(const void *ctx, double t, size_t *hint, double *out)
  * by mean chord / its chord, which is Newton's step for a chord that grows
  * linearly with its interval; the coupling through the renormalisation is
  * weak, so it converges geometrically down to rounding. *spread receives
- * max |chord - mean| / mean of the returned polygon. */
+ * max |chord - mean| / mean of the returned polygon. bound (NULL: none) is
+ * looked at once a sweep: a sweep over 10^6 vertices takes ~10 ms and a
+ * resampling tens of sweeps, which a --time-limit of seconds must see. */
 static int equal_chords(curve_eval f, const void *ctx, double t0, double T, int closed, size_t n, double *t,
-                        double *x, double *spread, tr_error *err)
+                        double *x, double *spread, const tr_deadline *bound, tr_error *err)
 {
     size_t m = closed ? n : n - 1;
     double *dt = malloc(m * sizeof *dt), *ch = malloc(m * sizeof *ch);
@@ -42,6 +45,13 @@ static int equal_chords(curve_eval f, const void *ctx, double t0, double T, int 
     double best = INFINITY, relax = 1.0;
     int stall = 0;
     for (int iter = 0; iter < 400; iter++) {
+        int past = tr_deadline_passed(bound);
+        if (past) {
+            free(dt);
+            free(ch);
+            return tr_fail(err, TR_EINTERRUPTED, "resampling %zu vertices: %s", n,
+                           past == 2 ? "stopped by a signal" : "the time limit came");
+        }
         /* parameters from intervals, compensated so t[n-1] lands on the end */
         tr_csum acc = {t0, 0};
         size_t hint = 0;
@@ -270,7 +280,8 @@ done:
 
 /* ----------------------------------------------------------- resampling */
 
-static int resample(const tr_curve *in, const size_t *n_per_comp, int smooth, tr_curve *out, tr_error *err)
+int tr_resample_within(const tr_curve *in, const size_t *n_per_comp, int smooth, const tr_deadline *bound,
+                       tr_curve *out, tr_error *err)
 {
     memset(out, 0, sizeof *out);
     if (!in || in->ncomp <= 0)
@@ -337,7 +348,7 @@ static int resample(const tr_curve *in, const size_t *n_per_comp, int smooth, tr
             for (size_t i = 0; i < n; i++)
                 t[i] = L * (double)i / (double)m;
             rc = equal_chords(smooth ? spline_eval : poly_eval, smooth ? (const void *)&sc : (const void *)&sc.p, 0,
-                              L, in->closed[k], n, t, out->x + 3 * out->start[k], &spread, err);
+                              L, in->closed[k], n, t, out->x + 3 * out->start[k], &spread, bound, err);
         }
         free(t);
         free(sc.p.cum);
@@ -352,12 +363,12 @@ out:
 
 int tr_resample(const tr_curve *in, const size_t *n_per_comp, tr_curve *out, tr_error *err)
 {
-    return resample(in, n_per_comp, 0, out, err);
+    return tr_resample_within(in, n_per_comp, 0, NULL, out, err);
 }
 
 int tr_resample_smooth(const tr_curve *in, const size_t *n_per_comp, tr_curve *out, tr_error *err)
 {
-    return resample(in, n_per_comp, 1, out, err);
+    return tr_resample_within(in, n_per_comp, 1, NULL, out, err);
 }
 
 /* ----------------------------------------------------------- generators */
@@ -548,7 +559,7 @@ int tr_make_torus(tr_curve *out, int p, int q, size_t n, tr_error *err)
     }
     for (size_t i = 0; i < n; i++)
         t[i] = 2 * TR_PI * (double)i / (double)n;
-    rc = equal_chords(torus_eval, &c, 0, 2 * TR_PI, 1, n, t, out->x, &spread, err);
+    rc = equal_chords(torus_eval, &c, 0, 2 * TR_PI, 1, n, t, out->x, &spread, NULL, err);
     free(t);
     if (rc)
         tr_curve_free(out);
@@ -624,7 +635,7 @@ int tr_make_clasp(tr_curve *out, size_t n, double h, tr_error *err)
     for (int k = 0; k < 2 && !rc; k++) {
         for (size_t i = 0; i < n; i++)
             t[i] = ca.T * (double)i / (double)(n - 1);
-        rc = equal_chords(clasp_eval, k ? &cb : &ca, 0, ca.T, 0, n, t, out->x + 3 * out->start[k], &spread, err);
+        rc = equal_chords(clasp_eval, k ? &cb : &ca, 0, ca.T, 0, n, t, out->x + 3 * out->start[k], &spread, NULL, err);
         out->vcst[out->start[k]] = k;
         out->vcst[out->start[k + 1] - 1] = k;
     }

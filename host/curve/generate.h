@@ -3,6 +3,7 @@
 #define TR_GENERATE_H
 
 #include "curve/curve.h"
+#include "util/clock.h"
 
 /* Torus knot T(p,q): winds p times around the z axis and q times around the
  * core circle of a torus whose radii balance the two strand spacings; scaled
@@ -55,5 +56,12 @@ int tr_resample(const tr_curve *in, const size_t *n_per_comp, tr_curve *out, tr_
  * straight edges). The spline passes through every old vertex; open
  * components keep their end vertices and constraints. */
 int tr_resample_smooth(const tr_curve *in, const size_t *n_per_comp, tr_curve *out, tr_error *err);
+
+/* tr_resample (smooth 0) or tr_resample_smooth (smooth 1) within a bound
+ * (NULL: none), looked at once a sweep of the equal-chord iteration: at
+ * 10^6 vertices and more a resampling takes seconds. TR_EINTERRUPTED, out
+ * left empty, once the bound has passed. */
+int tr_resample_within(const tr_curve *in, const size_t *n_per_comp, int smooth, const tr_deadline *bound,
+                       tr_curve *out, tr_error *err);
 
 #endif

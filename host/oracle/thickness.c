@@ -383,11 +383,13 @@ static int crossing_candidate(void *ctx, size_t ei, size_t ej, double *cutoff)
 }
 
 /* The measure's bound has passed (tr_thickness_opts.bound). */
-static int stopped(const tr_nsearch *ns, tr_error *err)
+static int stopped_at(const tr_curve *c, const tr_deadline *bound, tr_error *err)
 {
-    return tr_fail(err, TR_EINTERRUPTED, "measuring %zu vertices: %s before the measure was done", ns->c->nv,
-                   tr_deadline_passed(ns->bound) == 2 ? "stopped by a signal" : "the time limit came");
+    return tr_fail(err, TR_EINTERRUPTED, "measuring %zu vertices: %s before the measure was done", c->nv,
+                   tr_deadline_passed(bound) == 2 ? "stopped by a signal" : "the time limit came");
 }
+
+static int stopped(const tr_nsearch *ns, tr_error *err) { return stopped_at(ns->c, ns->bound, err); }
 
 static int find_crossing(const tr_nsearch *ns, tr_error *err)
 {
@@ -431,6 +433,12 @@ static int measure_frame(const tr_curve *c, const tr_thickness_opts *opts, tr_th
         if (!isfinite(c->x[i]))
             return tr_fail(err, TR_EGEOMETRY, "vertex %zu is not finite", i / 3);
 
+    /* the linear passes before the pair search (lengths, the search's
+     * boxes) take a few hundred ms at 10^6 vertices: the bound is looked at
+     * between them as well */
+    const tr_deadline *bound = opts ? opts->bound : NULL;
+    if (tr_deadline_passed(bound))
+        return stopped_at(c, bound, err);
     out->vertices = c->nv;
     tr_csum len = {0, 0}, lc = {0, 0};
     int all_equilateral = 1;
@@ -457,11 +465,13 @@ static int measure_frame(const tr_curve *c, const tr_thickness_opts *opts, tr_th
         out->L_p = out->L_c = out->L_a = NAN;
     }
 
+    if (tr_deadline_passed(bound))
+        return stopped_at(c, bound, err);
     tr_nsearch ns;
     int rc = tr_nsearch_build(&ns, c, err);
     if (rc)
         return rc;
-    ns.bound = opts ? opts->bound : NULL;
+    ns.bound = bound;
     if ((rc = find_crossing(&ns, err))) {
         tr_nsearch_free(&ns);
         return rc;
@@ -529,6 +539,8 @@ int tr_thickness_measure(const tr_curve *c, const tr_thickness_opts *opts, tr_th
     tr_curve s;
     const tr_curve *use;
     int rc = tr_curve_oracle_frame(c, &f, &s, &use, err);
+    if (!rc && opts && tr_deadline_passed(opts->bound))
+        rc = stopped_at(c, opts->bound, err);
     if (!rc)
         rc = measure_frame(use, opts, out, struts, err);
     tr_curve_free(&s);

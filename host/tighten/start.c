@@ -172,14 +172,11 @@ int tt_read_start(const tt_opts *o, tr_curve *c, tr_error *err)
                 adds |= per[k] > c->start[k + 1] - c->start[k];
             }
             tr_thickness before, after;
-            rc = adds ? tr_resample_smooth(c, per, &r, err) : tr_resample(c, per, &r, err);
+            rc = tr_resample_within(c, per, adds, &bound, &r, err);
             free(per);
-            int past = rc == TR_OK ? tr_deadline_passed(&bound) : 0;
-            if (past) {
-                tr_curve_free(&r);
+            if (rc == TR_EINTERRUPTED)
                 rc = tr_fail(err, TR_EINTERRUPTED, "%s resampled to %ld vertices: %s", in, o->n,
-                             past == 2 ? "stopped by a signal" : "the time limit came");
-            }
+                             tr_deadline_passed(&bound) == 2 ? "stopped by a signal" : "the time limit came");
             /* A spline through a tight polygon bulges out between its
              * vertices, so strands that touched come closer than before
              * (1.99835 for the 2 x 40 Hopf link refined to 80): the added
