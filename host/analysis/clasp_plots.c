@@ -45,30 +45,60 @@ static void mark_pieces(tr_text *b, const tr_clasp_half *h, double x0, double x1
     }
 }
 
+/* The caption's line about a deep (D1 or D2): its width and error, or why
+ * it is not resolved, beside the published width. */
+static void deep_caption(char *out, size_t size, const char *name, const tr_clasp_piece *d, double e,
+                         const char *published)
+{
+    if (d->status == TR_PIECE_RESOLVED)
+        snprintf(out, size, "%s %.4g +- %.2g wide (%s)", name, d->width, d->err, published);
+    else if (d->status != TR_PIECE_UNSEEN)
+        snprintf(out, size, "%s %.4g +- %.2g wide, a dip narrower than two edges (e = %.3g): not resolved (%s)", name,
+                 d->width, d->err, e, published);
+    else
+        snprintf(out, size, "%s not resolved: no dip at e = %.3g (%s)", name, e, published);
+}
+
+/* One deep enlarged (the paper's Fig. 4 for D1; D2 likewise): the window
+ * centred on it, or on where the pieces either side meet when no dip shows
+ * (after), at least eight edges either side of it and min_half wide, the
+ * deep shaded, each arc's curvature over its cell. */
+static void deep_plot(tr_text *b, const char *png, const tr_clasp_rope *r, const char *title, int q, int after,
+                      double min_half, double ymax, const char *what, const char *published)
+{
+    const tr_clasp_half *h = &r->half[0];
+    const tr_clasp_piece *d = &h->piece[q];
+    int seen = d->status != TR_PIECE_UNSEEN;
+    double c = seen ? 0.5 * (d->from + d->to) : h->piece[after].to;
+    double hw = fmax(min_half, 8.0 * r->e);
+    char cap[512], t[1024];
+    deep_caption(cap, sizeof cap, tr_clasp_piece_names[q], d, r->e, published);
+    tr_text_printf(b, "unset label\nunset arrow\nunset object\nset output '%s'\nset title ", png);
+    snprintf(t, sizeof t, "%s: %s\n%s", title, what, cap);
+    quoted(b, t);
+    tr_text_printf(b, "\nset xrange [%.15g:%.15g]\nset yrange [-0.05:%.15g]\n", c - hw, c + hw, ymax);
+    if (seen)
+        tr_text_printf(b, "set object 1 rect from %.15g, graph 0 to %.15g, graph 1 fc rgb '#ffe0a0' fs solid 0.6 "
+                          "noborder behind\n",
+                       d->from, d->to);
+    mark_pieces(b, h, c - hw, c + hw);
+    tr_text_printf(b, "plot 'curvature.csv' every ::1 using (s0($2)):3 with histeps lw 2 lc rgb '#1f4e9c' title "
+                      "'half from vertex 0: each arc over its cell', '' every ::1 using (s0($2)):3 with points pt 7 "
+                      "ps 0.8 lc rgb '#1f4e9c' notitle, '' every ::1 using (s1($2)):3 with points pt 6 ps 1.4 lc "
+                      "rgb '#e07020' title 'half from vertex %zu', 0.5 dt 3 lc rgb 'black' title 'kappa = 1/2'%s\n",
+                   r->half[1].end_vertex, ymax > 1 ? ", 1 dt 3 lc rgb 'black' notitle" : "");
+}
+
 int tr_clasp_plots_script(const char *dir, const tr_clasp_rope *r, const char *title, tr_plot_script *ps,
                           tr_error *err)
 {
     if (!r->found)
         return tr_fail(err, TR_EINVAL, "no clasp anatomy to plot: %s", r->why);
-    static const char *const names[2] = {TR_CLASP_PLOT_CURVATURE, TR_CLASP_PLOT_D1};
-    int rc = tr_plot_reserve(dir, names, 2, ps, err);
+    static const char *const names[3] = {TR_CLASP_PLOT_CURVATURE, TR_CLASP_PLOT_D1, TR_CLASP_PLOT_D2};
+    int rc = tr_plot_reserve(dir, names, 3, ps, err);
     if (rc != TR_OK)
         return rc;
     const tr_clasp_half *h = &r->half[0];
-    const tr_clasp_piece *D1 = &h->piece[TR_CLASP_D1];
-    int seen = D1->status != TR_PIECE_UNSEEN;
-    /* Fig. 4's window: D1 (or where S meets G when no dip shows) and at
-     * least eight edges either side */
-    double c = seen ? 0.5 * (D1->from + D1->to) : h->piece[TR_CLASP_S].to;
-    double hw = fmax(0.02, 8.0 * r->e);
-    char d1[512];
-    if (D1->status == TR_PIECE_RESOLVED)
-        snprintf(d1, sizeof d1, "D1 %.4g +- %.2g wide (Starostin 0.0078; SP-FEM 0.008)", D1->width, D1->err);
-    else if (seen)
-        snprintf(d1, sizeof d1, "D1 %.4g +- %.2g wide, a dip narrower than two edges (e = %.3g): not resolved "
-                                "(Starostin 0.0078)", D1->width, D1->err, r->e);
-    else
-        snprintf(d1, sizeof d1, "D1 not resolved: no dip between S and G at e = %.3g (Starostin 0.0078)", r->e);
 
     tr_text b = {0};
     tr_text_printf(&b, "# written by tightrope analyze; run in this directory: gnuplot plots.gp\n"
@@ -96,21 +126,13 @@ int tr_clasp_plots_script(const char *dir, const tr_clasp_rope *r, const char *t
                        "title 'half from vertex %zu', 0.5 dt 3 lc rgb 'black' title 'kappa = 1/2, 1', 1 dt 3 lc rgb "
                        "'black' notitle\n",
                    r->half[1].end_vertex);
-    /* Fig. 4 */
-    tr_text_printf(&b, "unset label\nunset arrow\nset output '%s'\nset title ", tr_plot_tmp_base(ps, dir, 1));
-    snprintf(t, sizeof t, "%s: the region of D1 enlarged (the paper's Fig. 4)\n%s", title, d1);
-    quoted(&b, t);
-    tr_text_printf(&b, "\nset xrange [%.15g:%.15g]\nset yrange [-0.05:0.62]\n", c - hw, c + hw);
-    if (seen)
-        tr_text_printf(&b, "set object 1 rect from %.15g, graph 0 to %.15g, graph 1 fc rgb '#ffe0a0' fs solid 0.6 "
-                           "noborder behind\n",
-                       D1->from, D1->to);
-    mark_pieces(&b, h, c - hw, c + hw);
-    tr_text_printf(&b, "plot 'curvature.csv' every ::1 using (s0($2)):3 with histeps lw 2 lc rgb '#1f4e9c' title "
-                       "'half from vertex 0: each arc over its cell', '' every ::1 using (s0($2)):3 with points pt 7 "
-                       "ps 0.8 lc rgb '#1f4e9c' notitle, '' every ::1 using (s1($2)):3 with points pt 6 ps 1.4 lc "
-                       "rgb '#e07020' title 'half from vertex %zu', 0.5 dt 3 lc rgb 'black' title 'kappa = 1/2'\n",
-                   r->half[1].end_vertex);
+    /* Fig. 4, D1 between the shoulder (1/2) and G; and D2, which the
+     * paper's edge (0.00026) could not resolve, between G and the kink (1):
+     * 0.0004 wide, so its window is a tenth of D1's */
+    deep_plot(&b, tr_plot_tmp_base(ps, dir, 1), r, title, TR_CLASP_D1, TR_CLASP_S, 0.02, 0.62,
+              "the region of D1 enlarged (the paper's Fig. 4)", "Starostin 0.0078; SP-FEM 0.008");
+    deep_plot(&b, tr_plot_tmp_base(ps, dir, 2), r, title, TR_CLASP_D2, TR_CLASP_G, 0.002, 1.12,
+              "the region of D2 enlarged (between G and the kink)", "Starostin 0.0004");
 
     char path[4096];
     int m = snprintf(path, sizeof path, "%s/plots.gp", dir);

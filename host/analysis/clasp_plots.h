@@ -1,7 +1,7 @@
 /* Plots of the clasp's anatomy, the paper's Fig. 3 and Fig. 4 (Przybyl &
  * Pieranski, section 3): the curvature of half a rope against arclength from
- * its free end, both halves overlaid, the pieces marked; and the region of
- * D1 enlarged, each arc's curvature drawn over its cell. Drawn by gnuplot
+ * its free end, both halves overlaid, the pieces marked; and the regions of
+ * D1 and of D2 enlarged, each arc's curvature drawn over its cell. Drawn by gnuplot
  * from the rope's curvature.csv; running gnuplot is the command's
  * (cli_gnuplot.h). */
 #ifndef TR_CLASP_PLOTS_H
@@ -14,6 +14,7 @@
 /* The PNGs it draws, in DIR. */
 #define TR_CLASP_PLOT_CURVATURE "clasp_curvature.png"
 #define TR_CLASP_PLOT_D1 "clasp_d1.png"
+#define TR_CLASP_PLOT_D2 "clasp_d2.png"
 
 /* Writes DIR/plots.gp for a rope whose anatomy was found (title: a short
  * name for the rope), to be run by gnuplot in DIR, and reserves the

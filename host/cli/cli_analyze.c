@@ -41,7 +41,7 @@ static void usage(FILE *f)
             "(docs/physics.md 3-5); curvature and torsion profiles of each open one (a rope: curvature.csv,\n"
             "torsion.csv, summary.json, report.txt). Two open ropes are read as a simple clasp: each rope's\n"
             "pieces E, S, D1, G, D2, K from its free ends to its tip, its symmetry and the ropes' congruence\n"
-            "in summary.json, report.txt and pieces.csv; with --plots clasp_curvature.png and clasp_d1.png\n"
+            "in summary.json, report.txt and pieces.csv; with --plots clasp_curvature.png, clasp_d1.png and clasp_d2.png\n"
             "(docs/physics.md 6.3). The curve is first scaled to thickness 1 (rope radius 1).\n"
             "Writes into DIR (DIR/compK/ for a link): curvature.csv, torsion.csv, plateaus.csv,\n"
             "symmetry.csv, contacts.csv, sigma.csv, fixed_points.csv, summary.json, report.txt;\n"
@@ -296,7 +296,7 @@ static int write_open_rope(comp_result *r, const char *in, const char *dir, cons
         int rc = tr_cli_clasp_draw(dir, clasp->rope, title, &err);
         if (rc == TR_OK) {
             char x[1100];
-            printf("plots: %s/{clasp_curvature,clasp_d1}.png\n", tr_out_folder_shown(of, dir, x, sizeof x));
+            printf("plots: %s/{clasp_curvature,clasp_d1,clasp_d2}.png\n", tr_out_folder_shown(of, dir, x, sizeof x));
         } else {
             if (rc != TR_EINTERRUPTED)
                 say(of, "tightrope analyze: plots: %s\n", err.msg);

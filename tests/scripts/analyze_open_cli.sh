@@ -96,7 +96,7 @@ clasp_tight)
       awk -v a="$diff" -v b="$derr" 'BEGIN { exit !(a != "" && b != "" && a + 0 <= b + 0) }' || fail "comp$k: $m $diff +- $derr"
     done
     if command -v gnuplot >/dev/null; then
-      for f in clasp_curvature.png clasp_d1.png; do [ -s "$d/$f" ] || fail "comp$k: no $f"; done
+      for f in clasp_curvature.png clasp_d1.png clasp_d2.png; do [ -s "$d/$f" ] || fail "comp$k: no $f"; done
     fi
   done
   grep -q '^  shoulder kappa 0.5' "$work/stdout" || fail "report: $(cat "$work/stdout")"
