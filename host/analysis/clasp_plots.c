@@ -47,8 +47,8 @@ static void mark_pieces(tr_text *b, const tr_clasp_half *h, double x0, double x1
 
 /* The caption's line about a deep (D1 or D2): its width and error, or why
  * it is not resolved, beside the published width. */
-static void deep_caption(char *out, size_t size, const char *name, const tr_clasp_piece *d, double e,
-                         const char *published)
+static void deep_caption(char *out, size_t size, const char *name, const char *between, const tr_clasp_piece *d,
+                         double e, const char *published)
 {
     if (d->status == TR_PIECE_RESOLVED)
         snprintf(out, size, "%s %.4g +- %.2g wide (%s)", name, d->width, d->err, published);
@@ -56,7 +56,7 @@ static void deep_caption(char *out, size_t size, const char *name, const tr_clas
         snprintf(out, size, "%s %.4g +- %.2g wide, a dip narrower than two edges (e = %.3g): not resolved (%s)", name,
                  d->width, d->err, e, published);
     else
-        snprintf(out, size, "%s not resolved: no dip at e = %.3g (%s)", name, e, published);
+        snprintf(out, size, "%s not resolved: no dip between %s at e = %.3g (%s)", name, between, e, published);
 }
 
 /* One deep enlarged (the paper's Fig. 4 for D1; D2 likewise): the window
@@ -72,7 +72,9 @@ static void deep_plot(tr_text *b, const char *png, const tr_clasp_rope *r, const
     double c = seen ? 0.5 * (d->from + d->to) : h->piece[after].to;
     double hw = fmax(min_half, 8.0 * r->e);
     char cap[512], t[1024];
-    deep_caption(cap, sizeof cap, tr_clasp_piece_names[q], d, r->e, published);
+    char between[32];
+    snprintf(between, sizeof between, "%s and %s", tr_clasp_piece_names[after], tr_clasp_piece_names[q + 1]);
+    deep_caption(cap, sizeof cap, tr_clasp_piece_names[q], between, d, r->e, published);
     tr_text_printf(b, "unset label\nunset arrow\nunset object\nset output '%s'\nset title ", png);
     snprintf(t, sizeof t, "%s: %s\n%s", title, what, cap);
     quoted(b, t);
