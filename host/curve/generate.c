@@ -45,7 +45,7 @@ static int equal_chords(curve_eval f, const void *ctx, double t0, double T, int 
     double best = INFINITY, relax = 1.0;
     int stall = 0;
     for (int iter = 0; iter < 400; iter++) {
-        int past = tr_deadline_passed(bound);
+        int past = tr_deadline_passed_for(bound, n);
         if (past) {
             free(dt);
             free(ch);

@@ -59,7 +59,8 @@ int tr_resample_smooth(const tr_curve *in, const size_t *n_per_comp, tr_curve *o
 
 /* tr_resample (smooth 0) or tr_resample_smooth (smooth 1) within a bound
  * (NULL: none), looked at once a sweep of the equal-chord iteration: at
- * 10^6 vertices and more a resampling takes seconds. TR_EINTERRUPTED, out
+ * 10^6 vertices and more a resampling takes seconds (below TR_DEADLINE_WORK
+ * vertices, util/clock.h, it is not looked at). TR_EINTERRUPTED, out
  * left empty, once the bound has passed. */
 int tr_resample_within(const tr_curve *in, const size_t *n_per_comp, int smooth, const tr_deadline *bound,
                        tr_curve *out, tr_error *err);

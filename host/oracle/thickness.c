@@ -437,7 +437,7 @@ static int measure_frame(const tr_curve *c, const tr_thickness_opts *opts, tr_th
      * boxes) take a few hundred ms at 10^6 vertices: the bound is looked at
      * between them as well */
     const tr_deadline *bound = opts ? opts->bound : NULL;
-    if (tr_deadline_passed(bound))
+    if (tr_deadline_passed_for(bound, c->nv))
         return stopped_at(c, bound, err);
     out->vertices = c->nv;
     tr_csum len = {0, 0}, lc = {0, 0};
@@ -465,7 +465,7 @@ static int measure_frame(const tr_curve *c, const tr_thickness_opts *opts, tr_th
         out->L_p = out->L_c = out->L_a = NAN;
     }
 
-    if (tr_deadline_passed(bound))
+    if (tr_deadline_passed_for(bound, c->nv))
         return stopped_at(c, bound, err);
     tr_nsearch ns;
     int rc = tr_nsearch_build(&ns, c, err);
@@ -539,7 +539,7 @@ int tr_thickness_measure(const tr_curve *c, const tr_thickness_opts *opts, tr_th
     tr_curve s;
     const tr_curve *use;
     int rc = tr_curve_oracle_frame(c, &f, &s, &use, err);
-    if (!rc && opts && tr_deadline_passed(opts->bound))
+    if (!rc && opts && tr_deadline_passed_for(opts->bound, c->nv))
         rc = stopped_at(c, opts->bound, err);
     if (!rc)
         rc = measure_frame(use, opts, out, struts, err);

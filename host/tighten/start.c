@@ -43,15 +43,19 @@ static int densify_coarse(const tt_opts *o, tr_curve *c, tr_error *err)
             free(per);
             return TR_OK;
         }
+        /* within the call's bound: a long rope of coarse edges densifies
+         * to millions of vertices (len / COARSE_EDGE), seconds each pass */
         tr_curve r;
-        int rc = tr_resample_smooth(c, per, &r, err);
+        tr_deadline bound = tt_bound(o);
+        tr_thickness_opts bounded = {.bound = &bound};
+        int rc = tr_resample_within(c, per, 1, &bound, &r, err);
         free(per);
         if (rc)
-            return rc;
+            return tr_fail_wrap(err, rc, "%s (densified)", o->in);
         tr_curve_free(c);
         *c = r;
         tr_thickness t;
-        if ((rc = tr_thickness_measure(c, NULL, &t, NULL, err)))
+        if ((rc = tr_thickness_measure(c, &bounded, &t, NULL, err)))
             return tr_fail_wrap(err, rc, "%s (resampled)", o->in);
         if (!(t.thickness > 0 && isfinite(t.thickness)))
             return tr_fail(err, TR_EGEOMETRY, "%s: resampled along a spline, it has thickness %g", o->in,
@@ -69,7 +73,7 @@ static int densify_coarse(const tt_opts *o, tr_curve *c, tr_error *err)
  * or longer, with as few vertices as that takes (none added where they are
  * shorter already). */
 #define INFLATED_EDGE 0.97
-static int grow_count(tr_curve *c, double edge, tr_error *err)
+static int grow_count(tr_curve *c, double edge, const tr_deadline *bound, tr_error *err)
 {
     size_t *per = malloc((size_t)c->ncomp * sizeof *per);
     if (!per)
@@ -85,7 +89,7 @@ static int grow_count(tr_curve *c, double edge, tr_error *err)
         }
     }
     tr_curve r;
-    int rc = grow ? tr_resample_smooth(c, per, &r, err) : TR_OK;
+    int rc = grow ? tr_resample_within(c, per, 1, bound, &r, err) : TR_OK;
     free(per);
     if (grow && rc == TR_OK) {
         tr_curve_free(c);
@@ -246,7 +250,8 @@ int tt_read_start(const tt_opts *o, tr_curve *c, tr_error *err)
      * reaches 49.482; densified to edges of 0.5 it ends at 50.4079) */
     if (rc == TR_OK && o->inflate != 1.0) {
         tt_scale_curve(c, o->inflate);
-        rc = grow_count(c, INFLATED_EDGE, err);
+        tr_deadline bound = tt_bound(o);
+        rc = grow_count(c, INFLATED_EDGE, &bound, err);
     }
     if (rc != TR_OK)
         tr_curve_free(c);

@@ -35,3 +35,8 @@ double tr_deadline_min(double a, double b)
         return a;
     return a < b ? a : b;
 }
+
+int tr_deadline_passed_for(const tr_deadline *d, size_t work)
+{
+    return work >= TR_DEADLINE_WORK ? tr_deadline_passed(d) : 0;
+}

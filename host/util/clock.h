@@ -7,6 +7,7 @@
 #define TR_CLOCK_H
 
 #include <signal.h>
+#include <stddef.h>
 
 /* Seconds on CLOCK_MONOTONIC from an arbitrary origin: differences only.
  * Never goes back, whatever happens to the wall clock. */
@@ -22,6 +23,14 @@ typedef struct tr_deadline {
 /* 0 while the bound holds (d may be NULL); 1 once the clock has passed
  * d->at; 2 once *d->stop is raised (a signal outranks the clock). */
 int tr_deadline_passed(const tr_deadline *d);
+
+/* tr_deadline_passed for a pass over `work` items (vertices, say), 0
+ * below TR_DEADLINE_WORK of them: a short pass finishes first, as the
+ * neighbour search's does (it looks at the bound every 64 leaves), so a
+ * small curve is measured or resampled whole even under a raised stop
+ * (a cancelled tighten hands back its start, measured) */
+#define TR_DEADLINE_WORK 65536
+int tr_deadline_passed_for(const tr_deadline *d, size_t work);
 
 /* The seconds left before d->at (INFINITY without one; never below 0). */
 double tr_deadline_left(const tr_deadline *d);
