@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import ctypes
 import os
+import signal
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any, Callable, Dict, List, NamedTuple, Optional, Protocol, Sequence, Union, cast
 
@@ -444,6 +445,13 @@ def tighten(curve: CurveLike, time_limit: Optional[float] = None, progress: Opti
 
     def run() -> None:
         try:
+            # SIGINT is the main thread's to take: blocked here (and in the
+            # threads the library starts from here, which inherit the mask),
+            # the kernel delivers a Ctrl-C to the main thread, whose wait
+            # below it interrupts, instead of to a thread that cannot run
+            # Python's handler
+            if threading.current_thread() is not threading.main_thread() and hasattr(signal, "pthread_sigmask"):
+                signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT})
             status.append(lib.tightrope_tighten(c._h, ctypes.byref(o), ctypes.byref(h), ctypes.byref(res), ctypes.byref(err)))
         finally:
             done.set()
