@@ -43,8 +43,9 @@ static int densify_coarse(const tt_opts *o, tr_curve *c, tr_error *err)
             free(per);
             return TR_OK;
         }
-        /* within the call's bound: a long rope of coarse edges densifies
-         * to millions of vertices (len / COARSE_EDGE), seconds each pass */
+        /* within the call's bound: the densified count is len / COARSE_EDGE
+         * a component, and at 10^6 vertices and more a resampling or a
+         * measure is seconds */
         tr_curve r;
         tr_deadline bound = tt_bound(o);
         tr_thickness_opts bounded = {.bound = &bound};
