@@ -150,10 +150,22 @@ int tt_tighten_vertex(const tt_opts *o, tr_tighten_result *res, tr_error *err)
     np.progress = on_step;
     np.user = &vp;
     tr_newton_stats ns;
+    int unstepped = 0;
     res->failed_at = TR_TIGHTEN_AT_RUN;
     if ((rc = tr_newton(&c, &np, &ns, err))) {
-        tr_curve_free(&c);
-        return rc;
+        /* the time limit or a signal before the solve's first step (the
+         * start's measure or the first strut list, seconds under a
+         * sanitizer or a loaded machine at N = 4800): c is the start, as
+         * tr_newton leaves it on an error, and is written as the Rawdon
+         * route writes a start the bound stopped, with where it stopped */
+        if (rc != TR_EINTERRUPTED) {
+            tr_curve_free(&c);
+            return rc;
+        }
+        memset(&ns, 0, sizeof ns);
+        unstepped = 1;
+        ns.why_rejected = tt_cancelled(o) ? "a signal came before the solver's first step"
+                                          : "the time limit came before the solver's first step";
     }
     /* accepted: c is the result at thickness 1 in the model; else the
      * start, scaled there here */
@@ -164,6 +176,8 @@ int tt_tighten_vertex(const tt_opts *o, tr_tighten_result *res, tr_error *err)
         tr_curve_free(&c);
         return rc;
     }
+    if (unstepped)
+        ns.ropelength_before = ns.ropelength_after = vt.ropelength;
     res->failed_at = TR_TIGHTEN_AT_NONE;
     res->curve = c;
     res->vertex = 1;
