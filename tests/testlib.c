@@ -15,6 +15,7 @@ int tr_test_failures = 0;
 void tr_test_report(const char *file, int line, const char *fmt, ...)
 {
     va_list ap;
+    tr_test_failures++;
     va_start(ap, fmt);
     fprintf(stderr, "%s:%d: ", file, line);
     vfprintf(stderr, fmt, ap);

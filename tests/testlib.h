@@ -12,7 +12,6 @@ extern int tr_test_failures;
 #define CHECK(cond)                                                                    \
     do {                                                                               \
         if (!(cond)) {                                                                 \
-            tr_test_failures++;                                                        \
             tr_test_report(__FILE__, __LINE__, "check failed: %s", #cond);             \
         }                                                                              \
     } while (0)
@@ -22,7 +21,6 @@ extern int tr_test_failures;
     do {                                                                               \
         double g_ = (got), w_ = (want), t_ = (tol);                                    \
         if (!tr_test_near(g_, w_, t_)) {                                               \
-            tr_test_failures++;                                                        \
             tr_test_report(__FILE__, __LINE__, "%s = %.17g, want %.17g +- %.3g", #got, \
                            g_, w_, t_);                                                \
         }                                                                              \
@@ -32,7 +30,6 @@ extern int tr_test_failures;
     do {                                                                               \
         int rc_ = (expr);                                                              \
         if (rc_ != 0) {                                                                \
-            tr_test_failures++;                                                        \
             tr_test_report(__FILE__, __LINE__, "%s returned %d", #expr, rc_);          \
         }                                                                              \
     } while (0)
@@ -43,12 +40,12 @@ extern int tr_test_failures;
     do {                                                                               \
         int rc_ = (expr);                                                              \
         if (rc_ != 0) {                                                                \
-            tr_test_failures++;                                                        \
             tr_test_report(__FILE__, __LINE__, "%s returned %d (test stops)", #expr, rc_); \
             return;                                                                    \
         }                                                                              \
     } while (0)
 
+/* A failed check: counted (tr_test_failures) and printed with where it was. */
 void tr_test_report(const char *file, int line, const char *fmt, ...)
 #if defined(__GNUC__)
     __attribute__((format(printf, 3, 4)))

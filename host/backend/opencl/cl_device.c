@@ -11,6 +11,7 @@
 #include <unistd.h>
 
 #include "backend/opencl/cl_error.h"
+#include "backend/opencl/cl_signals.h"
 #include "backend/opencl/kernel_source.h"
 #include "util/device_spec.h"
 
@@ -128,7 +129,7 @@ static void check_kernels(tr_cl_device_info *d)
     }
 }
 
-int tr_cl_enumerate(tr_cl_device_list *out, tr_error *err)
+static int enumerate(tr_cl_device_list *out, tr_error *err)
 {
     int rc = TR_OK;
     cl_platform_id *plat = NULL;
@@ -203,6 +204,17 @@ cleanup:
     free(devs);
     if (rc != TR_OK)
         tr_cl_device_list_free(out);
+    return rc;
+}
+
+/* the platforms' first calls load PoCL's LLVM, and the kernels' test builds
+ * run it: the caller's signal handlers are kept (cl_signals.h) */
+int tr_cl_enumerate(tr_cl_device_list *out, tr_error *err)
+{
+    tr_cl_signals kept;
+    tr_cl_signals_keep(&kept);
+    int rc = enumerate(out, err);
+    tr_cl_signals_restore(&kept);
     return rc;
 }
 
@@ -348,7 +360,7 @@ int tr_device_select(const char *spec, tr_device_choice *out, tr_error *err)
     return rc;
 }
 
-int tr_cl_ctx_open(tr_cl_ctx *ctx, const tr_cl_device_info *dev, int profiling, tr_error *err)
+static int ctx_open(tr_cl_ctx *ctx, const tr_cl_device_info *dev, int profiling, tr_error *err)
 {
     int rc = TR_OK;
     cl_int e = CL_SUCCESS;
@@ -376,6 +388,15 @@ int tr_cl_ctx_open(tr_cl_ctx *ctx, const tr_cl_device_info *dev, int profiling, 
     return TR_OK;
 cleanup:
     tr_cl_ctx_close(ctx);
+    return rc;
+}
+
+int tr_cl_ctx_open(tr_cl_ctx *ctx, const tr_cl_device_info *dev, int profiling, tr_error *err)
+{
+    tr_cl_signals kept;
+    tr_cl_signals_keep(&kept);
+    int rc = ctx_open(ctx, dev, profiling, err);
+    tr_cl_signals_restore(&kept);
     return rc;
 }
 
@@ -513,7 +534,7 @@ static void release_stderr(stderr_hold *h, char *text, size_t n)
     h->tmp = NULL;
 }
 
-int tr_cl_build(const tr_cl_ctx *ctx, const char *const *files, int nfiles, const char *options,
+static int build(const tr_cl_ctx *ctx, const char *const *files, int nfiles, const char *options,
                 cl_program *out, tr_error *err)
 {
     int rc = TR_OK;
@@ -595,5 +616,16 @@ cleanup:
     for (int i = 0; i < nfiles + np; i++)
         free(src[i]);
     free(src);
+    return rc;
+}
+
+/* the build runs PoCL's LLVM: the caller's signal handlers are kept */
+int tr_cl_build(const tr_cl_ctx *ctx, const char *const *files, int nfiles, const char *options, cl_program *out,
+                tr_error *err)
+{
+    tr_cl_signals kept;
+    tr_cl_signals_keep(&kept);
+    int rc = build(ctx, files, nfiles, options, out, err);
+    tr_cl_signals_restore(&kept);
     return rc;
 }

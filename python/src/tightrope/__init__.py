@@ -462,17 +462,11 @@ def tighten(curve: CurveLike, time_limit: Optional[float] = None, progress: Opti
         # at once; it raises the cancel flag, the run ends at its next step.
         # An Event, not Thread.join: a join that KeyboardInterrupt breaks
         # may leave the thread looking finished (CPython gh-90882)
-        # PoCL's LLVM, loaded when the run looks for its devices, puts its
-        # own C handler on SIGINT (libLLVM-15: seen in the run's first
-        # progress report), and Python's handler then never ran: a Ctrl-C
-        # did not interrupt (the CI's test_ctrl_c_keeps_the_best_state,
-        # signal sent, run solved 27 s later). Python's is put back each turn.
-        handler = signal.getsignal(signal.SIGINT)
+        # (the library keeps this process's signal handlers across PoCL's
+        # calls, whose LLVM installs its own: cl_signals.h)
         threading.Thread(target=run, name="tightrope-tighten", daemon=True).start()
         while not done.is_set():
             try:
-                if handler is not None:
-                    signal.signal(signal.SIGINT, handler)
                 done.wait(0.05)
                 # a SIGINT whose handler has not run: CPython 3.11 lets a
                 # thread that cannot handle signals (the run's, in the
