@@ -342,10 +342,8 @@ int tr_cli_tighten_run(const tr_cli_tighten *t, int argc, char **argv, tr_tighte
     opt.note = on_note;
     opt.user = &say;
     /* --time-limit bounds the command: reading the start is its time too
-     * (half a second for a file of 2 x 10^5 vertices), and tr_tighten
-     * counts from its own call */
-    if (opt.time_limit > 0)
-        opt.time_limit = fmax(opt.time_limit - (tr_clock_seconds() - began), 1e-3);
+     * (half a second for a file of 2 x 10^5 vertices) */
+    opt.began = began;
     /* a pipe (cat k.vect | tighten /dev/stdin) was read once, above; it is
      * tightened where it lies, as before the layer took the start as a curve */
     struct stat st;

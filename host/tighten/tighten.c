@@ -487,8 +487,10 @@ int tr_tighten(const tr_curve *start, const tr_tighten_options *opt, tr_tighten_
     /* the bound counts from here: shuffling and settling the start are the
      * call's time too; a resumed run's limit counts the time before its
      * checkpoint (as the engine's steps do) */
-    if (o.time_limit > 0)
-        o.bound_at = tr_clock_seconds() + fmax(o.time_limit - elapsed_before - finish_reserve(o.time_limit), 0.0);
+    if (o.time_limit > 0) {
+        double from = opt->began > 0 && opt->began <= tr_clock_seconds() ? opt->began : tr_clock_seconds();
+        o.bound_at = from + fmax(o.time_limit - elapsed_before - finish_reserve(o.time_limit), 0.0);
+    }
     if (vertex) {
         rc = tt_tighten_vertex(&o, res, err);
         return rc ? rc : check_type(start, &o, res, err);

@@ -81,6 +81,8 @@ typedef struct tr_tighten_options {
     double target;      /* stop at this ropelength estimate (0, default: off) */
     long steps;         /* accepted steps in all (0, default: off) */
     double time_limit;  /* seconds of wall clock for the whole call (0, default: none) */
+    double began;       /* 0 (default): the limit counts from the call; else from this clock time
+                         * (util/clock.h tr_clock_seconds), a command's start, its reading included */
     const char *checkpoint; /* written at the start, every checkpoint_every s, at the end (NULL: none);
                              * a solve's state beside it (checkpoint.newton), which resume takes up */
     double checkpoint_every; /* default 300 */
