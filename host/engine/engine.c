@@ -281,6 +281,33 @@ static int newton_checkpoint(void *user, const tr_curve *best, tr_error *err)
     return tr_engine_i_solver_checkpoint(e, best, err);
 }
 
+/* A clasp level is fine, for the solver's penalties (tr_engine_i_newton),
+ * when its edges are below this: 2 x 25 600 vertices between the walls
+ * +-1.5 have edges of 2.84e-4, 2 x 12 800 of 5.7e-4. */
+#define FINE_CLASP_EDGE 4e-4
+
+static double edge_length(const double *a, const double *b)
+{
+    return sqrt((b[0] - a[0]) * (b[0] - a[0]) + (b[1] - a[1]) * (b[1] - a[1]) + (b[2] - a[2]) * (b[2] - a[2]));
+}
+
+/* The shortest mean edge of the curve's components. */
+static double finest_edge(const tr_curve *c)
+{
+    double m = INFINITY;
+    for (int k = 0; k < c->ncomp; k++) {
+        size_t a = c->start[k], b = c->start[k + 1], edges = c->closed[k] ? b - a : b - a - 1;
+        double len = 0.0;
+        for (size_t i = a; i + 1 < b; i++)
+            len += edge_length(c->x + 3 * i, c->x + 3 * (i + 1));
+        if (c->closed[k] && b > a + 1)
+            len += edge_length(c->x + 3 * (b - 1), c->x + 3 * a);
+        if (edges > 0)
+            m = fmin(m, len / (double)edges);
+    }
+    return m;
+}
+
 int tr_engine_i_newton(tr_engine *e, double seconds, int tight_only, volatile sig_atomic_t *stop, int *accepted,
                        tr_error *err)
 {
@@ -334,8 +361,23 @@ int tr_engine_i_newton(tr_engine *e, double seconds, int tight_only, volatile si
      * it was, not where its state's multipliers hold. */
     tr_newton_state *end = NULL;
     if (e->curve.ncst > 0) {
-        if (e->lvl_refined && e->lvl && e->lvl->ncomp == e->curve.ncomp && e->lvl->nv < e->curve.nv)
+        if (e->lvl_refined && e->lvl && e->lvl->ncomp == e->curve.ncomp && e->lvl->nv < e->curve.nv) {
             np.coarse = e->lvl;
+            /* the finest levels (edges below FINE_CLASP_EDGE: 2 x 25 600
+             * and past, walls +-1.5) start at a first penalty of 1e3 / l0
+             * instead of mu0, whose first full steps bent the carried curve
+             * 100 % past MinRad, and cap it at 1e7 / l0, where the default
+             * 1e5 closed the tip's MinRad rows by 1 % an update and left
+             * them 2e-7 over after 1020 steps (bench/notes/2026-11-29-clasp-
+             * fine.md, the 2 x 32 000 made so); the coarser levels keep the
+             * defaults, with which they are solved in minutes (with these
+             * settings on every level the route was still at 2 x 3200
+             * after 25 minutes) */
+            if (finest_edge(&e->curve) < FINE_CLASP_EDGE) {
+                np.coarse_mu = 1e3;
+                np.mu_max = 1e7;
+            }
+        }
         if ((end = calloc(1, sizeof *end)))
             np.end_state = end;
     }
