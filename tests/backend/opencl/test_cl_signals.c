@@ -2,10 +2,9 @@
  * (backend/opencl/cl_signals.h): PoCL's LLVM, loaded when the devices are
  * listed and the kernels built, installs handlers of its own on SIGINT,
  * SIGTERM and SIGHUP, and before the devices' calls were bracketed a
- * caller's handlers were found replaced after them (Python's Ctrl-C did not
- * reach a run). Here the test's own handlers are installed, the devices
- * listed, an OpenCL backend opened (its kernels built) and a step's forces
- * evaluated, and each handler must still be the test's. Skipped (77) where
+ * caller's handlers were found replaced after them. Here the test's own
+ * handlers are installed, the devices listed, an OpenCL backend opened (its
+ * kernels built) and a step's forces evaluated, and each handler must still be the test's. Skipped (77) where
  * no OpenCL device is usable, after the listing's check. */
 #include <signal.h>
 #include <stdio.h>
