@@ -281,10 +281,12 @@ static int newton_checkpoint(void *user, const tr_curve *best, tr_error *err)
     return tr_engine_i_solver_checkpoint(e, best, err);
 }
 
-/* A clasp level is fine, for the solver's penalties (tr_engine_i_newton),
- * when its edges are below this: 2 x 25 600 vertices between the walls
- * +-1.5 have edges of 2.84e-4, 2 x 12 800 of 5.7e-4. */
+/* A clasp level is fine, for the solver's penalty cap (tr_engine_i_newton),
+ * when its edges are below FINE_CLASP_EDGE, and finer still, for its first
+ * penalty, below FINEST_CLASP_EDGE: 2 x 32 000 vertices between the walls
+ * +-1.5 have edges of 2.27e-4, 2 x 25 600 of 2.84e-4, 2 x 12 800 of 5.7e-4. */
 #define FINE_CLASP_EDGE 4e-4
+#define FINEST_CLASP_EDGE 2.5e-4
 
 /* The shortest mean edge of the curve's components. */
 static double finest_edge(const tr_curve *c)
@@ -351,20 +353,25 @@ int tr_engine_i_newton(tr_engine *e, double seconds, int tight_only, volatile si
     if (e->curve.ncst > 0) {
         if (e->lvl_refined && e->lvl && e->lvl->ncomp == e->curve.ncomp && e->lvl->nv < e->curve.nv) {
             np.coarse = e->lvl;
-            /* the finest levels (edges below FINE_CLASP_EDGE: 2 x 25 600
-             * and past, walls +-1.5) start at a first penalty of 1e3 / l0
-             * instead of mu0, whose first full steps bent the carried curve
-             * 100 % past MinRad, and cap it at 1e7 / l0, where the default
-             * 1e5 closed the tip's MinRad rows by 1 % an update and left
-             * them 2e-7 over after 1020 steps (bench/notes/2026-11-29-clasp-
-             * fine.md, the 2 x 32 000 made so); the coarser levels keep the
-             * defaults, with which they are solved in minutes (with these
-             * settings on every level the route was still at 2 x 3200
-             * after 25 minutes) */
-            if (finest_edge(&e->curve) < FINE_CLASP_EDGE) {
-                np.coarse_mu = 1e3;
+            /* the fine levels (edges below FINE_CLASP_EDGE: 2 x 25 600
+             * and past, walls +-1.5) cap the penalty at 1e7 / l0, where the
+             * default 1e5 closed the tip's MinRad rows by 1 % an update and
+             * left them 2e-7 over after 1020 steps; the finest (below
+             * FINEST_CLASP_EDGE: 2 x 32 000 and past) also start at a first
+             * penalty of 1e3 / l0 instead of mu0, whose first full steps
+             * bent the carried curve 100 % past MinRad. So the chain that
+             * made the committed 2 x 32 000 (bench/notes/2026-11-29-clasp-
+             * fine.md): its 2 x 25 600 settled with mu0 and the cap 1e7 in
+             * 893 steps, where the first penalty 1e3 there left the one
+             * command's level unsettled after 4688 steps (2 h). The coarser
+             * levels keep the defaults, with which they are solved in
+             * minutes (with these settings on every level the route was
+             * still at 2 x 3200 after 25 minutes) */
+            double edge = finest_edge(&e->curve);
+            if (edge < FINE_CLASP_EDGE)
                 np.mu_max = 1e7;
-            }
+            if (edge < FINEST_CLASP_EDGE)
+                np.coarse_mu = 1e3;
         }
         if ((end = calloc(1, sizeof *end)))
             np.end_state = end;
