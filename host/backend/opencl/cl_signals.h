@@ -4,8 +4,9 @@
  * SIGHUP, process-wide and for good: a host that set its own (the
  * command line's stop flag, Python's KeyboardInterrupt) found LLVM's in
  * their place after the run (seen with dladdr of the installed handler).
- * (The Python package's Ctrl-C flake, first laid to this, has another
- * cause, still open: python/src/tightrope/__init__.py.) A library must not
+ * (The Python package's Ctrl-C test failure, first laid to this, was a
+ * suite started in the background, where SIGINT is ignored from the
+ * start: python/tests, python_sigint.) A library must not
  * change a process's signal dispositions, so these calls are bracketed:
  * what the caller had before is what it has after. */
 #ifndef TR_CL_SIGNALS_H

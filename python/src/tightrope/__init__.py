@@ -447,9 +447,9 @@ def tighten(curve: CurveLike, time_limit: Optional[float] = None, progress: Opti
         try:
             # SIGINT is the main thread's to take: blocked here (and in the
             # threads the library starts from here, which inherit the mask),
-            # the kernel delivers a Ctrl-C to the main thread, whose wait
-            # below it interrupts, instead of to a thread that cannot run
-            # Python's handler
+            # so that it never lands in the run's own system calls: Python
+            # installs its handler without SA_RESTART, and a read or write
+            # of the library's that a signal interrupts fails with EINTR
             if threading.current_thread() is not threading.main_thread() and hasattr(signal, "pthread_sigmask"):
                 signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT})
             status.append(lib.tightrope_tighten(c._h, ctypes.byref(o), ctypes.byref(h), ctypes.byref(res), ctypes.byref(err)))
@@ -461,28 +461,20 @@ def tighten(curve: CurveLike, time_limit: Optional[float] = None, progress: Opti
         # the run in a thread of its own, so that Ctrl-C reaches this one
         # at once; it raises the cancel flag, the run ends at its next step.
         # An Event, not Thread.join: a join that KeyboardInterrupt breaks
-        # may leave the thread looking finished (CPython gh-90882)
-        # (the library keeps this process's signal handlers across PoCL's
-        # calls, whose LLVM installs its own: cl_signals.h). Python's SIGINT
-        # handler is still put back each turn: without it the CI's venv saw
-        # test_ctrl_c_keeps_the_best_state not interrupted once more (signal
-        # sent, run solved 26 s later) although the handler during a run is
-        # Python's there (dladdr); with it the venv's suite passed twice. The
-        # cause is not established; this is the last state seen passing.
-        handler = signal.getsignal(signal.SIGINT)
+        # may leave the thread looking finished (CPython gh-90882). (The
+        # library keeps this process's signal handlers across PoCL's calls,
+        # whose LLVM installs its own: cl_signals.h.)
         threading.Thread(target=run, name="tightrope-tighten", daemon=True).start()
         while not done.is_set():
             try:
-                if handler is not None:
-                    signal.signal(signal.SIGINT, handler)
                 done.wait(0.05)
-                # a SIGINT whose handler has not run: CPython 3.11 lets a
-                # thread that cannot handle signals (the run's, in the
-                # progress callback) clear the interpreter's eval breaker,
-                # and the main thread then missed the signal for a whole
-                # run (the CI's test_ctrl_c_keeps_the_best_state: signal
-                # sent, run solved 31 s later); PyErr_CheckSignals runs the
-                # handler here, and ctypes raises what it raised
+                # a SIGINT whose handler has not run: CPython before 3.12
+                # recomputes the eval breaker in whichever thread holds the
+                # GIL, and one that cannot handle signals (the run's, in the
+                # progress callback) clears the pending signal's bit, so the
+                # main thread may not look at it (python/cpython#109846);
+                # PyErr_CheckSignals looks at the tripped flag itself and
+                # runs the handler, and ctypes raises what it raised
                 ctypes.pythonapi.PyErr_CheckSignals()
             except KeyboardInterrupt:
                 interrupted = True
