@@ -18,6 +18,16 @@ endfunction()
 tr_knot_test(make_knot_name 0 DIR ${_kn_dir}/name ONLY "k.vect" OUT ${_kn_dir}/name/k.vect
   MATCH "knot 7_4 [(]KnotInfo[)][^\n]*\n# type checked: Alexander polynomial 4 -7 4, determinant 15, signature -2, as 7_4's\n"
   CMD ${_tr} make knot 7.4 -o ${_kn_dir}/name/k.vect)
+# relaxed by default (geometry/relax.h), as drawn on request; the type is checked either way
+tr_knot_test(make_knot_relaxed 0 DIR ${_kn_dir}/relaxed ONLY "k.vect" OUT ${_kn_dir}/relaxed/k.vect
+  MATCH "knot 9_8 [(]KnotInfo[)], closure of its 5-strand braid, relaxed, [^\n]*\n# type checked: [^\n]*as 9_8's\n"
+  CMD ${_tr} make knot 9_8 -o ${_kn_dir}/relaxed/k.vect)
+tr_knot_test(make_knot_as_drawn 0 DIR ${_kn_dir}/drawn ONLY "k.vect" OUT ${_kn_dir}/drawn/k.vect
+  MATCH "knot 9_8 [(]KnotInfo[)], closure of its 5-strand braid, 2485 vertices[^\n]*\n# type checked: [^\n]*as 9_8's\n"
+  CMD ${_tr} make knot 9_8 --as-drawn -o ${_kn_dir}/drawn/k.vect)
+tr_knot_test(make_torus_as_drawn 2 DIR ${_kn_dir}/torus_drawn ONLY ""
+  ERRMATCH "--as-drawn is an option of make knot and make link"
+  CMD ${_tr} make torus 2 3 --as-drawn -o ${_kn_dir}/torus_drawn/t.vect)
 tr_knot_test(make_knot_unknot 0 DIR ${_kn_dir}/unknot ONLY "k.vect" OUT ${_kn_dir}/unknot/k.vect
   MATCH "type checked: Alexander polynomial 1, determinant 1, signature 0, as 0_1's"
   CMD ${_tr} make knot 0_1 -o ${_kn_dir}/unknot/k.vect)

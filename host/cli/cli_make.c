@@ -21,8 +21,8 @@ static void usage(FILE *out)
             "       tightrope make circle [--radius R] [--n N] -o OUT\n"
             "       tightrope make hopf [--n N] -o OUT\n"
             "       tightrope make clasp [--n N] [--height H] -o OUT\n"
-            "       tightrope make knot NAME | --braid WORD | --pd CODE [--n N] -o OUT\n"
-            "       tightrope make link NAME | --braid WORD [--n N] -o OUT\n"
+            "       tightrope make knot NAME | --braid WORD | --pd CODE [--n N] [--as-drawn] -o OUT\n"
+            "       tightrope make link NAME | --braid WORD [--n N] [--as-drawn] -o OUT\n"
             "\n"
             "Writes a start curve for a rope of radius 1, embedded with room to tighten.\n"
             "  torus P Q   torus knot T(P,Q) (P, Q coprime, |P|,|Q| >= 2), equilateral,\n"
@@ -44,7 +44,9 @@ static void usage(FILE *out)
             "  --pd CODE   a knot's PD code, \"[[1,5,2,4],[3,1,4,6],[5,3,6,2]]\" (KnotInfo's, KnotTheory's),\n"
             "              drawn in the plane and lifted at its crossings (a loose start: a name or\n"
             "              a braid gives a tighter one); checked against the code's own invariants\n"
-            "  Knots and links are equilateral per component, scaled to thickness 1.25; default\n"
+            "  Knots and links are relaxed as KnotPlot relaxes its knots (the strands push each\n"
+            "  other apart, none passes another) from the closure or the drawing, then made\n"
+            "  equilateral per component and scaled to thickness 1.25; default\n"
             "  N: edges of about 0.22 (tighten starts such a loose curve from N / 4). See\n"
             "  docs/knots.md.\n"
             "\n"
@@ -52,6 +54,8 @@ static void usage(FILE *out)
             "                    plCurve constraints), .tsv (closed components), .txt (one closed\n"
             "                    component)\n"
             "  --n N             number of vertices\n"
+            "  --as-drawn        knots and links: the braid closure or the PD code's drawing as it\n"
+            "                    is, not relaxed (a looser start, 2 to 5 times its tight length)\n"
             "Exit status: 0 written, 2 bad arguments or notation, an unknown name or the file could\n"
             "not be written, 1 a made curve not of the type asked for (nothing is left behind then).\n");
 }
@@ -72,7 +76,7 @@ int tr_cmd_make(int argc, char **argv)
     const char *pos[2] = {NULL, NULL};
     int npos = 0;
     size_t n = 0;
-    int have_n = 0, have_radius = 0, have_height = 0;
+    int have_n = 0, have_radius = 0, have_height = 0, as_drawn = 0;
     double radius = 3.0, height = 5.0;
 
     for (int i = 1; i < argc; i++) {
@@ -115,6 +119,10 @@ int tr_cmd_make(int argc, char **argv)
                 }
                 have_height = 1;
             }
+            continue;
+        }
+        if (!strcmp(a, "--as-drawn")) {
+            as_drawn = 1;
             continue;
         }
         if (a[0] == '-' && a[1] && !(a[1] >= '0' && a[1] <= '9')) {
@@ -165,11 +173,12 @@ int tr_cmd_make(int argc, char **argv)
             fprintf(stderr, "tightrope make: %s is not an option of %s\n", have_radius ? "--radius" : "--height", kind);
             return 2;
         }
-        return tr_make_knot_command(is_link, npos ? pos[0] : NULL, braid, pd, have_n ? n : 0, outpath,
+        return tr_make_knot_command(is_link, npos ? pos[0] : NULL, braid, pd, have_n ? n : 0, as_drawn, outpath,
                                     TIGHTROPE_VERSION);
     }
-    if (braid || pd) {
-        fprintf(stderr, "tightrope make: %s is an option of make knot and make link\n", braid ? "--braid" : "--pd");
+    if (braid || pd || as_drawn) {
+        fprintf(stderr, "tightrope make: %s is an option of make knot and make link\n",
+                braid ? "--braid" : pd ? "--pd" : "--as-drawn");
         return 2;
     }
     int is_torus = !strcmp(kind, "torus"), is_circle = !strcmp(kind, "circle"), is_hopf = !strcmp(kind, "hopf"),

@@ -8,12 +8,13 @@
 #include "tighten/knot_notation_start.h"
 
 int tr_make_knot_command(int is_link, const char *name, const char *braid_text, const char *pd_text, size_t n,
-                         const char *outpath, const char *version)
+                         int as_drawn, const char *outpath, const char *version)
 {
     tr_error err = {{0}};
     tr_curve c = {0};
     tr_knot_made made;
-    tr_knot_notation nt = {.name = name, .braid = braid_text, .pd = pd_text, .want_link = is_link, .n = n};
+    tr_knot_notation nt = {.name = name, .braid = braid_text, .pd = pd_text, .want_link = is_link, .n = n,
+                          .as_drawn = as_drawn};
     int rc = tr_knot_start_make(&nt, &c, &made, &err);
     if (rc) {
         if (made.other_kind)

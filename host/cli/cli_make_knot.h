@@ -19,6 +19,6 @@ int tr_make_start_check(const tr_curve *c, tr_error *err);
  * (the nearest names suggested), an unusable --n or output; 1 a made curve
  * whose type is not the one asked for (nothing written), out of memory. */
 int tr_make_knot_command(int is_link, const char *name, const char *braid, const char *pd, size_t n,
-                         const char *outpath, const char *version);
+                         int as_drawn, const char *outpath, const char *version);
 
 #endif

@@ -48,6 +48,15 @@ static int find_entry(const tr_knot_table *table, const tr_knot_notation *nt, tr
                    near);
 }
 
+/* ", relaxed" after what was made, or why not */
+static void say_relaxed(tr_knot_made *made, const tr_knot_notation *nt, int relaxed)
+{
+    size_t u = strlen(made->what);
+    if (!nt->as_drawn)
+        snprintf(made->what + u, sizeof made->what - u,
+                 relaxed ? ", relaxed" : ", as drawn (too crowded a drawing to relax)");
+}
+
 /* a braid word's closure, refused when it is not the kind asked for */
 static int from_braid(const tr_braid *b, const tr_knot_notation *nt, int named, tr_curve *out, tr_knot_made *made,
                       tr_error *err)
@@ -68,7 +77,10 @@ static int from_braid(const tr_braid *b, const tr_knot_notation *nt, int named, 
         if (u >= sizeof made->what - 16)
             snprintf(made->what + sizeof made->what - 16, 16, "...");
     }
-    return tr_knot_start_from_braid(b, nt->n, out, &made->thickness, err);
+    int relaxed = 0;
+    int rc = tr_knot_start_from_braid(b, nt->n, !nt->as_drawn, out, &made->thickness, &relaxed, err);
+    say_relaxed(made, nt, relaxed);
+    return rc;
 }
 
 /* The type is checked, never assumed: the invariants of the curve just
@@ -155,7 +167,14 @@ int tr_knot_start_make(const tr_knot_notation *nt, tr_curve *out, tr_knot_made *
         tr_curve dense;
         rc = tr_make_pd_layout(&dense, (const int(*)[4])pd.x, pd.n, (size_t)pd.n * PD_LAYOUT_SAMPLES, err);
         if (rc == TR_OK) {
-            rc = tr_knot_start_from_curve(&dense, nt->n, out, &made->thickness, err);
+            tr_curve moved = {0};
+            int relaxed = 0;
+            if (nt->as_drawn)
+                rc = tr_knot_start_from_curve(&dense, nt->n, out, &made->thickness, err);
+            else if ((rc = tr_knot_start_relaxed(&dense, &moved, &relaxed, err)) == TR_OK)
+                rc = tr_knot_start_from_curve(&moved, nt->n, out, &made->thickness, err);
+            say_relaxed(made, nt, relaxed);
+            tr_curve_free(&moved);
             tr_curve_free(&dense);
         }
     }

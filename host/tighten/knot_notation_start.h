@@ -19,6 +19,7 @@ typedef struct tr_knot_notation {
     const char *pd;    /* a knot's PD code's text (tr_pd_parse) */
     int want_link;     /* 0 a knot, 1 a link, -1 either */
     size_t n;          /* vertices in all; 0: edges of about TR_KNOT_START_EDGE */
+    int as_drawn;      /* 1: the braid closure or PD layout as drawn, not relaxed (knot_start.h) */
 } tr_knot_notation;
 
 /* What was made, in words for a file's comments and a command's output. */

@@ -9,6 +9,7 @@
 #include "curve/braid_closure.h"
 #include "curve/generate.h"
 #include "curve/pd_layout.h"
+#include "geometry/relax.h"
 #include "oracle/thickness.h"
 #include "topology/linking.h"
 #include "topology/signature.h"
@@ -20,14 +21,69 @@
 #define DENSE_SAMPLES 48
 #define MIN_PER_COMPONENT 8
 
-int tr_knot_start_from_braid(const tr_braid *b, size_t n, tr_curve *out, double *thickness, tr_error *err)
+/* The relaxation (geometry/relax.h) runs on a polygon of edges this many
+ * times the dense curve's thickness (9_3's braid closure: 90 vertices): its
+ * chords then stay within 0.75 of a thickness of the curve, and no chord
+ * meets another strand. A curve that needs more than RELAX_MAX_N vertices
+ * so (a crowded PD drawing) is left as drawn: the relaxation's cost grows
+ * as their square. RELAX_STEPS steps; the relaxed polygon is drawn along a
+ * spline with RELAX_SPLINE_SAMPLES points an edge. */
+#define RELAX_EDGE_OF_THICKNESS 2.45
+#define RELAX_MAX_N 320
+#define RELAX_MIN_PER_COMPONENT 8
+#define RELAX_STEPS 3000
+#define RELAX_SPLINE_SAMPLES 40
+
+int tr_knot_start_relaxed(const tr_curve *dense, tr_curve *out, int *relaxed, tr_error *err)
 {
     memset(out, 0, sizeof *out);
-    tr_curve dense;
-    int rc = tr_make_braid_closure(&dense, b->strands, b->word, b->len, DENSE_SAMPLES, err);
+    *relaxed = 0;
+    tr_thickness m;
+    tr_thickness_opts opts = {0};
+    int rc = tr_thickness_measure(dense, &opts, &m, NULL, err);
+    if (rc == 0 && !(m.thickness > 0))
+        rc = tr_fail(err, TR_EGEOMETRY, "the curve to relax has thickness 0 (it touches itself)");
     if (rc)
         return rc;
-    rc = tr_knot_start_from_curve(&dense, n, out, thickness, err);
+    int nc = dense->ncomp;
+    double edge = RELAX_EDGE_OF_THICKNESS * m.thickness;
+    if (m.length / edge > RELAX_MAX_N)
+        return tr_curve_copy(out, dense, err);
+    size_t *per = malloc((size_t)nc * sizeof *per);
+    if (!per)
+        return tr_fail(err, TR_ENOMEM, "out of memory");
+    for (int k = 0; k < nc; k++) {
+        per[k] = (size_t)lround(tr_comp_length(dense, k) / edge);
+        if (per[k] < RELAX_MIN_PER_COMPONENT)
+            per[k] = RELAX_MIN_PER_COMPONENT;
+    }
+    tr_curve coarse = {0};
+    rc = tr_resample(dense, per, &coarse, err);
+    if (rc == 0)
+        rc = tr_curve_relax(&coarse, RELAX_STEPS, err);
+    for (int k = 0; k < nc; k++)
+        per[k] *= RELAX_SPLINE_SAMPLES;
+    if (rc == 0 && (rc = tr_resample_smooth(&coarse, per, out, err)) == 0)
+        *relaxed = 1;
+    free(per);
+    tr_curve_free(&coarse);
+    return rc;
+}
+
+int tr_knot_start_from_braid(const tr_braid *b, size_t n, int relax, tr_curve *out, double *thickness, int *relaxed,
+                             tr_error *err)
+{
+    memset(out, 0, sizeof *out);
+    tr_curve dense, moved = {0};
+    int rc = tr_make_braid_closure(&dense, b->strands, b->word, b->len, DENSE_SAMPLES, err);
+    *relaxed = 0;
+    if (rc)
+        return rc;
+    if (relax && (rc = tr_knot_start_relaxed(&dense, &moved, relaxed, err)) == 0)
+        rc = tr_knot_start_from_curve(&moved, n, out, thickness, err);
+    else if (!relax)
+        rc = tr_knot_start_from_curve(&dense, n, out, thickness, err);
+    tr_curve_free(&moved);
     tr_curve_free(&dense);
     return rc;
 }

@@ -24,7 +24,16 @@
  * thickness.h) is TR_KNOT_START_THICKNESS; *thickness gets the measured
  * value, never below 1. TR_EINVAL when n is too small for edges <= 1 or
  * below 8 per component. */
-int tr_knot_start_from_braid(const tr_braid *b, size_t n, tr_curve *out, double *thickness, tr_error *err);
+int tr_knot_start_from_braid(const tr_braid *b, size_t n, int relax, tr_curve *out, double *thickness, int *relaxed,
+                             tr_error *err);
+
+/* A dense closed curve relaxed (geometry/relax.h: strands pushed apart, none
+ * through another) and drawn densely again along a spline, for
+ * tr_knot_start_from_curve; *relaxed 0 and a copy where the curve is too
+ * crowded for the relaxation's polygon (knot_start.c, RELAX_MAX_N). relax 1
+ * in tr_knot_start_from_braid does this to the closure first, *relaxed
+ * saying whether it was. */
+int tr_knot_start_relaxed(const tr_curve *dense, tr_curve *out, int *relaxed, tr_error *err);
 
 /* The same for any smooth closed curve given as a dense polygon (the PD
  * code's layout, curve/pd_layout.h): resampled to n equal edges per
