@@ -21,6 +21,17 @@
 #define DENSE_SAMPLES 48
 #define MIN_PER_COMPONENT 8
 
+/* m gets the oracle's measure of c; a curve of thickness 0 (one that
+ * touches itself) is refused, what naming it */
+static int measure_thick(const tr_curve *c, const char *what, tr_thickness *m, tr_error *err)
+{
+    tr_thickness_opts opts = {0};
+    int rc = tr_thickness_measure(c, &opts, m, NULL, err);
+    if (rc == 0 && !(m->thickness > 0))
+        rc = tr_fail(err, TR_EGEOMETRY, "the curve to %s has thickness 0 (it touches itself)", what);
+    return rc;
+}
+
 /* The relaxation (geometry/relax.h) runs on a polygon of edges this many
  * times the dense curve's thickness (9_3's braid closure: 90 vertices): its
  * chords then stay within 0.75 of a thickness of the curve, and no chord
@@ -30,7 +41,6 @@
  * spline with RELAX_SPLINE_SAMPLES points an edge. */
 #define RELAX_EDGE_OF_THICKNESS 2.45
 #define RELAX_MAX_N 320
-#define RELAX_MIN_PER_COMPONENT 8
 #define RELAX_STEPS 3000
 #define RELAX_SPLINE_SAMPLES 40
 
@@ -39,10 +49,7 @@ int tr_knot_start_relaxed(const tr_curve *dense, tr_curve *out, int *relaxed, tr
     memset(out, 0, sizeof *out);
     *relaxed = 0;
     tr_thickness m;
-    tr_thickness_opts opts = {0};
-    int rc = tr_thickness_measure(dense, &opts, &m, NULL, err);
-    if (rc == 0 && !(m.thickness > 0))
-        rc = tr_fail(err, TR_EGEOMETRY, "the curve to relax has thickness 0 (it touches itself)");
+    int rc = measure_thick(dense, "relax", &m, err);
     if (rc)
         return rc;
     int nc = dense->ncomp;
@@ -54,8 +61,8 @@ int tr_knot_start_relaxed(const tr_curve *dense, tr_curve *out, int *relaxed, tr
         return tr_fail(err, TR_ENOMEM, "out of memory");
     for (int k = 0; k < nc; k++) {
         per[k] = (size_t)lround(tr_comp_length(dense, k) / edge);
-        if (per[k] < RELAX_MIN_PER_COMPONENT)
-            per[k] = RELAX_MIN_PER_COMPONENT;
+        if (per[k] < MIN_PER_COMPONENT)
+            per[k] = MIN_PER_COMPONENT;
     }
     tr_curve coarse = {0};
     rc = tr_resample(dense, per, &coarse, err);
@@ -96,9 +103,7 @@ static int start_once(const tr_curve *dense, size_t n, tr_curve *out, double *th
     *need = 0;
     tr_thickness m;
     tr_thickness_opts opts = {0};
-    int rc = tr_thickness_measure(dense, &opts, &m, NULL, err);
-    if (rc == 0 && !(m.thickness > 0))
-        rc = tr_fail(err, TR_EGEOMETRY, "the curve to start from has thickness 0 (it touches itself)");
+    int rc = measure_thick(dense, "start from", &m, err);
     if (rc)
         return rc;
     /* the scaled length sets the default count; shared by length */
