@@ -114,7 +114,7 @@ void tr_nsearch_free(tr_nsearch *s)
     memset(s, 0, sizeof *s);
 }
 
-int tr_nsearch_build(tr_nsearch *s, const tr_curve *c, tr_error *err)
+static int build(tr_nsearch *s, const tr_curve *c, int tree, tr_error *err)
 {
     memset(s, 0, sizeof *s);
     s->c = c;
@@ -131,8 +131,8 @@ int tr_nsearch_build(tr_nsearch *s, const tr_curve *c, tr_error *err)
     s->eprev = malloc(nalloc * sizeof *s->eprev);
     s->ecomp = malloc(nalloc * sizeof *s->ecomp);
     s->estart = malloc((size_t)(c->ncomp + 1) * sizeof *s->estart);
-    s->node = malloc(maxnodes * sizeof *s->node);
-    if (!s->ea || !s->eb || !s->eprev || !s->ecomp || !s->estart || !s->node) {
+    s->node = tree ? malloc(maxnodes * sizeof *s->node) : NULL;
+    if (!s->ea || !s->eb || !s->eprev || !s->ecomp || !s->estart || (tree && !s->node)) {
         tr_nsearch_free(s);
         return tr_fail(err, TR_ENOMEM, "out of memory building the neighbour search for %zu edges", ne);
     }
@@ -151,12 +151,16 @@ int tr_nsearch_build(tr_nsearch *s, const tr_curve *c, tr_error *err)
         }
     }
     s->estart[c->ncomp] = e;
-    if (ne > 0) {
+    if (tree && ne > 0) {
         build_node(s, 0, ne);
         tr_nsearch_refit(s);
     }
     return TR_OK;
 }
+
+int tr_nsearch_build(tr_nsearch *s, const tr_curve *c, tr_error *err) { return build(s, c, 1, err); }
+
+int tr_nsearch_build_flat(tr_nsearch *s, const tr_curve *c, tr_error *err) { return build(s, c, 0, err); }
 
 void tr_nsearch_node(const tr_nsearch *s, size_t id, size_t *a, size_t *b, int *comp, size_t *left,
                      size_t *right)

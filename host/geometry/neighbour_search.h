@@ -70,6 +70,10 @@ enum {
 typedef int (*tr_pair_fn)(void *ctx, size_t ei, size_t ej, double *cutoff);
 
 int tr_nsearch_build(tr_nsearch *s, const tr_curve *c, tr_error *err);
+/* The edge numbering and index rules only, no tree (tr_nsearch_pairs and
+ * tr_nsearch_edge must not be called on it): for callers that enumerate a
+ * small curve's pairs themselves (the oracle's tr_thickness_gate). */
+int tr_nsearch_build_flat(tr_nsearch *s, const tr_curve *c, tr_error *err);
 /* Recomputes the boxes after the vertices of s->c moved (same topology). */
 void tr_nsearch_refit(tr_nsearch *s);
 void tr_nsearch_free(tr_nsearch *s);

@@ -286,6 +286,33 @@ static double arc_factor(double theta)
     return 2.0 * x / tan(x);
 }
 
+/* octrope's MinRad at a vertex from its edges in and out (lengths, dot and
+ * cross product's norm): INFINITY where it is straight, 0 at a hairpin (the
+ * rope folds back on itself: not straight). */
+static double vertex_minrad(double normin, double normout, double dot, double crn)
+{
+    double rad;
+    if (crn <= STRAIGHT_SIN * normin * normout) {
+        if (dot >= 0)
+            return INFINITY; /* straight: no bend, infinite radius */
+        rad = 0.0;
+    } else {
+        rad = (normin * normout + dot) / (2 * crn);
+    }
+    double mrminus = normin * rad, mrplus = normout * rad;
+    return mrminus < mrplus ? mrminus : mrplus;
+}
+
+/* vertex_minrad at vertex j of the component of n vertices from v0 */
+static double minrad_at(const tr_curve *c, size_t v0, size_t n, size_t j)
+{
+    double in[3], o[3], cr[3];
+    tr_curve_edge(c, v0 + (j + n - 1) % n, v0 + j, in);
+    tr_curve_edge(c, v0 + j, v0 + (j + 1) % n, o);
+    v3_cross(cr, in, o);
+    return vertex_minrad(v3_norm(in), v3_norm(o), v3_dot(in, o), v3_norm(cr));
+}
+
 static void component_lengths(const tr_curve *c, int k, comp_lengths *out)
 {
     size_t v0 = c->start[k], n = tr_comp_nv(c, k), ne = tr_comp_ne(c, k);
@@ -320,16 +347,7 @@ static void component_lengths(const tr_curve *c, int k, comp_lengths *out)
         double tj = 0.5 * fmin(normin, normout);
         if (closed)
             tr_csum_add(&arcs, tj * arc_factor(atan2(crn, dot)));
-        double rad;
-        if (crn <= STRAIGHT_SIN * normin * normout) {
-            if (dot >= 0)
-                continue; /* straight: no bend, infinite radius */
-            rad = 0.0;    /* a hairpin (the rope folds back on itself): MinRad 0, not straight */
-        } else {
-            rad = (normin * normout + dot) / (2 * crn);
-        }
-        double mrminus = normin * rad, mrplus = normout * rad;
-        double mr = mrminus < mrplus ? mrminus : mrplus;
+        double mr = vertex_minrad(normin, normout, dot, crn);
         if (mr < out->minrad) {
             out->minrad = mr;
             out->minrad_vertex = v0 + j;
@@ -391,6 +409,18 @@ static int stopped_at(const tr_curve *c, const tr_deadline *bound, tr_error *err
 
 static int stopped(const tr_nsearch *ns, tr_error *err) { return stopped_at(ns->c, ns->bound, err); }
 
+/* The measure's refusal of a curve through itself: edges ei and ej meet. */
+static int crossing_error(const tr_nsearch *ns, size_t ei, size_t ej, tr_error *err)
+{
+    const tr_curve *c = ns->c;
+    int ki = ns->ecomp[ei], kj = ns->ecomp[ej];
+    size_t s0 = c->start[ki], t0 = c->start[kj];
+    return tr_fail(err, TR_EGEOMETRY,
+                   "the curve passes through itself: the edge from vertex %zu to %zu of component %d meets "
+                   "the edge from vertex %zu to %zu of component %d, so no rope of any thickness follows it",
+                   ns->ea[ej] - t0, ns->eb[ej] - t0, kj, ns->ea[ei] - s0, ns->eb[ei] - s0, ki);
+}
+
 static int find_crossing(const tr_nsearch *ns, tr_error *err)
 {
     const tr_curve *c = ns->c;
@@ -406,12 +436,7 @@ static int find_crossing(const tr_nsearch *ns, tr_error *err)
         return stopped(ns, err);
     if (rc != 1)
         return tr_fail(err, TR_ENOMEM, "out of memory looking for self-crossings");
-    int ki = ns->ecomp[X.ei], kj = ns->ecomp[X.ej];
-    size_t s0 = c->start[ki], t0 = c->start[kj];
-    return tr_fail(err, TR_EGEOMETRY,
-                   "the curve passes through itself: the edge from vertex %zu to %zu of component %d meets "
-                   "the edge from vertex %zu to %zu of component %d, so no rope of any thickness follows it",
-                   ns->ea[X.ej] - t0, ns->eb[X.ej] - t0, kj, ns->ea[X.ei] - s0, ns->eb[X.ei] - s0, ki);
+    return crossing_error(ns, X.ei, X.ej, err);
 }
 
 /* tr_thickness_measure in the curve's own frame. */
@@ -587,4 +612,152 @@ void tr_strut_list_free(tr_strut_list *l)
     free(l->s);
     l->s = NULL;
     l->n = l->cap = 0;
+}
+
+/* ---- the thickness against a gate (thickness.h) ---- */
+
+struct tr_thickness_gate {
+    tr_curve view;      /* c's topology; its x is each evaluation's */
+    tr_nsearch ns;      /* flat: the edge numbering and the index rules */
+    double *mid, *half; /* per edge: midpoint (3), half its length */
+    size_t hint_i, hint_j;
+    int hint; /* the last evaluation's shortest strut, looked at first */
+};
+
+int tr_thickness_gate_new(const tr_curve *c, tr_thickness_gate **out, tr_error *err)
+{
+    *out = NULL;
+    if (!c || c->ncomp <= 0 || !c->x)
+        return tr_fail(err, TR_EINVAL, "thickness of an empty curve");
+    for (int k = 0; k < c->ncomp; k++) {
+        size_t n = tr_comp_nv(c, k);
+        if (n < 2 || (c->closed[k] && n < 3))
+            return tr_fail(err, TR_EGEOMETRY, "component %d has too few vertices (%zu)", k, n);
+    }
+    tr_thickness_gate *g = calloc(1, sizeof *g);
+    if (!g)
+        return tr_fail(err, TR_ENOMEM, "out of memory (thickness gate)");
+    g->view = *c;
+    g->view.lo = NULL; /* the coordinates given are whole */
+    int rc = tr_nsearch_build_flat(&g->ns, &g->view, err);
+    if (rc == TR_OK) {
+        size_t ne = g->ns.ne ? g->ns.ne : 1;
+        g->mid = malloc(3 * ne * sizeof *g->mid);
+        g->half = malloc(ne * sizeof *g->half);
+        if (!g->mid || !g->half)
+            rc = tr_fail(err, TR_ENOMEM, "out of memory (thickness gate)");
+    }
+    if (rc) {
+        tr_thickness_gate_free(g);
+        return rc;
+    }
+    *out = g;
+    return TR_OK;
+}
+
+void tr_thickness_gate_free(tr_thickness_gate *g)
+{
+    if (!g)
+        return;
+    tr_nsearch_free(&g->ns);
+    free(g->mid);
+    free(g->half);
+    free(g);
+}
+
+int tr_thickness_gate_eval(tr_thickness_gate *g, const double *x, double gate, double *thickness, tr_error *err)
+{
+    tr_curve *c = &g->view;
+    c->x = (double *)x; /* read only */
+    tr_thickness t;
+    int rc;
+    /* what tr_thickness_measure refuses it refuses alike, and a curve it
+     * would measure in another frame (far from the origin for its size,
+     * or near 1e+-300) it measures so: the numbers are then its */
+    for (size_t i = 0; i < 3 * c->nv; i++)
+        if (!isfinite(x[i]))
+            return measure_frame(c, NULL, &t, NULL, err);
+    tr_curve_frame f;
+    if ((rc = tr_curve_check_resolution(c, NULL, err)))
+        return rc;
+    tr_curve_frame_of(c, &f);
+    if (!tr_curve_frame_is_identity(&f)) {
+        if ((rc = tr_thickness_measure(c, NULL, &t, NULL, err)) == TR_OK)
+            *thickness = t.thickness;
+        return rc;
+    }
+    /* MinRad first: the cheaper proof of a thickness below the gate */
+    double minrad = INFINITY;
+    for (int k = 0; k < c->ncomp; k++) {
+        size_t v0 = c->start[k], n = tr_comp_nv(c, k);
+        size_t first = c->closed[k] ? 0 : 1, end = c->closed[k] ? n : (n >= 2 ? n - 1 : 0);
+        for (size_t j = first; j < end; j++) {
+            double mr = minrad_at(c, v0, n, j);
+            if (mr < minrad)
+                minrad = mr;
+        }
+        if (minrad < gate) {
+            *thickness = minrad;
+            return TR_OK;
+        }
+    }
+    /* every pair of edges, pruned by their midpoints: two edges are at
+     * least |m_i - m_j| - h_i - h_j apart (h half their lengths), and the
+     * slack covers the rounding of m and h (relative to the coordinates) */
+    const tr_nsearch *ns = &g->ns;
+    double m = 0.0;
+    for (size_t i = 0; i < 3 * c->nv; i++)
+        m = fabs(x[i]) > m ? fabs(x[i]) : m;
+    const double tol = 16 * DBL_EPSILON * m, slack = 64 * DBL_EPSILON * m; /* tol: find_crossing's */
+    for (size_t e = 0; e < ns->ne; e++) {
+        const double *a = x + 3 * ns->ea[e], *b = x + 3 * ns->eb[e];
+        double d[3];
+        v3_sub(d, b, a);
+        for (int q = 0; q < 3; q++)
+            g->mid[3 * e + (size_t)q] = 0.5 * (a[q] + b[q]);
+        g->half[e] = 0.5 * v3_norm(d);
+    }
+    size_t pc = pi_count(c, ns->ne);
+    strut_search S = {.ns = ns, .rel_tol = 0.0, .best = INFINITY, .list = NULL};
+    double cutoff = INFINITY;
+    if (g->hint && g->hint_i < ns->ne && !tr_nsearch_excluded(ns, g->hint_i, g->hint_j, pc))
+        strut_candidate(&S, g->hint_i, g->hint_j, &cutoff);
+    for (size_t i = 1; i < ns->ne && !(S.best < 2.0 * gate); i++) {
+        const double *mi = g->mid + 3 * i;
+        double hi = g->half[i];
+        /* the distance a pair must be within: the cutoff (which the strut
+         * test lowers), or the crossing test's tolerance */
+        double near = cutoff * (1.0 + 1e-12) > tol ? cutoff * (1.0 + 1e-12) : tol;
+        for (size_t j = 0; j < i; j++) {
+            const double *mj = g->mid + 3 * j;
+            double reach = near + hi + g->half[j] + slack;
+            double d2 = (mi[0] - mj[0]) * (mi[0] - mj[0]) + (mi[1] - mj[1]) * (mi[1] - mj[1]) +
+                        (mi[2] - mj[2]) * (mi[2] - mj[2]);
+            if (d2 > reach * reach || tr_nsearch_excluded(ns, i, j, 2))
+                continue;
+            /* a curve through itself (find_crossing's test): thickness 0 */
+            double lower = sqrt(d2) - hi - g->half[j];
+            if (lower <= tol + slack) {
+                double s, u;
+                if (tr_segment_closest(x + 3 * ns->ea[i], x + 3 * ns->eb[i], x + 3 * ns->ea[j], x + 3 * ns->eb[j],
+                                       &s, &u) <= tol) {
+                    *thickness = 0.0;
+                    return TR_OK;
+                }
+            }
+            if (!tr_nsearch_excluded(ns, i, j, pc)) {
+                strut_candidate(&S, i, j, &cutoff);
+                near = cutoff * (1.0 + 1e-12) > tol ? cutoff * (1.0 + 1e-12) : tol;
+            }
+            if (S.best < 2.0 * gate)
+                break;
+        }
+    }
+    if (isfinite(S.best)) {
+        g->hint = 1;
+        g->hint_i = S.best_strut.ei;
+        g->hint_j = S.best_strut.ej;
+    }
+    *thickness = fmin(minrad, 0.5 * S.best);
+    return TR_OK;
 }

@@ -81,6 +81,26 @@ int tr_thickness_measure_component(const tr_curve *c, int k, tr_thickness *out, 
 
 void tr_strut_list_free(tr_strut_list *l);
 
+/* The thickness against a gate, for many measures of one topology: the
+ * crankshaft shuffle (tighten/shuffle.c) asks 10^5 times of a rope of ~100
+ * vertices a component whether a move keeps its thickness at or above a
+ * gate, and what the thickness is if so. Where the thickness is >= gate
+ * *thickness is tr_thickness_measure's, bit for bit (the same MinRad, the
+ * same strut test and pi_count rule, every pair looked at); below the gate
+ * the evaluation stops at the first vertex or strut that proves it and gives
+ * that number (< gate, at or above the thickness). A curve through itself
+ * gets 0 (the measure refuses it); a curve the measure refuses otherwise
+ * (not finite, beyond the doubles' resolution) is refused alike, and one the
+ * measure takes to another frame is measured by it. The pairs are
+ * enumerated, pruned by the edges' midpoints: O(N^2), for N of a few
+ * hundred, where the measure's tree costs more than it saves. c's topology
+ * (components, closed, counts) is copied and must outlive the gate; its
+ * coordinates are each evaluation's x (3 nv doubles, no low parts). */
+typedef struct tr_thickness_gate tr_thickness_gate;
+int tr_thickness_gate_new(const tr_curve *c, tr_thickness_gate **out, tr_error *err);
+int tr_thickness_gate_eval(tr_thickness_gate *g, const double *x, double gate, double *thickness, tr_error *err);
+void tr_thickness_gate_free(tr_thickness_gate *g);
+
 /* Closest points of segments a0-a1 and b0-b1 (octrope's find_poca, Lumelsky's
  * method): returns the distance, parameters s on a and t on b in [0,1].
  * Parallel overlapping segments get the middle of the overlap. */
