@@ -421,13 +421,31 @@ static int crossing_error(const tr_nsearch *ns, size_t ei, size_t ej, tr_error *
                    ns->ea[ej] - t0, ns->eb[ej] - t0, kj, ns->ea[ei] - s0, ns->eb[ei] - s0, ki);
 }
 
-static int find_crossing(const tr_nsearch *ns, tr_error *err)
+/* The largest coordinate in absolute value: the crossing test's tolerance
+ * is CROSSING_EPS of it (rounding relative to the coordinates). */
+#define CROSSING_EPS (16 * DBL_EPSILON)
+static double largest_coordinate(const tr_curve *c)
 {
-    const tr_curve *c = ns->c;
     double m = 0.0;
     for (size_t i = 0; i < 3 * c->nv; i++)
-        m = fmax(m, fabs(c->x[i]));
-    crossing_search X = {.ns = ns, .tol = 16 * DBL_EPSILON * m};
+        m = fabs(c->x[i]) > m ? fabs(c->x[i]) : m;
+    return m;
+}
+
+/* Components too small to have edges or vertices with two edges: refused. */
+static int check_counts(const tr_curve *c, tr_error *err)
+{
+    for (int k = 0; k < c->ncomp; k++) {
+        size_t n = tr_comp_nv(c, k);
+        if (n < 2 || (c->closed[k] && n < 3))
+            return tr_fail(err, TR_EGEOMETRY, "component %d has too few vertices (%zu)", k, n);
+    }
+    return TR_OK;
+}
+
+static int find_crossing(const tr_nsearch *ns, tr_error *err)
+{
+    crossing_search X = {.ns = ns, .tol = CROSSING_EPS * largest_coordinate(ns->c)};
     double cutoff = X.tol;
     int rc = tr_nsearch_pairs(ns, &cutoff, 2, 0, crossing_candidate, &X);
     if (rc == 0)
@@ -449,11 +467,9 @@ static int measure_frame(const tr_curve *c, const tr_thickness_opts *opts, tr_th
     double rel_tol = opts ? opts->strut_rel_tol : 0.0;
     if (!(rel_tol >= 0) || !isfinite(rel_tol))
         return tr_fail(err, TR_EINVAL, "strut tolerance must be finite and >= 0, got %g", rel_tol);
-    for (int k = 0; k < c->ncomp; k++) {
-        size_t n = tr_comp_nv(c, k);
-        if (n < 2 || (c->closed[k] && n < 3))
-            return tr_fail(err, TR_EGEOMETRY, "component %d has too few vertices (%zu)", k, n);
-    }
+    int rc = check_counts(c, err);
+    if (rc)
+        return rc;
     for (size_t i = 0; i < 3 * c->nv; i++)
         if (!isfinite(c->x[i]))
             return tr_fail(err, TR_EGEOMETRY, "vertex %zu is not finite", i / 3);
@@ -493,7 +509,7 @@ static int measure_frame(const tr_curve *c, const tr_thickness_opts *opts, tr_th
     if (tr_deadline_passed_for(bound, c->nv))
         return stopped_at(c, bound, err);
     tr_nsearch ns;
-    int rc = tr_nsearch_build(&ns, c, err);
+    rc = tr_nsearch_build(&ns, c, err);
     if (rc)
         return rc;
     ns.bound = bound;
@@ -629,17 +645,15 @@ int tr_thickness_gate_new(const tr_curve *c, tr_thickness_gate **out, tr_error *
     *out = NULL;
     if (!c || c->ncomp <= 0 || !c->x)
         return tr_fail(err, TR_EINVAL, "thickness of an empty curve");
-    for (int k = 0; k < c->ncomp; k++) {
-        size_t n = tr_comp_nv(c, k);
-        if (n < 2 || (c->closed[k] && n < 3))
-            return tr_fail(err, TR_EGEOMETRY, "component %d has too few vertices (%zu)", k, n);
-    }
+    int rc = check_counts(c, err);
+    if (rc)
+        return rc;
     tr_thickness_gate *g = calloc(1, sizeof *g);
     if (!g)
         return tr_fail(err, TR_ENOMEM, "out of memory (thickness gate)");
     g->view = *c;
     g->view.lo = NULL; /* the coordinates given are whole */
-    int rc = tr_nsearch_build_flat(&g->ns, &g->view, err);
+    rc = tr_nsearch_build_flat(&g->ns, &g->view, err);
     if (rc == TR_OK) {
         size_t ne = g->ns.ne ? g->ns.ne : 1;
         g->mid = malloc(3 * ne * sizeof *g->mid);
@@ -705,10 +719,8 @@ int tr_thickness_gate_eval(tr_thickness_gate *g, const double *x, double gate, d
      * least |m_i - m_j| - h_i - h_j apart (h half their lengths), and the
      * slack covers the rounding of m and h (relative to the coordinates) */
     const tr_nsearch *ns = &g->ns;
-    double m = 0.0;
-    for (size_t i = 0; i < 3 * c->nv; i++)
-        m = fabs(x[i]) > m ? fabs(x[i]) : m;
-    const double tol = 16 * DBL_EPSILON * m, slack = 64 * DBL_EPSILON * m; /* tol: find_crossing's */
+    double m = largest_coordinate(c);
+    const double tol = CROSSING_EPS * m, slack = 64 * DBL_EPSILON * m; /* tol: find_crossing's */
     for (size_t e = 0; e < ns->ne; e++) {
         const double *a = x + 3 * ns->ea[e], *b = x + 3 * ns->eb[e];
         double d[3];
