@@ -212,7 +212,9 @@ int main(int argc, char **argv)
         p.time_limit = atof(argv[4]);
     /* the bend cap and the pass's end, for measuring them (newton.h
      * max_bend, inner_decrement, minrad_guard; 0 turns the latter two off;
-     * NEWTON_MU_MAX the penalty's cap, mu_max) */
+     * NEWTON_MU_MAX the penalty's cap, mu_max; NEWTON_MU_LATE its late
+     * rise, mu_late, 0 none; NEWTON_SKIN the strut list's skin, with a
+     * step's cap skin / 8 unless NEWTON_MAX_MOVE) */
     if (getenv("NEWTON_MINRAD_GUARD"))
         p.minrad_guard = atof(getenv("NEWTON_MINRAD_GUARD"));
     if (getenv("NEWTON_MAX_BEND"))
@@ -222,6 +224,14 @@ int main(int argc, char **argv)
      * stop at a given step, for measuring a resume */
     if (getenv("NEWTON_MU_MAX"))
         p.mu_max = atof(getenv("NEWTON_MU_MAX"));
+    if (getenv("NEWTON_MU_LATE"))
+        p.mu_late = atof(getenv("NEWTON_MU_LATE"));
+    if (getenv("NEWTON_SKIN")) {
+        p.skin = atof(getenv("NEWTON_SKIN"));
+        p.max_move = p.skin / 8;
+    }
+    if (getenv("NEWTON_MAX_MOVE"))
+        p.max_move = atof(getenv("NEWTON_MAX_MOVE"));
     if (getenv("NEWTON_MAX_ITER"))
         p.max_iter = atoi(getenv("NEWTON_MAX_ITER"));
     if (getenv("NEWTON_INNER_DECREMENT"))
