@@ -117,30 +117,53 @@ int tt_at_refine_n(const tt_opts *o, const tr_curve *c)
  * component (a short knot at small N: the inflated roads add vertices),
  * resampled to that N into *out instead of refused, and at thickness 1
  * again (fewer vertices cut the tight polygon's corners; a constrained rope
- * as it is). Returns 1 with *out filled; 0 when no component is past N, or
- * (said on stderr) when it cannot be resampled: the scout is refined as it
- * is. */
+ * as it is). On the automatic roads every scout goes to the fine count
+ * this way, along a spline through its vertices: the rope stays tight, and
+ * the second-order solver takes it at that count first (tighten.c,
+ * open_start), where the level loop's low-pass doublings bent it (the
+ * rope rescaled to thickness 1 7 % longer: 9_2's scout 78.13 at N 508 came
+ * to the last level at 83.93) and, with the first-order steps between,
+ * left it longer than the scout at the time limit (9_8: 81.00 at N 476,
+ * 85.79 at 3888; 9_7 80.71, 81.80); 9_3's scout of 79.36 at N 480 so:
+ * 79.3079 at 3809 in 112 s of the solver. Returns 1 with *out filled; 0
+ * when nothing is resampled, or (said on stderr) when it cannot be: the
+ * scout is refined as it is. */
 int tt_scout_at_refine_n(const tt_opts *o, const tr_curve *scout, tr_curve *out)
 {
-    int finer = 0;
+    int finer = 0, adds = 0;
     size_t *per = malloc((size_t)scout->ncomp * sizeof *per);
     for (int k = 0; per && k < scout->ncomp; k++) {
         per[k] = tr_comp_nv(scout, k);
-        if ((long)per[k] > o->refine_to) {
+        if ((long)per[k] > o->refine_to || (o->refine_auto && (long)per[k] != o->refine_to)) {
+            adds |= (long)per[k] < o->refine_to;
             per[k] = (size_t)o->refine_to;
             finer = 1;
         }
     }
     tr_error err;
-    tr_thickness th;
-    int rc = finer ? tr_resample(scout, per, out, &err) : TR_OK;
+    tr_thickness th, before;
+    tr_deadline bound = tt_bound(o);
+    int rc = finer ? tr_resample_within(scout, per, adds, &bound, out, &err) : TR_OK;
     free(per);
     if (rc != TR_OK)
         tt_note(o, TR_TIGHTEN_WARNING, "warning: the scout could not be resampled to N %ld: %s", o->refine_to,
                 err.msg);
     if (!finer || rc != TR_OK)
         return 0;
-    if (out->ncst == 0 && tr_thickness_measure(out, NULL, &th, NULL, &err) == TR_OK && th.thickness > 0 &&
+    /* a spline through a tight polygon bulges out between its vertices,
+     * bringing touching strands closer (start.c says so for --n): the
+     * added vertices are scaled back to the scout's strut distance first */
+    tr_thickness_opts bounded = {.bound = &bound};
+    if (adds && out->ncst == 0 && tr_thickness_measure(scout, &bounded, &before, NULL, &err) == TR_OK &&
+        tr_thickness_measure(out, &bounded, &th, NULL, &err) == TR_OK && isfinite(before.dcsd) &&
+        th.dcsd < before.dcsd && th.dcsd > 0.5 * before.dcsd)
+        tt_scale_curve(out, before.dcsd / th.dcsd);
+    /* and only a coarsened scout is scaled to thickness 1: a spline through
+     * a tight polygon bends past MinRad where the polygon's turning angles
+     * are uneven, and scaled for that, 9_7's scout (80.69 at N 480) came to
+     * the solver at 115.6 and 9_8's at 107; as --n leaves it (MinRad a
+     * little under 1 at a few vertices), the solver takes it from 80.68 */
+    if (!adds && out->ncst == 0 && tr_thickness_measure(out, NULL, &th, NULL, &err) == TR_OK && th.thickness > 0 &&
         isfinite(th.thickness))
         tt_scale_curve(out, 1.0 / th.thickness);
     return 1;
@@ -260,4 +283,28 @@ out:
     tr_curve_free(c);
     *c = r;
     return TR_OK;
+}
+
+/* A scout of the automatic roads starts coarse and climbs levels: its
+ * shuffled or compacted rope (SHUFFLE_N vertices, edges about 1) is
+ * resampled to edges of about SCOUT_EDGE, not start.c's 0.5, and refined
+ * by the level loop to SCOUT_LEVELS times that count within its share.
+ * At the densified count (edges 0.5, N ~ 200) the first-order steps crawl
+ * and jam and the second-order solver crawls after them (9_15: 90.0 after
+ * 18 s, 87.24 at the share's end; the solver given 60 s more, 83.17 and
+ * still 1e-4 a step), while coarser levels slide before they are refined.
+ * Measured on one core, 25 s a scout, the same shuffled starts
+ * (bench/notes/2026-11-30-scout-levels.md): 9_15 87.24 / 87.30 ->
+ * 82.21 / 86.39, 9_7 81.63 -> 80.69, 9_3 79.64 / 79.67 -> 79.36 / 79.36
+ * (N 200 -> 480); from 150 to 600 82.81, from 200 to 400 84.91, from 250
+ * to 500 86.06. */
+#define SCOUT_EDGE 0.8
+#define SCOUT_LEVELS 4
+
+void tt_scout_levels(tt_opts *o)
+{
+    if (!o->refine_auto)
+        return;
+    o->coarse_edge = SCOUT_EDGE;
+    o->scout_levels = SCOUT_LEVELS;
 }

@@ -34,7 +34,7 @@ static int densify_coarse(const tt_opts *o, tr_curve *c, tr_error *err)
             if (len / (double)ne < MAX_COARSE_EDGE)
                 continue;
             coarse = 1;
-            size_t want = (size_t)ceil(len / COARSE_EDGE), least = (size_t)ceil(len / MAX_COARSE_EDGE) + 1;
+            size_t want = (size_t)ceil(len / (o->coarse_edge > 0 ? o->coarse_edge : COARSE_EDGE)), least = (size_t)ceil(len / MAX_COARSE_EDGE) + 1;
             if (o->refine_to > 0 && want > (size_t)o->refine_to)
                 want = (size_t)o->refine_to > least ? (size_t)o->refine_to : least;
             per[k] = want > nv ? want : nv + 1;
@@ -311,11 +311,14 @@ long tt_auto_refine_n(const tt_opts *o, double scout_ropelength)
     /* refine_to counts the vertices of each component: a link's length is
      * shared among its components */
     int ncomp = o->start && o->start->ncomp > 0 ? o->start->ncomp : 1;
-    long n = isfinite(scout_ropelength) ? lround(AUTO_N_PER_LENGTH * scout_ropelength / ncomp) : o->refine_to;
-    /* never below the provisional count, and a refinement (twice the coarse) */
-    if (n < o->refine_to)
-        n = o->refine_to;
-    return n < 2 * o->n ? 2 * o->n : n;
+    /* not the provisional count (the start's): a start's vertices are its
+     * drawing's, not the knot's (9_3 from KnotInfo's PD code, drawn with
+     * 12 063 vertices, was refined to them from a scout of 460 and stopped
+     * far from tight at the time limit) */
+    if (!isfinite(scout_ropelength))
+        return o->refine_to;
+    long n = lround(AUTO_N_PER_LENGTH * scout_ropelength / ncomp);
+    return n < 64 ? 64 : n;
 }
 
 static void choose_roads(tt_opts *o)

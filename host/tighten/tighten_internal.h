@@ -24,6 +24,13 @@ typedef struct tt_opts {
     int shuffled; /* shuffles: this road starts from the start shuffled (tt_shuffle_start) */
     int shuffle_index; /* which of the shuffled roads (0: the first), so which recipe */
     int compacted; /* with shuffled: the start compacted only, not inflated and walked first */
+    /* a start too coarse for thickness 1 is resampled to edges of about
+     * this (0: start.c's COARSE_EDGE) */
+    double coarse_edge;
+    /* a scout of the automatic roads: refined by the level loop to this
+     * many times its start's count per component (0: its coarse level only;
+     * roads.c, SCOUT_LEVELS) */
+    int scout_levels;
     int roads;    /* roads in all, for the progress callback */
     double target, residual, time_limit, ckpt_every;
     /* time_limit as a clock time (tr_clock_seconds; 0: none): the hard
@@ -85,6 +92,8 @@ int tt_at_refine_n(const tt_opts *o, const tr_curve *c);
 int tt_scout_at_refine_n(const tt_opts *o, const tr_curve *scout, tr_curve *out);
 int tt_other_road(const tt_opts *o, tr_curve *c, tr_error *err);
 int tt_shuffle_start(const tt_opts *o, tr_curve *c, tr_error *err);
+/* an automatic road's scout: coarse edges and levels (roads.c) */
+void tt_scout_levels(tt_opts *o);
 /* vertex_route.c: the whole call in the vertex contact model (contacts
  * TR_CONTACTS_VERTEX): res filled (its type not yet checked), or the error
  * with res->failed_at */
