@@ -204,7 +204,8 @@ typedef struct tr_newton_params {
                         * none by more, a closed knot's raises none more above max(its own, 1) */
     double mu0;        /* first penalty, in units of 1 / l0 */
     double mu_max;     /* largest penalty, likewise */
-    double mu_late;    /* ... raised to this once the rows are within late_viol and stall at mu_max (newton.c) */
+    double mu_late;    /* ... raised to this once the rows are within late_viol and stall at mu_max (newton.c;
+                        * 0, the default: never) */
     double late_viol;  /* the violation at or below which mu_max may rise to mu_late */
     double viol_tol;   /* converged: worst relative violation below this ... */
     double stat_tol;   /* ... and relative unbalanced force below this */
