@@ -141,7 +141,7 @@ int tt_scout_at_refine_n(const tt_opts *o, const tr_curve *scout, tr_curve *out)
         }
     }
     tr_error err;
-    tr_thickness th, before;
+    tr_thickness th;
     tr_deadline bound = tt_bound(o);
     int rc = finer ? tr_resample_within(scout, per, adds, &bound, out, &err) : TR_OK;
     free(per);
@@ -150,14 +150,9 @@ int tt_scout_at_refine_n(const tt_opts *o, const tr_curve *scout, tr_curve *out)
                 err.msg);
     if (!finer || rc != TR_OK)
         return 0;
-    /* a spline through a tight polygon bulges out between its vertices,
-     * bringing touching strands closer (start.c says so for --n): the
-     * added vertices are scaled back to the scout's strut distance first */
-    tr_thickness_opts bounded = {.bound = &bound};
-    if (adds && out->ncst == 0 && tr_thickness_measure(scout, &bounded, &before, NULL, &err) == TR_OK &&
-        tr_thickness_measure(out, &bounded, &th, NULL, &err) == TR_OK && isfinite(before.dcsd) &&
-        th.dcsd < before.dcsd && th.dcsd > 0.5 * before.dcsd)
-        tt_scale_curve(out, before.dcsd / th.dcsd);
+    /* the added vertices back at the scout's strut distance, as --n does */
+    if (adds)
+        tt_keep_strut_distance(scout, out, &bound);
     /* and only a coarsened scout is scaled to thickness 1: a spline through
      * a tight polygon bends past MinRad where the polygon's turning angles
      * are uneven, and scaled for that, 9_7's scout (80.69 at N 480) came to

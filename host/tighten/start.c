@@ -99,6 +99,23 @@ static int grow_count(tr_curve *c, double edge, const tr_deadline *bound, tr_err
     return rc;
 }
 
+/* A spline through a tight polygon bulges out between its vertices, so
+ * strands that touched come closer than before (1.99835 for the 2 x 40 Hopf
+ * link refined to 80): the added vertices are scaled back to the strut
+ * distance of the curve they were resampled from, which ropelength does not
+ * see. Constraint planes are fixed, so a constrained rope is left as it is;
+ * a measure that fails or the bound leave it too. */
+void tt_keep_strut_distance(const tr_curve *from, tr_curve *to, const tr_deadline *bound)
+{
+    tr_thickness before, after;
+    tr_thickness_opts bounded = {.bound = bound};
+    tr_error err;
+    if (to->ncst == 0 && !tr_thickness_measure(from, &bounded, &before, NULL, &err) &&
+        !tr_thickness_measure(to, &bounded, &after, NULL, &err) && isfinite(before.dcsd) &&
+        after.dcsd < before.dcsd && after.dcsd > 0.5 * before.dcsd)
+        tt_scale_curve(to, before.dcsd / after.dcsd);
+}
+
 /* Ropelength does not see where a knot is, but the engine's doubles do: a
  * trefoil moved to 1e6 tightened to 32.889 (KKT residual 0.45) where at
  * the origin it reaches 32.837 (1e-4), its differences of coordinates
@@ -176,23 +193,13 @@ int tt_read_start(const tt_opts *o, tr_curve *c, tr_error *err)
                 per[k] = (size_t)o->n;
                 adds |= per[k] > c->start[k + 1] - c->start[k];
             }
-            tr_thickness before, after;
             rc = tr_resample_within(c, per, adds, &bound, &r, err);
             free(per);
             if (rc == TR_EINTERRUPTED)
                 rc = tr_fail(err, TR_EINTERRUPTED, "%s resampled to %ld vertices: %s", in, o->n,
                              tr_deadline_passed(&bound) == 2 ? "stopped by a signal" : "the time limit came");
-            /* A spline through a tight polygon bulges out between its
-             * vertices, so strands that touched come closer than before
-             * (1.99835 for the 2 x 40 Hopf link refined to 80): the added
-             * vertices are scaled back to the start's strut distance,
-             * which ropelength does not see. Constraint planes are fixed,
-             * so a constrained rope is left as it is. */
-            if (rc == TR_OK && adds && c->ncst == 0 &&
-                !tr_thickness_measure(c, &bounded, &before, NULL, err) &&
-                !tr_thickness_measure(&r, &bounded, &after, NULL, err) &&
-                isfinite(before.dcsd) && after.dcsd < before.dcsd && after.dcsd > 0.5 * before.dcsd)
-                tt_scale_curve(&r, before.dcsd / after.dcsd);
+            if (rc == TR_OK && adds)
+                tt_keep_strut_distance(c, &r, &bound);
             if (rc == TR_OK) {
                 tr_curve_free(c);
                 *c = r;

@@ -92,6 +92,9 @@ int tt_at_refine_n(const tt_opts *o, const tr_curve *c);
 int tt_scout_at_refine_n(const tt_opts *o, const tr_curve *scout, tr_curve *out);
 int tt_other_road(const tt_opts *o, tr_curve *c, tr_error *err);
 int tt_shuffle_start(const tt_opts *o, tr_curve *c, tr_error *err);
+/* start.c: a curve resampled along a spline from `from` scaled back to
+ * its strut distance */
+void tt_keep_strut_distance(const tr_curve *from, tr_curve *to, const tr_deadline *bound);
 /* an automatic road's scout: coarse edges and levels (roads.c) */
 void tt_scout_levels(tt_opts *o);
 /* vertex_route.c: the whole call in the vertex contact model (contacts
