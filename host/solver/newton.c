@@ -41,8 +41,8 @@ void tr_newton_params_default(tr_newton_params *p)
     p->warm_start = 1;
     p->mu_max = 1e5;
     /* off by default: at 38 400 it fired at 6e-8 over, the rows then
-     * jumped to 1e-4 and the rung settled in 360 steps (545 s) against
-     * 186 (443 s), 3.1e-9 shorter; measured at 76 800 next (newton_run
+     * jumped to 1e-4 and the rung settled in 360 steps against the
+     * default's 186, 3.1e-9 shorter; measured at 76 800 next (newton_run
      * NEWTON_MU_LATE=1e7) */
     p->mu_late = 0.0;
     p->late_viol = 5e-7;
