@@ -18,10 +18,14 @@ endfunction()
 tr_knot_test(make_knot_name 0 DIR ${_kn_dir}/name ONLY "k.vect" OUT ${_kn_dir}/name/k.vect
   MATCH "knot 7_4 [(]KnotInfo[)][^\n]*\n# type checked: Alexander polynomial 4 -7 4, determinant 15, signature -2, as 7_4's\n"
   CMD ${_tr} make knot 7.4 -o ${_kn_dir}/name/k.vect)
-# relaxed by default (geometry/relax.h), as drawn on request; the type is checked either way
+# a knot's name makes its minimal diagram (KnotInfo's PD code) relaxed (geometry/relax.h), a link's
+# its braid's closure relaxed; the braid's closure as drawn on request; the type is checked either way
 tr_knot_test(make_knot_relaxed 0 DIR ${_kn_dir}/relaxed ONLY "k.vect" OUT ${_kn_dir}/relaxed/k.vect
-  MATCH "knot 9_8 [(]KnotInfo[)], closure of its 5-strand braid, relaxed, [^\n]*\n# type checked: [^\n]*as 9_8's\n"
+  MATCH "knot 9_8 [(]KnotInfo[)], its minimal diagram [(]KnotInfo's PD code[)], relaxed, [^\n]*\n# type checked: [^\n]*as 9_8's\n"
   CMD ${_tr} make knot 9_8 -o ${_kn_dir}/relaxed/k.vect)
+tr_knot_test(make_link_relaxed 0 DIR ${_kn_dir}/link_relaxed ONLY "l.vect" OUT ${_kn_dir}/link_relaxed/l.vect
+  MATCH "link L4a1[{]1[}] [(]LinkInfo[)], closure of its [0-9]-strand braid, relaxed, [^\n]*\n# type checked: [^\n]*as L4a1[{]1[}]'s\n"
+  CMD ${_tr} make link L4a1{1} -o ${_kn_dir}/link_relaxed/l.vect)
 tr_knot_test(make_knot_as_drawn 0 DIR ${_kn_dir}/drawn ONLY "k.vect" OUT ${_kn_dir}/drawn/k.vect
   MATCH "knot 9_8 [(]KnotInfo[)], closure of its 5-strand braid, 2485 vertices[^\n]*\n# type checked: [^\n]*as 9_8's\n"
   CMD ${_tr} make knot 9_8 --as-drawn -o ${_kn_dir}/drawn/k.vect)

@@ -25,6 +25,19 @@ static int sub_node(int n, int e, int k) { return n + e * (LAYOUT_SUB - 1) + k; 
 int tr_make_pd_layout(tr_curve *out, const int (*pd)[4], int n, size_t dense, tr_error *err)
 {
     memset(out, 0, sizeof *out);
+    tr_curve coarse;
+    int rc = tr_make_pd_polygon(&coarse, pd, n, err);
+    if (rc)
+        return rc;
+    size_t want = dense < coarse.nv * 4 ? coarse.nv * 4 : dense;
+    rc = tr_resample_smooth(&coarse, &want, out, err);
+    tr_curve_free(&coarse);
+    return rc;
+}
+
+int tr_make_pd_polygon(tr_curve *out, const int (*pd)[4], int n, tr_error *err)
+{
+    memset(out, 0, sizeof *out);
     if (n < 2)
         return tr_fail(err, TR_EINVAL, "a PD code of %d crossing%s is an unknot%s (make knot 0_1)", n,
                        n == 1 ? "" : "s", n == 1 ? " with a kink" : "");
@@ -39,7 +52,6 @@ int tr_make_pd_layout(tr_curve *out, const int (*pd)[4], int n, size_t dense, tr
     /* Tutte's graph: edge list, face rings, adjacency (CSR), positions */
     int *eu = NULL, *ev = NULL, *ring = NULL, *deg = NULL, *adj = NULL, *fill = NULL, *fix = NULL;
     double *pos = NULL;
-    tr_curve coarse = {0};
     if (!tail || !head || !slot_edge || !dart_face || !mark || !xy) {
         rc = tr_fail(err, TR_ENOMEM, "out of memory laying out a PD code");
         goto done;
@@ -248,13 +260,13 @@ int tr_make_pd_layout(tr_curve *out, const int (*pd)[4], int n, size_t dense, tr
         goto done;
     }
     /* the knot along its labels, lifted at the crossings */
-    rc = tr_curve_alloc(&coarse, 1, &npts, NULL, err);
+    rc = tr_curve_alloc(out, 1, &npts, NULL, err);
     if (rc)
         goto done;
     double h = 0.35 * mind;
     for (int e = 0; e < ne; e++) {
         int c = tail[e].c;
-        double *p = coarse.x + 3 * (size_t)e * LAYOUT_SUB;
+        double *p = out->x + 3 * (size_t)e * LAYOUT_SUB;
         /* the passage that leaves by edge e: under when e is the crossing's
          * slot c (the under strand's way out), else over */
         int is_over = slot_edge[4 * c + 2] != e;
@@ -268,8 +280,6 @@ int tr_make_pd_layout(tr_curve *out, const int (*pd)[4], int n, size_t dense, tr
             p[3 * q + 2] = 0;
         }
     }
-    size_t want = dense < npts * 4 ? npts * 4 : dense;
-    rc = tr_resample_smooth(&coarse, &want, out, err);
 done:
     free(eu);
     free(ev);
@@ -279,7 +289,6 @@ done:
     free(fill);
     free(fix);
     free(pos);
-    tr_curve_free(&coarse);
     free(tail);
     free(head);
     free(slot_edge);

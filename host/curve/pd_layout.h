@@ -27,4 +27,12 @@
  * cannot lay out, with the reason. */
 int tr_make_pd_layout(tr_curve *out, const int (*pd)[4], int n, size_t dense, tr_error *err);
 
+/* The polygon that spline is drawn through: the crossings and the edges'
+ * LAYOUT_SUB - 1 pieces' nodes (2n LAYOUT_SUB vertices in label order),
+ * lifted at the crossings. Straight segments of a plane straight-line
+ * drawing meet only at its nodes, so this polygon is the code's knot
+ * exactly (the spline through it may stray where the drawing is
+ * crowded). */
+int tr_make_pd_polygon(tr_curve *out, const int (*pd)[4], int n, tr_error *err);
+
 #endif

@@ -57,6 +57,20 @@ static void say_relaxed(tr_knot_made *made, const tr_knot_notation *nt, int rela
                  relaxed ? ", relaxed" : ", as drawn (too crowded a drawing to relax)");
 }
 
+/* A PD code's straight-line drawing relaxed (tr_knot_start_polygon_relaxed),
+ * made a start of nt->n vertices */
+static int from_pd_polygon(const tr_pd *pd, const tr_knot_notation *nt, tr_curve *out, tr_knot_made *made,
+                           tr_error *err)
+{
+    tr_curve poly = {0}, moved = {0};
+    int rc = tr_make_pd_polygon(&poly, (const int(*)[4])pd->x, pd->n, err);
+    if (rc == TR_OK && (rc = tr_knot_start_polygon_relaxed(&poly, &moved, err)) == TR_OK)
+        rc = tr_knot_start_from_curve(&moved, nt->n, out, &made->thickness, err);
+    tr_curve_free(&moved);
+    tr_curve_free(&poly);
+    return rc;
+}
+
 /* a braid word's closure, refused when it is not the kind asked for */
 static int from_braid(const tr_braid *b, const tr_knot_notation *nt, int named, tr_curve *out, tr_knot_made *made,
                       tr_error *err)
@@ -154,6 +168,26 @@ int tr_knot_start_make(const tr_knot_notation *nt, tr_curve *out, tr_knot_made *
             rc = tr_make_circle(out, UNKNOT_RADIUS, nv, err);
             size_t u = strlen(made->what);
             snprintf(made->what + u, sizeof made->what - u, ": a circle of radius %g", UNKNOT_RADIUS);
+        } else if (!entry->is_link && entry->pd.n >= 3 && !nt->as_drawn) {
+            /* a knot's minimal diagram (KnotInfo's PD code) laid out and
+             * relaxed, its braid's closure where that fails: the
+             * tightening's basin follows the start's conformation, and
+             * from the diagram's the scouts of 9_3 reached 78.34-78.40
+             * where the braid closure's reached 79.35-83.24 (KnotInfo
+             * 78.19; bench/notes/2026-11-30-scout-levels.md) */
+            size_t u = strlen(made->what);
+            snprintf(made->what + u, sizeof made->what - u, ", its minimal diagram (KnotInfo's PD code), relaxed");
+            tr_error pd_err;
+            if ((rc = from_pd_polygon(&entry->pd, nt, out, made, &pd_err)) == TR_OK &&
+                (rc = check_type(out, entry, NULL, made, &pd_err)) == TR_OK)
+                goto done;
+            tr_curve_free(out);
+            if (rc == TR_ENOMEM) {
+                *err = pd_err;
+                goto done;
+            }
+            made->what[u] = '\0';
+            rc = from_braid(&entry->braid, nt, 1, out, made, err);
         } else {
             rc = from_braid(&entry->braid, nt, 1, out, made, err);
         }
@@ -164,19 +198,19 @@ int tr_knot_start_make(const tr_knot_notation *nt, tr_curve *out, tr_knot_made *
         if ((rc = tr_pd_parse(nt->pd, &pd, err)))
             goto done;
         snprintf(made->what, sizeof made->what, "knot from a %d-crossing PD code", pd.n);
-        tr_curve dense;
-        rc = tr_make_pd_layout(&dense, (const int(*)[4])pd.x, pd.n, (size_t)pd.n * PD_LAYOUT_SAMPLES, err);
-        if (rc == TR_OK) {
-            tr_curve moved = {0};
-            int relaxed = 0;
-            if (nt->as_drawn)
+        tr_curve dense = {0}, moved = {0};
+        if (nt->as_drawn) {
+            rc = tr_make_pd_layout(&dense, (const int(*)[4])pd.x, pd.n, (size_t)pd.n * PD_LAYOUT_SAMPLES, err);
+            if (rc == TR_OK)
                 rc = tr_knot_start_from_curve(&dense, nt->n, out, &made->thickness, err);
-            else if ((rc = tr_knot_start_relaxed(&dense, &moved, &relaxed, err)) == TR_OK)
+        } else {
+            rc = tr_make_pd_polygon(&dense, (const int(*)[4])pd.x, pd.n, err);
+            if (rc == TR_OK && (rc = tr_knot_start_polygon_relaxed(&dense, &moved, err)) == TR_OK)
                 rc = tr_knot_start_from_curve(&moved, nt->n, out, &made->thickness, err);
-            say_relaxed(made, nt, relaxed);
-            tr_curve_free(&moved);
-            tr_curve_free(&dense);
         }
+        say_relaxed(made, nt, rc == TR_OK);
+        tr_curve_free(&moved);
+        tr_curve_free(&dense);
     }
     /* a construction's message says what it was making */
     if (rc && rc != TR_ENOMEM && made->what[0] && !made->other_kind)

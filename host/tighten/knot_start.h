@@ -1,5 +1,6 @@
 /* Starts for knots and links given by notation (issue 47): a braid closure
- * (curve/braid_closure.h) made equilateral and scaled for a rope of radius 1,
+ * (curve/braid_closure.h) or a PD code's drawing (curve/pd_layout.h),
+ * relaxed, made equilateral and scaled for a rope of radius 1,
  * and the check that a curve is of the knot or link type it is said to be. */
 #ifndef TR_KNOT_START_H
 #define TR_KNOT_START_H
@@ -34,6 +35,12 @@ int tr_knot_start_from_braid(const tr_braid *b, size_t n, int relax, tr_curve *o
  * in tr_knot_start_from_braid does this to the closure first, *relaxed
  * saying whether it was. */
 int tr_knot_start_relaxed(const tr_curve *dense, tr_curve *out, int *relaxed, tr_error *err);
+
+/* A polygon that is the knot exactly however crowded (a PD code's
+ * straight-line drawing, tr_make_pd_polygon) relaxed without a resampling
+ * that could cut a strand, and drawn densely along a spline, for
+ * tr_knot_start_from_curve. */
+int tr_knot_start_polygon_relaxed(const tr_curve *poly, tr_curve *out, tr_error *err);
 
 /* The same for any smooth closed curve given as a dense polygon (the PD
  * code's layout, curve/pd_layout.h): resampled to n equal edges per

@@ -14,8 +14,11 @@
  *    orientation (the braid closure orients every strand alike);
  *  - a wrong one is caught: 3_1's curve is not 4_1, 4_1's braid does not pass
  *    as 3_1, a 2-component link is not a knot, the Hopf link is not L4a1;
- *  - the trefoil's PD code, laid out and lifted, is 3_1.
- * The names are made as drawn, and every 4th relaxed (geometry/relax.h).
+ *  - the trefoil's PD code, laid out and lifted, is 3_1;
+ *  - a knot's minimal diagram (KnotInfo's PD code, make knot NAME's start)
+ *    relaxed is the knot itself, signature's sign included.
+ * The names are made as drawn, and every 4th relaxed (geometry/relax.h) and
+ * from its diagram.
  * Each make is timed and the slowest printed (target: well under 1 s; not a
  * check, as a loaded machine would fail it). */
 #include <math.h>
@@ -191,6 +194,64 @@ static void test_pd_trefoil(const tr_knot_table *t)
     CHECK(tr_make_pd_layout(&dense, kink, 1, 100, &err) == TR_EINVAL);
 }
 
+/* Every knot to 10 crossings (or every stride-th) from its minimal diagram
+ * (KnotInfo's PD code) as make knot NAME makes it: the straight-line
+ * drawing relaxed (tr_knot_start_polygon_relaxed), none falling back to the
+ * braid closure; each is KnotInfo's knot itself (the signature with its
+ * sign, as the PD code orients it), thick and equilateral. */
+static void test_every_diagram(const tr_knot_table *t, int stride)
+{
+    int seen = 0, made = 0, matched = 0;
+    double slowest = 0, total = 0;
+    const char *slow_name = "";
+    for (int i = 0; i < t->n; i++) {
+        const tr_table_entry *e = &t->e[i];
+        if (e->is_link || e->crossings > 10 || e->pd.n < 3 || seen++ % stride)
+            continue;
+        double t0 = now();
+        tr_curve poly, moved, c;
+        double th;
+        tr_error err;
+        tr_type_check tc;
+        char why[1024];
+        int rc = tr_make_pd_polygon(&poly, (const int(*)[4])e->pd.x, e->pd.n, &err);
+        if (rc == 0) {
+            rc = tr_knot_start_polygon_relaxed(&poly, &moved, &err);
+            tr_curve_free(&poly);
+        }
+        if (rc == 0) {
+            rc = tr_knot_start_from_curve(&moved, 0, &c, &th, &err);
+            tr_curve_free(&moved);
+        }
+        if (rc) {
+            tr_test_report(__FILE__, __LINE__, "%s: %s", e->name, err.msg);
+            continue;
+        }
+        made++;
+        int ok = tr_type_check_of(&c, &tc, &err) == 0 && tr_type_matches(&tc, e, why, sizeof why);
+        double dt = now() - t0;
+        total += dt;
+        if (dt > slowest) {
+            slowest = dt;
+            slow_name = e->name;
+        }
+        if (!ok)
+            tr_test_report(__FILE__, __LINE__, "%s from its PD code: not identified: %s", e->name, why);
+        else if (tc.inv.signature != e->signature)
+            tr_test_report(__FILE__, __LINE__, "%s from its PD code: signature %d, KnotInfo's %d", e->name,
+                           tc.inv.signature, e->signature);
+        else
+            matched++;
+        if (!check_start(&c, e->name))
+            tr_test_failures++;
+        tr_curve_free(&c);
+    }
+    CHECK(seen == 249);
+    CHECK(made == (seen + stride - 1) / stride && matched == made);
+    printf("from the minimal diagram: %d knots made, %d identified as themselves; %.1f ms each on average, slowest "
+           "%s %.0f ms\n", made, matched, 1e3 * total / (made ? made : 1), slow_name, 1e3 * slowest);
+}
+
 int main(void)
 {
     tr_knot_table t;
@@ -205,6 +266,7 @@ int main(void)
      * (every name relaxed: bench/RESULTS.md) */
     test_every_name(&t, 0, 1);
     test_every_name(&t, 1, getenv("TR_TEST_EVERY_NAME_RELAXED") ? 1 : 4);
+    test_every_diagram(&t, getenv("TR_TEST_EVERY_NAME_RELAXED") ? 1 : 8);
     test_wrong_ones(&t);
     test_pd_trefoil(&t);
     tr_knot_table_free(&t);
