@@ -171,10 +171,10 @@ int tr_knot_start_make(const tr_knot_notation *nt, tr_curve *out, tr_knot_made *
         } else if (!entry->is_link && entry->pd.n >= 3 && !nt->as_drawn) {
             /* a knot's minimal diagram (KnotInfo's PD code) laid out and
              * relaxed, its braid's closure where that fails: the
-             * tightening's basin follows the start's conformation, and
-             * from the diagram's the scouts of 9_3 reached 78.34-78.40
-             * where the braid closure's reached 79.35-83.24 (KnotInfo
-             * 78.19; bench/notes/2026-11-30-scout-levels.md) */
+             * tightening's basin follows the start's conformation: the
+             * plain command (T = 300) from the diagrams ended at or below
+             * KnotInfo for 9_3, 9_8, 9_10, 9_12, from the braid closures
+             * 1.2-1.4 % above (bench/notes/2026-11-30-diagram-starts.md) */
             size_t u = strlen(made->what);
             snprintf(made->what + u, sizeof made->what - u, ", its minimal diagram (KnotInfo's PD code), relaxed");
             tr_error pd_err;

@@ -94,6 +94,14 @@ int tr_knot_start_relaxed(const tr_curve *dense, tr_curve *out, int *relaxed, tr
 #define POLY_RELAX_PER_VERTEX 1.5
 #define POLY_RELAX_STEPS 4000
 
+/* the pieces edge a-b is cut into: its length in pieces of `piece`, at least 1 */
+static long pieces_of(const double *a, const double *b, double piece)
+{
+    double len = sqrt((b[0] - a[0]) * (b[0] - a[0]) + (b[1] - a[1]) * (b[1] - a[1]) + (b[2] - a[2]) * (b[2] - a[2]));
+    long pieces = lround(len / piece);
+    return pieces < 1 ? 1 : pieces;
+}
+
 int tr_knot_start_polygon_relaxed(const tr_curve *poly, tr_curve *out, tr_error *err)
 {
     memset(out, 0, sizeof *out);
@@ -102,17 +110,12 @@ int tr_knot_start_polygon_relaxed(const tr_curve *poly, tr_curve *out, tr_error 
     tr_curve cut = {0};
     if (!per)
         return tr_fail(err, TR_ENOMEM, "out of memory");
-    double mean = tr_curve_length(poly) / (double)poly->nv / POLY_RELAX_PER_VERTEX;
+    double piece = tr_curve_length(poly) / (double)poly->nv / POLY_RELAX_PER_VERTEX;
     for (int k = 0; k < nc; k++) {
         size_t s = poly->start[k], n = tr_comp_nv(poly, k);
         per[k] = 0;
-        for (size_t i = 0; i < n; i++) {
-            const double *a = poly->x + 3 * (s + i), *b = poly->x + 3 * (s + (i + 1) % n);
-            double len = sqrt((b[0] - a[0]) * (b[0] - a[0]) + (b[1] - a[1]) * (b[1] - a[1]) +
-                              (b[2] - a[2]) * (b[2] - a[2]));
-            long pieces = lround(len / mean);
-            per[k] += (size_t)(pieces < 1 ? 1 : pieces);
-        }
+        for (size_t i = 0; i < n; i++)
+            per[k] += (size_t)pieces_of(poly->x + 3 * (s + i), poly->x + 3 * (s + (i + 1) % n), piece);
     }
     int rc = tr_curve_alloc(&cut, nc, per, NULL, err);
     for (int k = 0; rc == 0 && k < nc; k++) {
@@ -121,11 +124,7 @@ int tr_knot_start_polygon_relaxed(const tr_curve *poly, tr_curve *out, tr_error 
         cut.closed[k] = 1;
         for (size_t i = 0; i < n; i++) {
             const double *a = poly->x + 3 * (s + i), *b = poly->x + 3 * (s + (i + 1) % n);
-            double len = sqrt((b[0] - a[0]) * (b[0] - a[0]) + (b[1] - a[1]) * (b[1] - a[1]) +
-                              (b[2] - a[2]) * (b[2] - a[2]));
-            long pieces = lround(len / mean);
-            if (pieces < 1)
-                pieces = 1;
+            long pieces = pieces_of(a, b, piece);
             for (long q = 0; q < pieces; q++, p += 3)
                 for (int d = 0; d < 3; d++)
                     p[d] = a[d] + (b[d] - a[d]) * (double)q / (double)pieces;
