@@ -18,11 +18,16 @@ endfunction()
 tr_knot_test(make_knot_name 0 DIR ${_kn_dir}/name ONLY "k.vect" OUT ${_kn_dir}/name/k.vect
   MATCH "knot 7_4 [(]KnotInfo[)][^\n]*\n# type checked: Alexander polynomial 4 -7 4, determinant 15, signature -2, as 7_4's\n"
   CMD ${_tr} make knot 7.4 -o ${_kn_dir}/name/k.vect)
-# a knot's name makes its minimal diagram (KnotInfo's PD code) relaxed (geometry/relax.h), a link's
-# its braid's closure relaxed; the braid's closure as drawn on request; the type is checked either way
+# a knot's name makes its minimal diagram (KnotInfo's PD code) and its braid's closure, both
+# relaxed (geometry/relax.h), and keeps the shorter (9_8: the diagram, 129.1 against 183.5 at
+# thickness 1.25; 9_1, the (2, 9) torus knot: the closure, 105.2 against 108.3); a link's name its
+# braid's closure relaxed; the braid's closure as drawn on request; the type is checked either way
 tr_knot_test(make_knot_relaxed 0 DIR ${_kn_dir}/relaxed ONLY "k.vect" OUT ${_kn_dir}/relaxed/k.vect
-  MATCH "knot 9_8 [(]KnotInfo[)], its minimal diagram [(]KnotInfo's PD code[)], relaxed, [^\n]*\n# type checked: [^\n]*as 9_8's\n"
+  MATCH "knot 9_8 [(]KnotInfo[)], its minimal diagram [(]KnotInfo's PD code[)], relaxed [(]shorter than its braid's closure relaxed: [0-9.]+ against [0-9.]+[)], [^\n]*\n# type checked: [^\n]*as 9_8's\n"
   CMD ${_tr} make knot 9_8 -o ${_kn_dir}/relaxed/k.vect)
+tr_knot_test(make_knot_braid_shorter 0 DIR ${_kn_dir}/braid_shorter ONLY "k.vect" OUT ${_kn_dir}/braid_shorter/k.vect
+  MATCH "knot 9_1 [(]KnotInfo[)], closure of its 2-strand braid, relaxed [(]shorter than its minimal diagram relaxed: [0-9.]+ against [0-9.]+[)], [^\n]*\n# type checked: [^\n]*as 9_1's\n"
+  CMD ${_tr} make knot 9_1 -o ${_kn_dir}/braid_shorter/k.vect)
 tr_knot_test(make_link_relaxed 0 DIR ${_kn_dir}/link_relaxed ONLY "l.vect" OUT ${_kn_dir}/link_relaxed/l.vect
   MATCH "link L4a1[{]1[}] [(]LinkInfo[)], closure of its [0-9]-strand braid, relaxed, [^\n]*\n# type checked: [^\n]*as L4a1[{]1[}]'s\n"
   CMD ${_tr} make link L4a1{1} -o ${_kn_dir}/link_relaxed/l.vect)

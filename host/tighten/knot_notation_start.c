@@ -97,6 +97,58 @@ static int from_braid(const tr_braid *b, const tr_knot_notation *nt, int named, 
     return rc;
 }
 
+static int check_type(const tr_curve *c, const tr_table_entry *entry, const tr_pd *pd, tr_knot_made *made,
+                      tr_error *err);
+
+/* A knot's start by name: its minimal diagram (KnotInfo's PD code) laid
+ * out and relaxed, and its braid's closure relaxed; the shorter of the two
+ * at thickness 1.25 is kept (the diagram's type checked here, so that one
+ * that failed leaves the closure; the closure's by the caller). The
+ * tightening's basin follows the start's conformation, and the more
+ * compact start led to the lower basin: the plain command (T = 300) from
+ * the diagrams ended at or below KnotInfo for 9_3, 9_8, 9_10, 9_12, where
+ * from the braid closures (longer: 151.7 against 140.2 for 9_3, 183.5
+ * against 129.1 for 9_8) it ended 1.2-1.4 % above; 9_1's closure is the
+ * shorter (105.2 against 108.3), and from it 9_1 ended at 75.6262, from
+ * its diagram at 75.9461 (bench/notes/2026-11-30-diagram-starts.md). */
+static int shorter_start(const tr_table_entry *entry, const tr_knot_notation *nt, tr_curve *out,
+                         tr_knot_made *made, tr_error *err)
+{
+    size_t u = strlen(made->what);
+    tr_knot_made dm = *made;
+    tr_curve dia = {0};
+    tr_error dia_err;
+    snprintf(dm.what + u, sizeof dm.what - u, ", its minimal diagram (KnotInfo's PD code), relaxed");
+    int drc = from_pd_polygon(&entry->pd, nt, &dia, &dm, &dia_err);
+    if (drc == TR_OK && (drc = check_type(&dia, entry, NULL, &dm, &dia_err)) != TR_OK)
+        tr_curve_free(&dia);
+    if (drc == TR_ENOMEM) {
+        *err = dia_err;
+        return drc;
+    }
+    int rc = from_braid(&entry->braid, nt, 1, out, made, err);
+    if (drc != TR_OK)
+        return rc; /* the closure, or its error */
+    double ld = tr_curve_length(&dia);
+    if (rc == TR_OK) {
+        double lb = tr_curve_length(out);
+        if (!(ld < lb)) {
+            size_t w = strlen(made->what);
+            snprintf(made->what + w, sizeof made->what - w, " (shorter than its minimal diagram relaxed: %.1f against "
+                     "%.1f)", lb, ld);
+            tr_curve_free(&dia);
+            return TR_OK;
+        }
+        size_t w = strlen(dm.what);
+        snprintf(dm.what + w, sizeof dm.what - w, " (shorter than its braid's closure relaxed: %.1f against %.1f)",
+                 ld, lb);
+        tr_curve_free(out);
+    }
+    *out = dia;
+    *made = dm;
+    return TR_OK;
+}
+
 /* The type is checked, never assumed: the invariants of the curve just
  * made, from its own vertices, against the name's or the PD code's. */
 static int check_type(const tr_curve *c, const tr_table_entry *entry, const tr_pd *pd, tr_knot_made *made,
@@ -169,25 +221,7 @@ int tr_knot_start_make(const tr_knot_notation *nt, tr_curve *out, tr_knot_made *
             size_t u = strlen(made->what);
             snprintf(made->what + u, sizeof made->what - u, ": a circle of radius %g", UNKNOT_RADIUS);
         } else if (!entry->is_link && entry->pd.n >= 3 && !nt->as_drawn) {
-            /* a knot's minimal diagram (KnotInfo's PD code) laid out and
-             * relaxed, its braid's closure where that fails: the
-             * tightening's basin follows the start's conformation: the
-             * plain command (T = 300) from the diagrams ended at or below
-             * KnotInfo for 9_3, 9_8, 9_10, 9_12, from the braid closures
-             * 1.2-1.4 % above (bench/notes/2026-11-30-diagram-starts.md) */
-            size_t u = strlen(made->what);
-            snprintf(made->what + u, sizeof made->what - u, ", its minimal diagram (KnotInfo's PD code), relaxed");
-            tr_error pd_err;
-            if ((rc = from_pd_polygon(&entry->pd, nt, out, made, &pd_err)) == TR_OK &&
-                (rc = check_type(out, entry, NULL, made, &pd_err)) == TR_OK)
-                goto done;
-            tr_curve_free(out);
-            if (rc == TR_ENOMEM) {
-                *err = pd_err;
-                goto done;
-            }
-            made->what[u] = '\0';
-            rc = from_braid(&entry->braid, nt, 1, out, made, err);
+            rc = shorter_start(entry, nt, out, made, err);
         } else {
             rc = from_braid(&entry->braid, nt, 1, out, made, err);
         }

@@ -95,7 +95,8 @@ TIGHTROPE_API const double *tightrope_curve_xyz(const tightrope_curve *c);
  *   "clasp [H]"   two open ropes hooked, ends on the planes z = +-H (default 5), n per rope,
  *                 default 100
  *   "knot NAME"   a prime knot to 12 crossings by its KnotInfo name (3_1 ... 10_165,
- *                 11a_1 ... 12n_888): its minimal diagram relaxed, at thickness 1.25,
+ *                 11a_1 ... 12n_888): its minimal diagram or braid closure relaxed
+ *                 (the shorter), at thickness 1.25,
  *                 its type checked (docs/knots.md); n in all, default from edges ~0.22
  *   "link NAME"   a prime link to 9 crossings by its LinkInfo name (L2a1, L6a4{1}, ...)
  *   "NAME"        either, by name

@@ -63,7 +63,7 @@ def test_make_knot_and_link() -> None:
 
 
 def test_make_by_name() -> None:
-    # KnotInfo's 7_4 from its minimal diagram, at thickness 1.25 (the
+    # KnotInfo's 7_4 from its minimal diagram or braid, at thickness 1.25 (the
     # oracle's), its type checked in C against the table's invariants
     k = tightrope.make_knot("7_4")
     assert k.ndim == 2 and k.shape[1] == 3

@@ -252,8 +252,8 @@ def _start(knot: Any, n: Optional[int] = None) -> Curve:
 
 def make_knot(name: Any, n: Optional[int] = None) -> Array:
     """A knot's start curve as an (n, 3) array: any knot to 12 crossings by
-    its KnotInfo name ("7_4", "10_165", "11a_1"; its minimal diagram,
-    relaxed, its type checked), "braid 1,-2,1,-2", "pd [[...]]", "trefoil",
+    its KnotInfo name ("7_4", "10_165", "11a_1"; its minimal diagram or
+    braid closure, relaxed, the shorter; its type checked), "braid 1,-2,1,-2", "pd [[...]]", "trefoil",
     "torus P Q" (default n 200), "circle [R]" (64); or a PD code as a list
     of 4-tuples, or a spherogram/SnapPy Link (its braid word)."""
     comps = _start(name, n).components
