@@ -737,17 +737,6 @@ int tr_tighten(const tr_curve *start, const tr_tighten_options *opt, tr_tighten_
         r.why = TR_STOP_SIGNAL;
     fill_result(&o, e, &r, res);
     res->checkpointed = kept_ckpt;
-    /* a result longer than its start is a valid rope, but not what a
-     * tightening promises: said, with the way out (the Python test's
-     * trefoil from a PD code, 35.62, came back at 64.26 from scouts that
-     * a sanitizer's slowness left no time) */
-    tr_thickness st;
-    tr_error st_err;
-    if (start && start->ncst == 0 && tr_thickness_measure(start, NULL, &st, NULL, &st_err) == TR_OK &&
-        st.thickness > 0 && res->ropelength > st.ropelength)
-        tt_note(&o, TR_TIGHTEN_WARNING, "warning: the result (ropelength %.6f) is longer than the start (%.6f): "
-                "it stopped before it was shorter (give it more time or steps)",
-                res->ropelength, st.ropelength);
     if (o.ckpt && last_ckpt_t < 0 && have)
         tt_note(&o, TR_TIGHTEN_INFO, "no checkpoint: the run %s while its scouts ran, and scouts write none "
                 "(the command again starts afresh)", res->interrupted ? "was interrupted" : "ended");
