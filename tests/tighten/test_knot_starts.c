@@ -40,6 +40,22 @@ static double now(void)
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
+/* the makes' times: their sum and the slowest, by name */
+typedef struct make_times {
+    double total, slowest;
+    const char *slow_name;
+} make_times;
+
+static void make_timed(make_times *m, const char *name, double t0)
+{
+    double dt = now() - t0;
+    m->total += dt;
+    if (dt > m->slowest) {
+        m->slowest = dt;
+        m->slow_name = name;
+    }
+}
+
 /* the start's own properties, measured independently */
 static int check_start(const tr_curve *c, const char *name)
 {
@@ -72,8 +88,7 @@ static int check_start(const tr_curve *c, const char *name)
 static void test_every_name(const tr_knot_table *t, int relax, int stride)
 {
     int made = 0, matched = 0, links = 0, knots = 0;
-    double slowest = 0, total = 0;
-    const char *slow_name = "";
+    make_times mt = {.slow_name = ""};
     int seen = 0, want_knots = 0, want_links = 0;
     for (int i = 0; i < t->n; i++) {
         const tr_table_entry *e = &t->e[i];
@@ -99,12 +114,7 @@ static void test_every_name(const tr_knot_table *t, int relax, int stride)
         if (relaxed != relax)
             tr_test_report(__FILE__, __LINE__, "%s: relaxed %d, asked %d", e->name, relaxed, relax);
         int ok = tr_type_check_of(&c, &tc, &err) == 0 && tr_type_matches(&tc, e, why, sizeof why);
-        double dt = now() - t0;
-        total += dt;
-        if (dt > slowest) {
-            slowest = dt;
-            slow_name = e->name;
-        }
+        make_timed(&mt, e->name, t0);
         if (!ok) {
             tr_test_report(__FILE__, __LINE__, "%s: not identified: %s", e->name, why);
         } else {
@@ -134,8 +144,8 @@ static void test_every_name(const tr_knot_table *t, int relax, int stride)
     CHECK(knots + links == (want_knots + want_links + stride - 1) / stride);
     CHECK(made == knots + links && matched == made);
     printf("%s: %d knots and %d links made, %d identified as themselves; %.1f ms each on average, slowest %s %.0f "
-           "ms\n", relax ? "relaxed" : "as drawn", knots, links, matched, 1e3 * total / (made ? made : 1), slow_name,
-           1e3 * slowest);
+           "ms\n", relax ? "relaxed" : "as drawn", knots, links, matched, 1e3 * mt.total / (made ? made : 1), mt.slow_name,
+           1e3 * mt.slowest);
 }
 
 static int made_matches(const tr_knot_table *t, const char *made_from, const char *named)
@@ -202,8 +212,7 @@ static void test_pd_trefoil(const tr_knot_table *t)
 static void test_every_diagram(const tr_knot_table *t, int stride)
 {
     int seen = 0, made = 0, matched = 0;
-    double slowest = 0, total = 0;
-    const char *slow_name = "";
+    make_times mt = {.slow_name = ""};
     for (int i = 0; i < t->n; i++) {
         const tr_table_entry *e = &t->e[i];
         if (e->is_link || e->crossings > 10 || e->pd.n < 3 || seen++ % stride)
@@ -229,12 +238,7 @@ static void test_every_diagram(const tr_knot_table *t, int stride)
         }
         made++;
         int ok = tr_type_check_of(&c, &tc, &err) == 0 && tr_type_matches(&tc, e, why, sizeof why);
-        double dt = now() - t0;
-        total += dt;
-        if (dt > slowest) {
-            slowest = dt;
-            slow_name = e->name;
-        }
+        make_timed(&mt, e->name, t0);
         if (!ok)
             tr_test_report(__FILE__, __LINE__, "%s from its PD code: not identified: %s", e->name, why);
         else if (tc.inv.signature != e->signature)
@@ -249,7 +253,7 @@ static void test_every_diagram(const tr_knot_table *t, int stride)
     CHECK(seen == 249);
     CHECK(made == (seen + stride - 1) / stride && matched == made);
     printf("from the minimal diagram: %d knots made, %d identified as themselves; %.1f ms each on average, slowest "
-           "%s %.0f ms\n", made, matched, 1e3 * total / (made ? made : 1), slow_name, 1e3 * slowest);
+           "%s %.0f ms\n", made, matched, 1e3 * mt.total / (made ? made : 1), mt.slow_name, 1e3 * mt.slowest);
 }
 
 int main(void)
