@@ -125,3 +125,7 @@ set_tests_properties(tighten_tries PROPERTIES ENVIRONMENT "${TR_TEST_ENV}" LABEL
 add_test(NAME tighten_auto_roads
   COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/scripts/auto_roads_cli.sh $<TARGET_FILE:tightrope> ${_eng_dir}/auto_roads)
 set_tests_properties(tighten_auto_roads PROPERTIES ENVIRONMENT "${TR_TEST_ENV}" LABELS cli)
+# A result longer than its start is said on stderr (tests/scripts/longer_than_start_cli.sh)
+add_test(NAME tighten_longer_than_start
+  COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/scripts/longer_than_start_cli.sh $<TARGET_FILE:tightrope> ${_eng_dir}/longer)
+set_tests_properties(tighten_longer_than_start PROPERTIES ENVIRONMENT "${TR_TEST_ENV}" LABELS cli)

@@ -142,6 +142,7 @@ int tightrope_tighten(const tightrope_curve *start, const tightrope_tighten_opti
     result->rescaled = r.rescaled;
     memcpy(result->shift, r.shift, sizeof result->shift);
     snprintf(result->device, sizeof result->device, "%s", r.device);
+    result->start_ropelength = r.start_ropelength;
     rc = tr_api_wrap(&r.curve, out, err);
     tr_tighten_result_free(&r);
     return rc;

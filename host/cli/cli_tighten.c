@@ -280,7 +280,17 @@ static int final_status(const tr_cli_tighten *t, const tr_tighten_result *r)
     if (r->goal_missed)
         fprintf(stderr, "tightrope tighten: stopped (%s) before reaching the requested %s; wrote %s\n",
                 tr_stop_reason_name(r->stop), r->goal_target ? "ropelength" : "residual", t->out);
-    return r->interrupted || r->goal_missed ? 1 : 0;
+    if (r->interrupted || r->goal_missed)
+        return 1;
+    /* a run that exits 0 with a result longer than its start says so: the
+     * lines above already speak for the runs that exit 1. Equal lengths to
+     * 1e-6 (a circle: 6.285212 both) are not longer. */
+    if (isfinite(r->start_ropelength) && r->ropelength > r->start_ropelength * (1.0 + 1e-6))
+        fprintf(stderr,
+                "tightrope tighten: warning: the result (ropelength %.6f) is longer than the start (%.6f): it "
+                "stopped (%s) before it was shorter; wrote %s\n",
+                r->ropelength, r->start_ropelength, tr_stop_reason_name(r->stop), t->out);
+    return 0;
 }
 
 /* The exit status of a failed tr_tighten (cli.h): a curve or an option the

@@ -471,9 +471,27 @@ static int check_type(const tr_curve *start, const tt_opts *o, tr_tighten_result
     return rc;
 }
 
+/* The start's ropelength as given, for tr_tighten_result's
+ * start_ropelength: NAN where a comparison would mislead (a clasp's ends
+ * are held, so its length is not scaled to thickness 1) or cannot be
+ * made; within the call's bound (a start of 10^6 vertices takes seconds). */
+static double measure_start(const tr_curve *start, const tt_opts *o)
+{
+    if (!start || o->resume || start->ncst != 0)
+        return NAN;
+    tr_deadline bound = tt_bound(o);
+    tr_thickness_opts bounded = {.bound = &bound};
+    tr_thickness th;
+    tr_error err;
+    if (tr_thickness_measure(start, &bounded, &th, NULL, &err) != TR_OK || !(th.thickness > 0) ||
+        !isfinite(th.ropelength))
+        return NAN;
+    return th.ropelength;
+}
+
 int tr_tighten(const tr_curve *start, const tr_tighten_options *opt, tr_tighten_result *res, tr_error *err)
 {
-    *res = (tr_tighten_result){.kkt_residual = NAN, .residual = NAN, .seed = -1};
+    *res = (tr_tighten_result){.kkt_residual = NAN, .residual = NAN, .seed = -1, .start_ropelength = NAN};
     if (!opt->resume && !start) {
         res->failed_at = TR_TIGHTEN_AT_START;
         return tr_fail(err, TR_EINVAL, "no start curve and no checkpoint to resume");
@@ -510,6 +528,7 @@ int tr_tighten(const tr_curve *start, const tr_tighten_options *opt, tr_tighten_
         rc = tt_tighten_vertex(&o, res, err);
         return rc ? rc : check_type(start, &o, res, err);
     }
+    double start_ropelength = measure_start(start, &o);
     /* tries: the roads one after the other, each with an equal share of the
      * time left; of the certified ones the finest, then the shortest, is
      * kept. A road that fails after the first is skipped (said in a note);
@@ -737,6 +756,7 @@ int tr_tighten(const tr_curve *start, const tr_tighten_options *opt, tr_tighten_
         r.why = TR_STOP_SIGNAL;
     fill_result(&o, e, &r, res);
     res->checkpointed = kept_ckpt;
+    res->start_ropelength = start_ropelength;
     if (o.ckpt && last_ckpt_t < 0 && have)
         tt_note(&o, TR_TIGHTEN_INFO, "no checkpoint: the run %s while its scouts ran, and scouts write none "
                 "(the command again starts afresh)", res->interrupted ? "was interrupted" : "ended");

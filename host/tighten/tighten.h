@@ -182,6 +182,12 @@ typedef struct tr_tighten_result {
     tr_vertex_thickness vt;
     int vertex_converged;
     const char *vertex_why;
+    /* the start's ropelength as given (before n, scale or a shuffle),
+     * measured before the run: a result longer than it is a valid rope but
+     * not what a tightening promises (a run stopped early by steps or the
+     * time), which the caller may say. NAN: resumed, constrained ends (a
+     * clasp), the vertex model, or not measurable (a start through itself) */
+    double start_ropelength;
 } tr_tighten_result;
 
 /* Tightens start (or opt->resume's checkpoint, start NULL) as opt says

@@ -237,6 +237,10 @@ typedef struct tightrope_tighten_result {
     double shift[3];     /* a start whose box misses the origin is tightened about it: the
                             result is moved by -shift (0 0 0: not moved) */
     char device[128];
+    double start_ropelength; /* the start's, as given, measured before the run; NAN: not
+                                compared (constrained ends, the vertex model, a start through
+                                itself). A result longer than it is a run stopped before it came
+                                below it (the command line warns) */
 } tightrope_tighten_result;
 
 /* Tightens start as o says (NULL: defaults) into *out (the tight curve,

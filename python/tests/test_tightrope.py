@@ -172,6 +172,8 @@ def test_tighten_trefoil() -> None:
     # what it says is what an independent measure of its curve finds
     assert m["ropelength"] == pytest.approx(r.ropelength, rel=1e-12)
     assert IDEAL_TREFOIL < r.ropelength < tightrope.measure(start)["ropelength"] - 1
+    # the start's ropelength it compares with is the measure's of the start
+    assert r.start_ropelength == pytest.approx(tightrope.measure(start)["ropelength"], rel=1e-12)
     assert r.kkt_residual is not None and 0 <= r.kkt_residual < 1
     assert not r.interrupted and r.stopped in {"residual", "jammed", "time-limit", "solved"}
     assert seen and all(p.n == 64 for p in seen)

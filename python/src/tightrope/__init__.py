@@ -18,6 +18,7 @@ with the library's one-line message.
 from __future__ import annotations
 
 import ctypes
+import math
 import os
 import signal
 from dataclasses import dataclass, field
@@ -367,6 +368,7 @@ class TightenResult:
     rescaled: bool
     shift: Array  # a start far from the origin comes back moved by -shift (centred)
     device: str
+    start_ropelength: Optional[float]  # the start's, measured before the run; None: not compared
     kkt: Optional[Dict[str, Any]] = None
     tight: Optional[Curve] = field(default=None, repr=False)  # the result as a Curve (write() keeps constraints)
 
@@ -514,6 +516,7 @@ def tighten(curve: CurveLike, time_limit: Optional[float] = None, progress: Opti
         rescaled=bool(res.rescaled),
         shift=np.array(res.shift[:]),
         device=res.device.decode(errors="replace"),
+        start_ropelength=None if math.isnan(res.start_ropelength) else res.start_ropelength,
         kkt=_kkt(res.kkt) if res.certified else None,
         tight=tight,
     )

@@ -122,6 +122,7 @@ class TightenResultStruct(ctypes.Structure):
         ("rescaled", c_int),
         ("shift", c_double * 3),
         ("device", ctypes.c_char * 128),
+        ("start_ropelength", c_double),
     ]
 
 
